@@ -1,0 +1,58 @@
+// apps/cli/main.cpp — the polydec command-line program: subcommand dispatch and the mapping
+// of failures to exit codes (0 ok, 1 internal error, 2 usage, 3 bad input, 4 solver failure).
+#include "apps/cli/command.h"
+#include "dec/io.h"
+#include "operators/cholesky.h"
+
+#include <algorithm>
+#include <fmt/format.h>
+#include <iostream>
+
+namespace polydec::cli {
+
+std::vector<Command>& registry() {
+  static std::vector<Command> commands;
+  return commands;
+}
+
+void print_json(const nlohmann::json& j) { std::cout << j.dump(2) << std::endl; }
+
+}  // namespace polydec::cli
+
+int main(int argc, char** argv) {
+  using namespace polydec::cli;
+  CLI::App app{"polydec: discrete exterior calculus on polygon meshes (Polygon Laplacian Made Simple)"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "polydec 0.1");
+  auto& cmds = registry();
+  std::sort(cmds.begin(), cmds.end(), [](const Command& a, const Command& b) { return a.name < b.name; });
+  for (auto& c : cmds) c.setup(*app.add_subcommand(c.name, c.description));
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? kOk : kUsageError;
+  } catch (const UsageError& e) {
+    std::cerr << "polydec: usage error: " << e.what() << "\n";
+    return kUsageError;
+  } catch (const polydec::FileError& e) {
+    std::cerr << "polydec: bad input: " << e.what() << "\n";
+    return kBadInput;
+  } catch (const polydec::InvalidMeshError& e) {
+    std::cerr << "polydec: bad input: " << e.what() << "\n";
+    return kBadInput;
+  } catch (const polydec::SolverError& e) {
+    std::cerr << "polydec: solver failure: " << e.what() << "\n";
+    return kSolverFailure;
+  } catch (const std::out_of_range& e) {
+    std::cerr << "polydec: bad input: " << e.what() << "\n";
+    return kBadInput;
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "polydec: usage error: " << e.what() << "\n";
+    return kUsageError;
+  } catch (const std::exception& e) {
+    std::cerr << "polydec: error: " << e.what() << "\n";
+    return kInternalError;
+  }
+  return kOk;
+}

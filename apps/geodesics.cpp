@@ -1,0 +1,145 @@
+// apps/geodesics.cpp — heat-method geodesic distances.
+#include "apps/geodesics.h"
+
+#include "operators/gradient.h"
+
+#include <cmath>
+#include <fmt/format.h>
+#include <limits>
+#include <numeric>
+
+namespace polydec {
+
+namespace {
+
+// Component id per vertex by flood fill over faces; -1 for unreferenced vertices.
+std::vector<int> vertex_components(const Mesh& mesh) {
+  std::vector<int> comp(mesh.n_vertices(), -1);
+  std::vector<int> stack;
+  int next = 0;
+  for (int s = 0; s < mesh.n_vertices(); ++s) {
+    if (comp[s] >= 0 || mesh.vertex_faces(s).empty()) continue;
+    comp[s] = next;
+    stack.push_back(s);
+    while (!stack.empty()) {
+      const int v = stack.back();
+      stack.pop_back();
+      for (int f : mesh.vertex_faces(v))
+        for (int u : mesh.face(f))
+          if (comp[u] < 0) {
+            comp[u] = next;
+            stack.push_back(u);
+          }
+    }
+    ++next;
+  }
+  return comp;
+}
+
+// A with the rows and columns of pinned vertices replaced by the identity.
+SparseMatrix pin(const SparseMatrix& A, const std::vector<unsigned char>& pinned) {
+  std::vector<Eigen::Triplet<double>> t;
+  t.reserve(A.nonZeros());
+  for (int j = 0; j < A.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(A, j); it; ++it)
+      if (!pinned[it.row()] && !pinned[it.col()]) t.emplace_back(it.row(), it.col(), it.value());
+  for (size_t v = 0; v < pinned.size(); ++v)
+    if (pinned[v]) t.emplace_back(int(v), int(v), 1.0);
+  SparseMatrix B(A.rows(), A.cols());
+  B.setFromTriplets(t.begin(), t.end());
+  return B;
+}
+
+}  // namespace
+
+HeatGeodesics::HeatGeodesics(const Mesh& mesh, const HeatGeodesicsOptions& options)
+    : mesh_(mesh), options_(options), refinement_(refine(mesh, options.refinement)) {
+  const double h = mesh.mean_edge_length();
+  t_ = options.time_step_factor * h * h;
+  Laplacian L = assemble_laplacian(mesh, refinement_, {true, !options.lumped_mass, options.lumped_mass});
+  G_ = gradient(mesh, refinement_);
+  D_ = divergence(mesh, refinement_);
+  component_ = vertex_components(mesh);
+
+  // Heat operator M - t S; unreferenced vertices (empty rows) are pinned to keep it definite.
+  pinned_.assign(mesh.n_vertices(), 0);
+  for (int v = 0; v < mesh.n_vertices(); ++v)
+    if (component_[v] < 0) pinned_[v] = 1;
+  SparseMatrix heat;
+  if (options.lumped_mass) {
+    M_lumped_ = L.M_lumped;
+    SparseMatrix Md(mesh.n_vertices(), mesh.n_vertices());
+    Md.setIdentity();
+    Md.diagonal() = M_lumped_;
+    heat = Md - t_ * L.S;
+  } else {
+    M_ = L.M;
+    heat = M_ - t_ * L.S;
+  }
+  heat_ = std::make_unique<SparseCholesky>(pin(heat, pinned_), "heat operator M - t S");
+
+  // Poisson operator -S with one vertex pinned per component (S has constants per component in
+  // its null space; the right-hand side D g sums to zero on each, so pinning loses nothing).
+  std::vector<unsigned char> seen(std::max(0, *std::max_element(component_.begin(), component_.end()) + 1), 0);
+  for (int v = 0; v < mesh.n_vertices(); ++v)
+    if (component_[v] >= 0 && !seen[component_[v]]) {
+      seen[component_[v]] = 1;
+      pinned_[v] = 1;
+    }
+  poisson_ = std::make_unique<SparseCholesky>(pin(-L.S, pinned_), "Poisson operator -S");
+}
+
+Eigen::VectorXd HeatGeodesics::distance(std::span<const int> sources) const {
+  const int nv = mesh_.n_vertices();
+  if (sources.empty()) throw std::out_of_range("heat geodesics: no source vertex given");
+  Eigen::VectorXd delta = Eigen::VectorXd::Zero(nv);
+  std::vector<unsigned char> reached_component(nv + 1, 0);
+  for (int s : sources) {
+    if (s < 0 || s >= nv)
+      throw std::out_of_range(fmt::format("heat geodesics: source vertex {} out of range [0, {})", s, nv));
+    if (component_[s] < 0)
+      throw std::out_of_range(fmt::format("heat geodesics: source vertex {} belongs to no face", s));
+    delta[s] = 1.0;
+    reached_component[component_[s]] = 1;
+  }
+  // (31): (M - t S) u = M delta
+  Eigen::VectorXd rhs = options_.lumped_mass ? Eigen::VectorXd(M_lumped_.cwiseProduct(delta)) : Eigen::VectorXd(M_ * delta);
+  for (int v = 0; v < nv; ++v)
+    if (component_[v] < 0) rhs[v] = 0;
+  const Eigen::VectorXd u = heat_->solve(rhs);
+
+  // (32): g = -grad u / |grad u| per fan triangle; zero where the gradient vanishes.
+  Eigen::VectorXd g = G_ * u;
+  for (int h = 0; h < mesh_.n_halfedges(); ++h) {
+    auto gh = g.segment<3>(3 * h);
+    const double m = gh.cwiseAbs().maxCoeff();  // rescale first: far from the source |grad u| underflows when squared
+    if (!(m > 0) || !std::isfinite(m)) {
+      gh.setZero();
+      continue;
+    }
+    const Eigen::Vector3d s = gh / m;
+    gh = -s / s.norm();
+  }
+  // (33): S d = D g, solved as (-S) d = -D g with pinned vertices.
+  Eigen::VectorXd b = -(D_ * g);
+  for (int v = 0; v < nv; ++v)
+    if (pinned_[v]) b[v] = 0;
+  Eigen::VectorXd d = poisson_->solve(b);
+
+  const int nc = int(reached_component.size());
+  std::vector<double> cmin(nc, std::numeric_limits<double>::infinity());
+  for (int v = 0; v < nv; ++v)
+    if (component_[v] >= 0) cmin[component_[v]] = std::min(cmin[component_[v]], d[v]);
+  for (int v = 0; v < nv; ++v) {
+    const int c = component_[v];
+    d[v] = (c >= 0 && reached_component[c]) ? d[v] - cmin[c] : std::numeric_limits<double>::infinity();
+  }
+  return d;
+}
+
+double rmse(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  if (a.size() == 0) return 0.0;
+  return std::sqrt((a - b).squaredNorm() / double(a.size()));
+}
+
+}  // namespace polydec

@@ -1,0 +1,118 @@
+// dec/mesh.h — the polygon mesh: positions (|V| x 3), faces as offsets + indices, and the
+// connectivity derived once at construction (edges, halfedges, boundary loops, vertex-face
+// adjacency). Immutable after validation.
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace polydec {
+
+// Raw polygon data, as a reader or generator produces it, before validation.
+// Face f has the vertex indices face_indices[face_offsets[f] .. face_offsets[f+1]).
+struct PolygonSoup {
+  Eigen::MatrixX3d positions;        // |V| x 3
+  std::vector<int> face_offsets{0};  // |F| + 1 entries, starts at 0
+  std::vector<int> face_indices;     // sum of face valences
+
+  int n_vertices() const { return int(positions.rows()); }
+  int n_faces() const { return int(face_offsets.size()) - 1; }
+  void add_face(std::span<const int> f);
+};
+
+// Thrown when a soup is not a valid polygon mesh. `element` names the kind of element
+// ("face", "vertex", "edge") and `index` which one, so callers can point at the culprit.
+class InvalidMeshError : public std::runtime_error {
+ public:
+  InvalidMeshError(std::string element, long index, const std::string& what);
+  std::string element;
+  long index;
+};
+
+// A validated polygon mesh.
+//
+// Halfedges are face corners: halfedge h is position h in face_indices(); it starts at
+// vertex face_indices()[h] and ends at the next corner of the same face. Undirected edges are
+// numbered in lexicographic order of (i, j) with i < j. Validation rejects faces with fewer
+// than 3 vertices, indices out of range, a vertex repeated in a face, an edge shared by more
+// than two faces or by two faces with the same direction (inconsistent orientation), and
+// non-finite coordinates. Unreferenced vertices are accepted and counted: every operator
+// gives them zero rows and columns.
+class Mesh {
+ public:
+  Mesh() = default;
+  explicit Mesh(PolygonSoup soup);  // throws InvalidMeshError
+
+  // The same connectivity with new positions (|V| x 3, finite); cheap: shares connectivity.
+  Mesh with_positions(Eigen::MatrixX3d positions) const;
+
+  const Eigen::MatrixX3d& positions() const { return positions_; }
+  Eigen::Vector3d position(int v) const { return positions_.row(v).transpose(); }
+
+  int n_vertices() const { return int(positions_.rows()); }
+  int n_faces() const { return int(topo_->face_offsets.size()) - 1; }
+  int n_halfedges() const { return int(topo_->face_indices.size()); }
+  int n_edges() const { return int(topo_->edges.rows()); }
+
+  const std::vector<int>& face_offsets() const { return topo_->face_offsets; }
+  const std::vector<int>& face_indices() const { return topo_->face_indices; }
+  std::span<const int> face(int f) const {
+    const auto& o = topo_->face_offsets;
+    return {topo_->face_indices.data() + o[f], size_t(o[f + 1] - o[f])};
+  }
+  int face_size(int f) const { return topo_->face_offsets[f + 1] - topo_->face_offsets[f]; }
+  int max_face_size() const { return topo_->max_face_size; }
+
+  // Halfedge (corner) queries.
+  int halfedge_face(int h) const { return topo_->halfedge_face[h]; }
+  int halfedge_next(int h) const {
+    const int f = topo_->halfedge_face[h];
+    return h + 1 < topo_->face_offsets[f + 1] ? h + 1 : topo_->face_offsets[f];
+  }
+  int halfedge_source(int h) const { return topo_->face_indices[h]; }
+  int halfedge_target(int h) const { return topo_->face_indices[halfedge_next(h)]; }
+  int halfedge_edge(int h) const { return topo_->halfedge_edge[h]; }
+  int halfedge_opposite(int h) const { return topo_->halfedge_opposite[h]; }  // -1 on boundary
+
+  // Undirected edges: |E| x 2, row e = (i, j) with i < j, lexicographic order.
+  const Eigen::MatrixX2i& edges() const { return topo_->edges; }
+  bool is_boundary_edge(int e) const { return topo_->edge_is_boundary[e] != 0; }
+  int n_boundary_edges() const { return topo_->n_boundary_edges; }
+
+  // Boundary loops, each a vertex sequence in the direction of its boundary halfedges.
+  const std::vector<std::vector<int>>& boundary_loops() const { return topo_->boundary_loops; }
+  bool is_boundary_vertex(int v) const { return topo_->vertex_is_boundary[v] != 0; }
+
+  // Faces around vertex v, ascending.
+  std::span<const int> vertex_faces(int v) const {
+    const auto& o = topo_->vertex_face_offsets;
+    return {topo_->vertex_face_indices.data() + o[v], size_t(o[v + 1] - o[v])};
+  }
+  int n_unreferenced_vertices() const { return topo_->n_unreferenced; }
+  int n_components() const { return topo_->n_components; }
+  int euler_characteristic() const { return n_vertices() - n_edges() + n_faces(); }
+
+  // Length scale: mean edge length (used for relative tolerances and the heat time step).
+  double mean_edge_length() const;
+  // Diagonal of the axis-aligned bounding box.
+  double bounding_box_diagonal() const;
+
+ private:
+  struct Topology {
+    std::vector<int> face_offsets{0}, face_indices;
+    std::vector<int> halfedge_face, halfedge_edge, halfedge_opposite;
+    Eigen::MatrixX2i edges;
+    std::vector<unsigned char> edge_is_boundary, vertex_is_boundary;
+    std::vector<std::vector<int>> boundary_loops;
+    std::vector<int> vertex_face_offsets{0}, vertex_face_indices;
+    int n_boundary_edges = 0, n_unreferenced = 0, n_components = 0, max_face_size = 0;
+  };
+  Eigen::MatrixX3d positions_;
+  std::shared_ptr<const Topology> topo_ = std::make_shared<Topology>();
+};
+
+}  // namespace polydec
