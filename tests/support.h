@@ -1,0 +1,39 @@
+// tests/support.h — helpers shared by the tests: paths of the paper's meshes in ../shared/data
+// (skipped with a message where a clone has no such folder, mandatory when the environment
+// sets POLYDEC_REQUIRE_SHARED_DATA=1, as .ci/run does), and small matrix comparisons.
+#pragma once
+
+#include <Eigen/Sparse>
+#include <catch2/catch.hpp>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+namespace polydec::test {
+
+// Path of ../shared/data/NAME, or "" when the folder is missing (then FAILs if the
+// environment requires the shared data).
+inline std::string shared_path(const std::string& name) {
+  const std::string p = std::string(POLYDEC_SHARED_DATA) + "/" + name;
+  if (std::filesystem::exists(p)) return p;
+  const char* req = std::getenv("POLYDEC_REQUIRE_SHARED_DATA");
+  if (req && std::string(req) == "1") FAIL("required test mesh missing: " << p);
+  return "";
+}
+
+// Relative Frobenius difference |A - B| / max(|A|, |B|, tiny).
+inline double relative_difference(const Eigen::SparseMatrix<double>& A, const Eigen::SparseMatrix<double>& B) {
+  const double scale = std::max({A.norm(), B.norm(), 1e-300});
+  return (A - B).norm() / scale;
+}
+
+}  // namespace polydec::test
+
+// Declares std::string VAR = path of ../shared/data/NAME, or skips the test case (returns)
+// with a warning when the folder is absent.
+#define POLYDEC_SHARED_MESH(VAR, NAME)                                                     \
+  const std::string VAR = polydec::test::shared_path(NAME);                                \
+  if (VAR.empty()) {                                                                       \
+    WARN("skipped: ../shared/data/" << NAME << " not found (clone without shared data)"); \
+    return;                                                                                \
+  }
