@@ -1,7 +1,6 @@
 // apps/geodesics.cpp — heat-method geodesic distances.
 #include "apps/geodesics.h"
 
-#include "operators/gradient.h"
 
 #include <cmath>
 #include <fmt/format.h>
@@ -53,12 +52,16 @@ SparseMatrix pin(const SparseMatrix& A, const std::vector<unsigned char>& pinned
 }  // namespace
 
 HeatGeodesics::HeatGeodesics(const Mesh& mesh, const HeatGeodesicsOptions& options)
-    : mesh_(mesh), options_(options), refinement_(refine(mesh, options.refinement)) {
-  const double h = mesh.mean_edge_length();
-  t_ = options.time_step_factor * h * h;
-  Laplacian L = assemble_laplacian(mesh, refinement_, {true, !options.lumped_mass, options.lumped_mass});
-  G_ = gradient(mesh, refinement_);
-  D_ = divergence(mesh, refinement_);
+    : HeatGeodesics(build_operators(mesh, parse_laplacian("ours")), mesh.mean_edge_length(), options) {}
+
+HeatGeodesics::HeatGeodesics(OperatorSet operators, double mean_edge_length, const HeatGeodesicsOptions& options)
+    : ops_(std::move(operators)), options_(options) {
+  const Mesh& mesh = ops_.domain;
+  if (ops_.G.size() == 0 || ops_.D.size() == 0)
+    throw std::invalid_argument("heat geodesics: Laplacian '" + ops_.name + "' defines no gradient/divergence");
+  if (!options.lumped_mass && ops_.M.size() == 0)
+    throw std::invalid_argument("heat geodesics: Laplacian '" + ops_.name + "' defines no unlumped mass");
+  t_ = options.time_step_factor * mean_edge_length * mean_edge_length;
   component_ = vertex_components(mesh);
 
   // Heat operator M - t S; unreferenced vertices (empty rows) are pinned to keep it definite.
@@ -67,14 +70,12 @@ HeatGeodesics::HeatGeodesics(const Mesh& mesh, const HeatGeodesicsOptions& optio
     if (component_[v] < 0) pinned_[v] = 1;
   SparseMatrix heat;
   if (options.lumped_mass) {
-    M_lumped_ = L.M_lumped;
     SparseMatrix Md(mesh.n_vertices(), mesh.n_vertices());
     Md.setIdentity();
-    Md.diagonal() = M_lumped_;
-    heat = Md - t_ * L.S;
+    Md.diagonal() = ops_.M_lumped;
+    heat = Md - t_ * ops_.S;
   } else {
-    M_ = L.M;
-    heat = M_ - t_ * L.S;
+    heat = ops_.M - t_ * ops_.S;
   }
   heat_ = std::make_unique<SparseCholesky>(pin(heat, pinned_), "heat operator M - t S");
 
@@ -86,31 +87,33 @@ HeatGeodesics::HeatGeodesics(const Mesh& mesh, const HeatGeodesicsOptions& optio
       seen[component_[v]] = 1;
       pinned_[v] = 1;
     }
-  poisson_ = std::make_unique<SparseCholesky>(pin(-L.S, pinned_), "Poisson operator -S");
+  poisson_ = std::make_unique<SparseCholesky>(pin(-ops_.S, pinned_), "Poisson operator -S");
 }
 
 Eigen::VectorXd HeatGeodesics::distance(std::span<const int> sources) const {
-  const int nv = mesh_.n_vertices();
+  const Mesh& mesh = ops_.domain;
+  const int nv = mesh.n_vertices(), n_out = ops_.n_input_vertices;
   if (sources.empty()) throw std::out_of_range("heat geodesics: no source vertex given");
   Eigen::VectorXd delta = Eigen::VectorXd::Zero(nv);
   std::vector<unsigned char> reached_component(nv + 1, 0);
   for (int s : sources) {
-    if (s < 0 || s >= nv)
-      throw std::out_of_range(fmt::format("heat geodesics: source vertex {} out of range [0, {})", s, nv));
+    if (s < 0 || s >= n_out)
+      throw std::out_of_range(fmt::format("heat geodesics: source vertex {} out of range [0, {})", s, n_out));
     if (component_[s] < 0)
       throw std::out_of_range(fmt::format("heat geodesics: source vertex {} belongs to no face", s));
     delta[s] = 1.0;
     reached_component[component_[s]] = 1;
   }
   // (31): (M - t S) u = M delta
-  Eigen::VectorXd rhs = options_.lumped_mass ? Eigen::VectorXd(M_lumped_.cwiseProduct(delta)) : Eigen::VectorXd(M_ * delta);
+  Eigen::VectorXd rhs =
+      options_.lumped_mass ? Eigen::VectorXd(ops_.M_lumped.cwiseProduct(delta)) : Eigen::VectorXd(ops_.M * delta);
   for (int v = 0; v < nv; ++v)
     if (component_[v] < 0) rhs[v] = 0;
   const Eigen::VectorXd u = heat_->solve(rhs);
 
   // (32): g = -grad u / |grad u| per fan triangle; zero where the gradient vanishes.
-  Eigen::VectorXd g = G_ * u;
-  for (int h = 0; h < mesh_.n_halfedges(); ++h) {
+  Eigen::VectorXd g = ops_.G * u;
+  for (int h = 0; h < g.size() / 3; ++h) {
     auto gh = g.segment<3>(3 * h);
     const double m = gh.cwiseAbs().maxCoeff();  // rescale first: far from the source |grad u| underflows when squared
     if (!(m > 0) || !std::isfinite(m)) {
@@ -121,16 +124,16 @@ Eigen::VectorXd HeatGeodesics::distance(std::span<const int> sources) const {
     gh = -s / s.norm();
   }
   // (33): S d = D g, solved as (-S) d = -D g with pinned vertices.
-  Eigen::VectorXd b = -(D_ * g);
+  Eigen::VectorXd b = -(ops_.D * g);
   for (int v = 0; v < nv; ++v)
     if (pinned_[v]) b[v] = 0;
-  Eigen::VectorXd d = poisson_->solve(b);
+  Eigen::VectorXd d = poisson_->solve(b).head(n_out);
 
   const int nc = int(reached_component.size());
   std::vector<double> cmin(nc, std::numeric_limits<double>::infinity());
-  for (int v = 0; v < nv; ++v)
+  for (int v = 0; v < n_out; ++v)
     if (component_[v] >= 0) cmin[component_[v]] = std::min(cmin[component_[v]], d[v]);
-  for (int v = 0; v < nv; ++v) {
+  for (int v = 0; v < n_out; ++v) {
     const int c = component_[v];
     d[v] = (c >= 0 && reached_component[c]) ? d[v] - cmin[c] : std::numeric_limits<double>::infinity();
   }

@@ -14,7 +14,7 @@ struct Options {
   std::string mesh, out;
   std::vector<int> sources;
   bool json = false, euclidean = false;
-  std::string mass = "lumped";
+  std::string mass = "lumped", laplacian = "ours";
 };
 
 void run(const Options& o) {
@@ -22,7 +22,7 @@ void run(const Options& o) {
   if (o.mass != "lumped" && o.mass != "unlumped") throw UsageError("--mass must be lumped or unlumped");
   HeatGeodesicsOptions hopt;
   hopt.lumped_mass = o.mass == "lumped";
-  const HeatGeodesics heat(mesh, hopt);
+  const HeatGeodesics heat(build_operators(mesh, parse_laplacian(o.laplacian)), mesh.mean_edge_length(), hopt);
   const Eigen::VectorXd d = heat.distance(o.sources);
   double mn = INFINITY, mx = -INFINITY, sum = 0;
   int finite = 0;
@@ -33,10 +33,10 @@ void run(const Options& o) {
       sum += d[v];
       ++finite;
     }
-  nlohmann::json j = {{"mesh", o.mesh},         {"sources", o.sources},       {"time_step", heat.time_step()},
+  nlohmann::json j = {{"mesh", o.mesh}, {"laplacian", heat.operators().name}, {"sources", o.sources},       {"time_step", heat.time_step()},
                       {"min", mn},              {"max", mx},                  {"mean", finite ? sum / finite : 0.0},
-                      {"unreached", int(d.size()) - finite}, {"fan_degenerate", heat.refinement().quality.n_degenerate},
-                      {"fan_inverted", heat.refinement().quality.n_inverted}};
+                      {"unreached", int(d.size()) - finite}, {"fan_degenerate", heat.operators().quality.n_degenerate},
+                      {"fan_inverted", heat.operators().quality.n_inverted}};
   if (o.euclidean) {
     // Error against the Euclidean distance from the first source, shifted to minimum 0 (planar meshes).
     Eigen::VectorXd e(mesh.n_vertices());
@@ -64,6 +64,7 @@ const RegisterCommand reg("geodesics", "Geodesic distances by the heat method (p
   app.add_option("--source", o->sources, "source vertex (0-based; repeat for several)")->required();
   app.add_option("--out", o->out, "output mesh with a 'distance' vertex property (.ply)");
   app.add_option("--mass", o->mass, "lumped (default) or unlumped mass in the heat step");
+  app.add_option("--laplacian", o->laplacian, "Laplacian: " + fmt::format("{}", fmt::join(laplacian_names(), ", ")));
   app.add_flag("--euclidean", o->euclidean, "also report the RMSE against the Euclidean distance (planar meshes)");
   app.add_flag("--json", o->json, "print one JSON object instead of text");
   app.callback([o] { run(*o); });

@@ -1,0 +1,49 @@
+// operators/laplacians.h — every Laplacian polydec offers, behind one interface, selectable by
+// name (`--laplacian NAME` on the command line). Applications take an OperatorSet, so any of
+// them can be compared on equal terms.
+//
+// Names: "ours" (the paper's operator: squared-area virtual vertex), "centroid" (ours with the
+// centroid as virtual vertex). A parameter follows a colon, e.g. "aw11:0.5".
+#pragma once
+
+#include "dec/refinement.h"
+#include "operators/laplacian.h"
+
+#include <string>
+
+namespace polydec {
+
+// The operators of one method on its domain mesh. Conventions as in operators/laplacian.h:
+// S symmetric negative semi-definite, |V| x |V| of `domain`.
+struct OperatorSet {
+  std::string name;          // canonical name, e.g. "ours", "aw11:0.5"
+  Mesh domain;               // the mesh the operators act on: the input mesh, or a refinement of it whose
+                             // first n_input_vertices vertices are the input's (method "refined")
+  int n_input_vertices = 0;  // read results at vertices [0, n_input_vertices)
+  SparseMatrix S;            // stiffness
+  SparseMatrix M;            // Galerkin (consistent) mass; empty where the method defines none
+  Eigen::VectorXd M_lumped;  // lumped mass (diagonal)
+  // Gradient (3k x |V|, one 3-vector per element) and divergence D = -G^T W (|V| x 3k) with
+  // S = D G; empty where the method defines none.
+  SparseMatrix G, D;
+  FanQuality quality;        // fan-triangle counts where the method refines faces
+};
+
+// A parsed method name with its parameter.
+struct LaplacianChoice {
+  std::string method = "ours";
+  double parameter = 0.0;  // method-specific (e.g. lambda); NaN-free, validated by parse_laplacian
+  bool has_parameter = false;
+  std::string canonical_name() const;
+};
+
+// Parses "NAME" or "NAME:PARAM"; throws std::invalid_argument naming the known methods.
+LaplacianChoice parse_laplacian(const std::string& spec);
+
+// Names of all methods, for help texts.
+std::vector<std::string> laplacian_names();
+
+// Builds the operator set of `choice` on `mesh`. `with_gradient` asks for G and D too.
+OperatorSet build_operators(const Mesh& mesh, const LaplacianChoice& choice, bool with_gradient = true);
+
+}  // namespace polydec
