@@ -2,19 +2,13 @@
 // mean curvature from eq. (29) (paper section 5.2, Table 2).
 #include "apps/cli/command.h"
 #include "apps/curvature.h"
+#include "dec/generators.h"
 #include "dec/io.h"
 
 #include <fmt/format.h>
 
 namespace polydec::cli {
 namespace {
-
-// Every vertex scaled to unit length.
-Mesh to_unit_sphere(const Mesh& m) {
-  Eigen::MatrixX3d X = m.positions();
-  X.rowwise().normalize();
-  return m.with_positions(X);
-}
 
 struct Options {
   std::string mesh, out, mass = "lumped", laplacian = "ours";
@@ -24,7 +18,7 @@ struct Options {
 void run(const Options& o) {
   if (o.mass != "lumped" && o.mass != "unlumped") throw UsageError("--mass must be lumped or unlumped");
   Mesh mesh = read_mesh(o.mesh);
-  if (o.unit_sphere) mesh = to_unit_sphere(mesh);
+  if (o.unit_sphere) mesh = project_to_unit_sphere(mesh);
   const OperatorSet ops = build_operators(mesh, parse_laplacian(o.laplacian), false);
   CurvatureOptions copt;
   copt.lumped_mass = o.mass == "lumped";

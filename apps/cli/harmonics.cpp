@@ -2,19 +2,13 @@
 // being eigenvectors of the Laplacian (paper section 5.4, eq. 30, Table 3).
 #include "apps/cli/command.h"
 #include "apps/harmonics.h"
+#include "dec/generators.h"
 #include "dec/io.h"
 
 #include <fmt/format.h>
 
 namespace polydec::cli {
 namespace {
-
-// Every vertex scaled to unit length.
-Mesh to_unit_sphere(const Mesh& m) {
-  Eigen::MatrixX3d X = m.positions();
-  X.rowwise().normalize();
-  return m.with_positions(X);
-}
 
 struct Options {
   std::string mesh, mass = "lumped", laplacian = "ours";
@@ -24,7 +18,7 @@ struct Options {
 void run(const Options& o) {
   if (o.mass != "lumped" && o.mass != "unlumped") throw UsageError("--mass must be lumped or unlumped");
   Mesh mesh = read_mesh(o.mesh);
-  if (!o.keep_positions) mesh = to_unit_sphere(mesh);
+  if (!o.keep_positions) mesh = project_to_unit_sphere(mesh);
   const OperatorSet ops = build_operators(mesh, parse_laplacian(o.laplacian), false);
   HarmonicsOptions hopt;
   hopt.max_band = 9;

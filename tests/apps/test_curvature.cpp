@@ -1,6 +1,7 @@
 // tests/apps/test_curvature.cpp — mean curvature (eq. 29): the paper's Table 2 on the unit-sphere
 // meshes, scale covariance, orientation independence, vertex normals.
 #include "apps/curvature.h"
+#include "dec/generators.h"
 #include "dec/io.h"
 #include "tests/support.h"
 
@@ -10,12 +11,7 @@ using namespace polydec;
 
 namespace {
 
-Mesh unit_sphere_mesh(const std::string& path) {
-  const Mesh m = read_mesh(path);
-  Eigen::MatrixX3d X = m.positions();
-  X.rowwise().normalize();
-  return m.with_positions(X);
-}
+Mesh unit_sphere_mesh(const std::string& path) { return project_to_unit_sphere(read_mesh(path)); }
 
 double rmse_on(const Mesh& mesh, bool lumped) {
   CurvatureOptions o;
@@ -83,4 +79,40 @@ TEST_CASE("curvature: a flat plane has zero mean curvature at interior vertices"
   const double scale = 1.0 / plane.mean_edge_length();
   for (int v = 0; v < plane.n_vertices(); ++v)
     if (!plane.is_boundary_vertex(v)) CHECK(std::abs(H[v]) <= 1e-10 * scale);
+}
+
+namespace {
+
+// HEX SPHERE (dual of unit-sphere.off, projected) and FINE SPHERE (one Catmull-Clark step of it,
+// projected) with their operators, built once per test binary.
+struct SphereOps {
+  OperatorSet hex, fine;
+};
+const SphereOps& sphere_ops(const std::string& path) {
+  static const SphereOps ops = [&] {
+    const Mesh hex = project_to_unit_sphere(dual(read_mesh(path)));
+    const Mesh fine = project_to_unit_sphere(catmull_clark(hex));
+    return SphereOps{build_operators(hex, parse_laplacian("ours"), false),
+                     build_operators(fine, parse_laplacian("ours"), false)};
+  }();
+  return ops;
+}
+
+double rmse_with(const OperatorSet& ops, bool lumped) {
+  CurvatureOptions o;
+  o.lumped_mass = lumped;
+  return curvature_rmse(mean_curvature(ops, o), 1.0);
+}
+
+}  // namespace
+
+TEST_CASE("curvature: Table 2 RMSE on HEX and FINE SPHERE, lumped and unlumped", "[apps]") {
+  POLYDEC_SHARED_MESH(path, "unit-sphere.off");
+  const SphereOps& s = sphere_ops(path);
+  CHECK(s.hex.domain.n_faces() == 16070);
+  CHECK(s.fine.domain.n_faces() == 96408);
+  CHECK(rmse_with(s.hex, true) == Approx(0.001598).epsilon(0.01));
+  CHECK(rmse_with(s.fine, true) == Approx(0.13336).epsilon(0.01));
+  CHECK(rmse_with(s.hex, false) == Approx(0.003915).epsilon(0.01));
+  CHECK(rmse_with(s.fine, false) == Approx(0.36685).epsilon(0.01));
 }

@@ -1,6 +1,7 @@
 // tests/apps/test_spectrum.cpp — eigenpairs of -S x = lambda M x: residuals, M-orthonormality,
 // agreement with a dense solver, the spherical-harmonic clustering on the unit sphere.
 #include "apps/spectrum.h"
+#include "dec/generators.h"
 #include "dec/io.h"
 #include "tests/support.h"
 
@@ -10,12 +11,7 @@ using namespace polydec;
 
 namespace {
 
-Mesh unit_sphere_mesh(const std::string& path) {
-  const Mesh m = read_mesh(path);
-  Eigen::MatrixX3d X = m.positions();
-  X.rowwise().normalize();
-  return m.with_positions(X);
-}
+Mesh unit_sphere_mesh(const std::string& path) { return project_to_unit_sphere(read_mesh(path)); }
 
 SparseMatrix mass_of(const OperatorSet& ops, bool lumped) {
   if (!lumped) return ops.M;
