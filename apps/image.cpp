@@ -106,13 +106,12 @@ std::vector<unsigned char> encode_png(const Image& img) {
   return out;
 }
 
-void write_png(const std::string& path, const Image& img) {
-  const std::vector<unsigned char> bytes = encode_png(img);
+void write_file_atomically(const std::string& path, std::string_view bytes) {
   const std::string tmp = path + ".tmp";
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out) throw FileError(path, 0, -1, "cannot open for writing");
-    out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+    out.write(bytes.data(), std::streamsize(bytes.size()));
     out.close();
     if (!out) {
       std::error_code ec;
@@ -126,6 +125,11 @@ void write_png(const std::string& path, const Image& img) {
     std::filesystem::remove(tmp, ec);
     throw FileError(path, 0, -1, "cannot move the written file into place: " + ec.message());
   }
+}
+
+void write_png(const std::string& path, const Image& img) {
+  const std::vector<unsigned char> bytes = encode_png(img);
+  write_file_atomically(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
 }  // namespace polydec

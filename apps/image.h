@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace polydec {
@@ -41,5 +42,8 @@ std::vector<unsigned char> encode_png(const Image& img);
 // Writes the PNG to `path` through a temporary file in the same folder renamed into place,
 // so a reader never sees a half-written file. Throws FileError (dec/io.h) naming the path.
 void write_png(const std::string& path, const Image& img);
+
+// Writes `bytes` to `path` the same way (temporary file `path`.tmp, then rename).
+void write_file_atomically(const std::string& path, std::string_view bytes);
 
 }  // namespace polydec

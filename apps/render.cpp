@@ -64,6 +64,16 @@ Eigen::MatrixX3i triangulate_polygon(const Eigen::MatrixX3d& p) {
   return out;
 }
 
+Eigen::Vector3d view_facing_vertex(const Mesh& mesh, int v, const Eigen::Vector3d& up) {
+  if (v < 0 || v >= mesh.n_vertices()) throw std::out_of_range(fmt::format("view_facing_vertex: no vertex {}", v));
+  const Eigen::Vector3d lo = mesh.positions().colwise().minCoeff(), hi = mesh.positions().colwise().maxCoeff();
+  if ((hi - lo).minCoeff() <= 1e-3 * (hi - lo).maxCoeff() || up.norm() == 0) return Eigen::Vector3d::Zero();
+  const Eigen::Vector3d u = up.normalized();
+  Eigen::Vector3d d = 0.5 * (lo + hi) - mesh.position(v);
+  d -= d.dot(u) * u;
+  return d.norm() > 1e-6 * (hi - lo).norm() ? Eigen::Vector3d(d.normalized()) : Eigen::Vector3d::Zero();
+}
+
 std::vector<double> nice_ticks(double lo, double hi, int count) {
   if (!(hi > lo) || count < 1) return {lo};
   const double raw = (hi - lo) / count;

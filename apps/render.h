@@ -90,6 +90,11 @@ Image render(const Mesh& mesh, const Eigen::VectorXd& vertex_scalar, const Rende
 void render_png(const std::string& path, const Mesh& mesh, const Eigen::VectorXd& vertex_scalar,
                 const RenderOptions& options);
 
+// A view direction orthogonal to `up` from which vertex v is seen from its own side: the
+// direction from v to the bounding-box centre with its `up` component removed. Zero (the
+// default view) for a flat mesh or when v lies on the vertical line through the centre.
+Eigen::Vector3d view_facing_vertex(const Mesh& mesh, int v, const Eigen::Vector3d& up = Eigen::Vector3d::UnitY());
+
 // Triangles used to draw the polygon with corners `p` (k x 3): each row of the result holds
 // three indices into the corners, index k standing for the corners' centroid (see above).
 Eigen::MatrixX3i triangulate_polygon(const Eigen::MatrixX3d& p);

@@ -53,6 +53,7 @@ void run(const Options& o) {
     ropt.isolines = 15;
     ropt.scalar_label = "distance";
     ropt.title = fmt::format("heat geodesics ({})", heat.operators().name);
+    ropt.view_direction = view_facing_vertex(mesh, o.sources[0]);
     render_png(o.png, mesh, d, ropt);
     j["png"] = o.png;
   }

@@ -321,7 +321,7 @@ TEST_CASE("render: colour bar and labels", "[render]") {
   o.width = 400;
   o.height = 300;
   o.title = "ramp";
-  o.scalar_label = "x";
+  o.scalar_label = "value";
   const Image img = render(mesh, mesh.positions().col(0) * 3.0, o);
   // The bar lies right of the mesh: somewhere in the right quarter the top colour of the map
   // sits above its bottom colour, in the same column.
@@ -420,4 +420,37 @@ TEST_CASE("render: bad input is refused with a clear error", "[render]") {
   s[0] = INFINITY;
   const Image img = render(mesh, s, {});
   CHECK(std::all_of(img.rgb.begin(), img.rgb.end(), [](float v) { return std::isfinite(v); }));
+}
+
+TEST_CASE("polydec geodesics --png and polydec render write pictures", "[render]") {
+  POLYDEC_SHARED_MESH(mesh, "quad-sphere.off");
+  const auto dir = std::filesystem::temp_directory_path();
+  const std::string a = (dir / "polydec_test_geodesics.png").string(), b = (dir / "polydec_test_render_cli.png").string();
+  const std::string cli = POLYDEC_CLI_PATH;
+  REQUIRE(std::system((cli + " geodesics " + mesh + " --source 0 --png " + a + " --json > /dev/null").c_str()) == 0);
+  REQUIRE(std::system((cli + " render " + mesh + " --png " + b + " --scalar z --width 320 --height 240 > /dev/null").c_str()) == 0);
+  int w = 0, h = 0, n = 0;
+  unsigned char* data = stbi_load(a.c_str(), &w, &h, &n, 3);
+  REQUIRE(data != nullptr);
+  CHECK((w == 800 && h == 600));
+  // The source vertex faces the camera: the darkest colour of viridis (distance 0) is near
+  // the centre of the drawing area.
+  const Color c0 = colormap(Colormap::viridis, 0);
+  bool dark_centre = false;
+  for (int y = 250; y < 350; ++y)
+    for (int x = 280; x < 400; ++x) {
+      const unsigned char* p = data + 3 * (y * w + x);
+      const Color c(p[0] / 255.0, p[1] / 255.0, p[2] / 255.0);
+      dark_centre |= (c - c0 * c.norm() / c0.norm()).norm() < 0.05 && c.norm() > 0.2;
+    }
+  stbi_image_free(data);
+  CHECK(dark_centre);
+  data = stbi_load(b.c_str(), &w, &h, &n, 3);
+  REQUIRE(data != nullptr);
+  CHECK((w == 320 && h == 240));
+  stbi_image_free(data);
+  std::filesystem::remove(a);
+  std::filesystem::remove(b);
+  // Usage errors exit with code 2.
+  CHECK(WEXITSTATUS(std::system((cli + " render " + mesh + " --png " + b + " --scalar w 2> /dev/null").c_str())) == 2);
 }
