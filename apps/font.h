@@ -1,6 +1,7 @@
 // apps/font.h — a tiny built-in 5x7 bitmap font (our own glyphs) for numbers, labels and
 // titles in rendered images: digits, A-Z, a-z, space and . , - + : ( ) / = _ % ! ? * [ ] < > ' | ^.
-// Glyphs are 5 x 7 units and advance 6 units; `scale` multiplies units into pixels.
+// Glyphs are 5 x 7 units and advance 6 units; `scale` multiplies units into pixels. The
+// descender letters g, p, q, y are drawn 2 units lower (their last two rows below the line).
 #pragma once
 
 #include "apps/image.h"
@@ -13,6 +14,8 @@ namespace polydec {
 // The 7 rows (top first) of 5 columns of a glyph, '#' = ink, '.' = paper. Characters without a
 // glyph are drawn as '?'.
 const std::array<const char*, 7>& glyph(char c);
+// Whether c is drawn 2 units lower (g, p, q, y).
+bool is_descender(char c);
 // Whether the font has a glyph of its own for c.
 bool has_glyph(char c);
 

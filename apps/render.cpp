@@ -284,6 +284,18 @@ Image render(const Mesh& mesh, const Eigen::VectorXd& scalar, const RenderOption
       for (int v : mesh.face(f)) vertex_n[v] += face_n[f];
   }
 
+  // Edge opacity, faded on dense meshes by the mean on-screen edge length (output pixels).
+  double edge_alpha = o.edge_opacity;
+  if (o.edges && o.edge_fade_length > 0 && mesh.n_halfedges() > 0) {
+    double sum = 0;
+    for (int h = 0; h < mesh.n_halfedges(); ++h) {
+      const Eigen::Vector3d a = cam.project(mesh.position(mesh.halfedge_source(h)));
+      const Eigen::Vector3d b = cam.project(mesh.position(mesh.halfedge_target(h)));
+      sum += (a - b).head<2>().norm() / k;
+    }
+    edge_alpha *= std::pow(std::min(1.0, sum / mesh.n_halfedges() / o.edge_fade_length), 2);
+  }
+
   Image img(IW, IH, o.background);
   std::vector<float> zbuf(size_t(IW) * IH, INFINITY);
   const double edge_w = o.edge_width * k, iso_w = o.isoline_width * k;
@@ -377,7 +389,7 @@ Image render(const Mesh& mesh, const Eigen::VectorXd& scalar, const RenderOption
               const double u = l2 > 0 ? std::clamp((p - a).dot(ab) / l2, 0.0, 1.0) : 0.0;
               d = std::min(d, (p - a - u * ab).norm());
             }
-            const double a = std::clamp(0.5 * edge_w + 0.5 - d, 0.0, 1.0) * o.edge_opacity;
+            const double a = std::clamp(0.5 * edge_w + 0.5 - d, 0.0, 1.0) * edge_alpha;
             col = (1 - a) * col + a * o.edge_color;
           }
           img.set(x, y, col);
@@ -415,7 +427,7 @@ Image render(const Mesh& mesh, const Eigen::VectorXd& scalar, const RenderOption
       if (hi > lo) label(hi, by0);
       for (double t : ticks) {
         const double y = y_of(t);
-        if (std::abs(y - by0) > th + 2 && std::abs(y - by1) > th + 2) label(t, y);
+        if (std::abs(y - by0) > 1.5 * th && std::abs(y - by1) > 1.5 * th) label(t, y);
       }
       if (!o.scalar_label.empty())
         draw_text(out, std::max(0, bx0 - pad), by0 - th - 2 * pad, o.scalar_label, o.text_color, ts);

@@ -65,10 +65,13 @@ struct RenderOptions {
   double edge_width = 1.0;  // pixels
   Color edge_color{0.12, 0.12, 0.14};
   double edge_opacity = 0.6;
+  // On dense meshes edges fade: opacity times min(1, mean on-screen edge length / this)^2, so
+  // that polygons smaller than a few pixels do not turn the surface into a texture (0: never).
+  double edge_fade_length = 10;  // pixels
 
   // Shading: intensity = ambient + (1 - ambient) |n . light| (two-sided).
-  double ambient = 0.35;
-  Eigen::Vector3d light_direction{-0.3, 0.4, 1.0};  // camera frame: x right, y up, z to the viewer
+  double ambient = 0.45;
+  Eigen::Vector3d light_direction{-0.25, 0.35, 1.0};  // camera frame: x right, y up, z to the viewer
   bool smooth_shading = false;
 
   // Annotations (pixel sizes scale with the image height).

@@ -454,3 +454,34 @@ TEST_CASE("polydec geodesics --png and polydec render write pictures", "[render]
   // Usage errors exit with code 2.
   CHECK(WEXITSTATUS(std::system((cli + " render " + mesh + " --png " + b + " --scalar w 2> /dev/null").c_str())) == 2);
 }
+
+TEST_CASE("view_facing_vertex looks at a vertex from its own side, horizontally", "[render]") {
+  const Mesh sphere = uv_sphere(12, 24);
+  for (int v : {3, 40, 100}) {
+    const Eigen::Vector3d d = view_facing_vertex(sphere, v);
+    if (std::abs(sphere.position(v).x()) + std::abs(sphere.position(v).z()) < 1e-9) continue;
+    CHECK(std::abs(d.y()) < 1e-12);              // orthogonal to up
+    CHECK(d.norm() == Approx(1));
+    CHECK(d.dot(sphere.position(v)) < 0);        // from the vertex towards the centre
+  }
+  CHECK(view_facing_vertex(quad_grid(3, 3), 0).norm() == 0);  // flat: default view
+  CHECK_THROWS_AS(view_facing_vertex(sphere, sphere.n_vertices()), std::out_of_range);
+}
+
+TEST_CASE("render: edges fade on dense meshes, stay on coarse ones", "[render]") {
+  RenderOptions o = exact_options(200);
+  o.edge_width = 2;  // pixel centres at the edges are fully covered
+  auto edge_effect = [&](const Mesh& m) {
+    RenderOptions no = o;
+    no.edges = false;
+    const Image a = render(m, {}, o), b = render(m, {}, no);
+    double worst = 0;
+    for (size_t i = 0; i < a.rgb.size(); ++i) worst = std::max(worst, double(std::abs(a.rgb[i] - b.rgb[i])));
+    return worst;
+  };
+  // Coarse: full opacity on the edge pixels (grey surface towards the edge colour).
+  const double full = o.edge_opacity * (o.surface_color - o.edge_color).maxCoeff();
+  CHECK(edge_effect(quad_grid(4, 4)) == Approx(full).epsilon(1e-5));
+  // 160 px for 80 cells: 2 px per edge, opacity scaled by (2 / 10)^2.
+  CHECK(edge_effect(quad_grid(80, 80)) == Approx(0.04 * full).epsilon(0.05));
+}
