@@ -1,9 +1,10 @@
 // dec/mesh_checks.cpp — diagnostics of a validated mesh.
 #include "dec/mesh_checks.h"
 
+#include <fmt/format.h>
+
 #include <Eigen/SVD>
 #include <algorithm>
-#include <fmt/format.h>
 #include <map>
 #include <numeric>
 
@@ -31,18 +32,21 @@ std::string first_few(const std::vector<T>& items, F format) {
 }  // namespace
 
 bool MeshReport::clean() const {
-  return duplicate_faces.empty() && zero_area_faces.empty() && thin_faces.empty() && collinear_corners.empty() &&
-         non_manifold_vertices.empty() && unreferenced_vertices.empty() && n_components <= 1 && fan.ok();
+  return duplicate_faces.empty() && zero_area_faces.empty() && thin_faces.empty() &&
+         collinear_corners.empty() && non_manifold_vertices.empty() && unreferenced_vertices.empty() &&
+         n_components <= 1 && fan.ok();
 }
 
 std::vector<std::string> MeshReport::summary() const {
   std::vector<std::string> s;
   auto num = [](int i) { return std::to_string(i); };
   if (!duplicate_faces.empty())
-    s.push_back(fmt::format("{} duplicate faces (face = earlier face): {}", duplicate_faces.size(),
-                            first_few(duplicate_faces, [](auto p) { return fmt::format("{} = {}", p.first, p.second); })));
+    s.push_back(fmt::format(
+        "{} duplicate faces (face = earlier face): {}", duplicate_faces.size(),
+        first_few(duplicate_faces, [](auto p) { return fmt::format("{} = {}", p.first, p.second); })));
   if (!zero_area_faces.empty())
-    s.push_back(fmt::format("{} zero-area faces: {}", zero_area_faces.size(), first_few(zero_area_faces, num)));
+    s.push_back(
+        fmt::format("{} zero-area faces: {}", zero_area_faces.size(), first_few(zero_area_faces, num)));
   if (!thin_faces.empty())
     s.push_back(fmt::format("{} extremely thin faces: {}", thin_faces.size(), first_few(thin_faces, num)));
   if (!collinear_corners.empty())
@@ -57,10 +61,12 @@ std::vector<std::string> MeshReport::summary() const {
     s.push_back(fmt::format("{} unreferenced vertices: {}", unreferenced_vertices.size(),
                             first_few(unreferenced_vertices, num)));
   if (n_components > 1)
-    s.push_back(fmt::format("{} connected components (faces: {})", n_components, first_few(component_faces, num)));
+    s.push_back(
+        fmt::format("{} connected components (faces: {})", n_components, first_few(component_faces, num)));
   if (fan.n_degenerate > 0 || fan.n_inverted > 0)
-    s.push_back(fmt::format("fan triangles: {} degenerate (no stiffness, no gradient), {} inverted, in {} faces",
-                            fan.n_degenerate, fan.n_inverted, fan.n_faces_affected));
+    s.push_back(
+        fmt::format("fan triangles: {} degenerate (no stiffness, no gradient), {} inverted, in {} faces",
+                    fan.n_degenerate, fan.n_inverted, fan.n_faces_affected));
   return s;
 }
 
@@ -87,7 +93,8 @@ MeshReport check_mesh(const Mesh& mesh, const MeshCheckOptions& options) {
   for (int f = 0; f < nf; ++f) {
     const PolygonPositions X = face_positions(mesh, f);
     const Eigen::Vector3d sigma =
-        Eigen::JacobiSVD<Eigen::MatrixX3d>(Eigen::MatrixX3d(X.rowwise() - X.colwise().mean())).singularValues();
+        Eigen::JacobiSVD<Eigen::MatrixX3d>(Eigen::MatrixX3d(X.rowwise() - X.colwise().mean()))
+            .singularValues();
     if (sigma[1] <= options.zero_area_tolerance * sigma[0])
       r.zero_area_faces.push_back(f);
     else if (sigma[1] < options.thin_ratio * sigma[0])
@@ -108,7 +115,8 @@ MeshReport check_mesh(const Mesh& mesh, const MeshCheckOptions& options) {
   for (int h = 0; h < nh; ++h) {
     const int o = mesh.halfedge_opposite(h);
     if (o < 0) continue;
-    const int a = find_root(parent, h), b = find_root(parent, mesh.halfedge_next(o));  // both corners at source(h)
+    const int a = find_root(parent, h),
+              b = find_root(parent, mesh.halfedge_next(o));  // both corners at source(h)
     if (a != b) parent[a] = b;
   }
   std::vector<int> first_root(nv, -1);

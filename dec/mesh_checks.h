@@ -4,11 +4,11 @@
 // quality). Reports only; nothing is changed (see dec/repair.h for the opt-in repairs).
 #pragma once
 
-#include "dec/mesh.h"
-#include "dec/refinement.h"
-
 #include <string>
 #include <vector>
+
+#include "dec/mesh.h"
+#include "dec/refinement.h"
 
 namespace polydec {
 

@@ -1,11 +1,12 @@
 // dec/repair.cpp — opt-in repair steps on a polygon soup, each reporting what it changed.
 #include "dec/repair.h"
 
+#include <fmt/format.h>
+
 #include <Eigen/SVD>
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <fmt/format.h>
 #include <limits>
 #include <map>
 #include <numeric>
@@ -88,9 +89,9 @@ VertexRemoval remove_unreferenced_vertices(PolygonSoup& soup) {
   std::vector<int> representative(nv, -1);
   for (int i : soup.face_indices) {
     if (i < 0 || i >= nv)
-      throw std::invalid_argument(
-          fmt::format("remove_unreferenced_vertices: face index {} out of range [0, {}): drop invalid faces first",
-                      i, nv));
+      throw std::invalid_argument(fmt::format(
+          "remove_unreferenced_vertices: face index {} out of range [0, {}): drop invalid faces first", i,
+          nv));
     representative[i] = i;
   }
   VertexRemoval r;
@@ -141,7 +142,8 @@ VertexMerge merge_duplicate_vertices(PolygonSoup& soup, double relative_toleranc
   const int nv = soup.n_vertices();
   for (int v = 0; v < nv; ++v)
     if (!soup.positions.row(v).allFinite())
-      throw std::invalid_argument(fmt::format("merge_duplicate_vertices: vertex {} has a non-finite coordinate", v));
+      throw std::invalid_argument(
+          fmt::format("merge_duplicate_vertices: vertex {} has a non-finite coordinate", v));
   VertexMerge m;
   if (nv == 0) return m;
   const Eigen::RowVector3d lo = soup.positions.colwise().minCoeff();
@@ -179,8 +181,8 @@ VertexMerge merge_duplicate_vertices(PolygonSoup& soup, double relative_toleranc
   for (int v = 0; v < nv; ++v) representative[v] = find_root(parent, v);
   for (int i : soup.face_indices)
     if (i < 0 || i >= nv)
-      throw std::invalid_argument(
-          fmt::format("merge_duplicate_vertices: face index {} out of range [0, {}): drop invalid faces first", i, nv));
+      throw std::invalid_argument(fmt::format(
+          "merge_duplicate_vertices: face index {} out of range [0, {}): drop invalid faces first", i, nv));
   m.vertex_map = keep_vertices(soup, representative);
   m.n_merged = nv - soup.n_vertices();
   return m;
@@ -216,14 +218,15 @@ FaceDeduplication remove_duplicate_faces(PolygonSoup& soup) {
 }
 
 bool RepairReport::changed() const {
-  return merge.n_merged > 0 || drop.n_dropped() > 0 || drop.n_collapsed_corners > 0 || dedup.n_removed() > 0 ||
-         unreferenced.n_removed > 0;
+  return merge.n_merged > 0 || drop.n_dropped() > 0 || drop.n_collapsed_corners > 0 ||
+         dedup.n_removed() > 0 || unreferenced.n_removed > 0;
 }
 
 std::vector<std::string> RepairReport::summary() const {
   std::vector<std::string> s;
   if (merge.n_merged > 0)
-    s.push_back(fmt::format("merged {} vertices into others (distance <= {:.3g})", merge.n_merged, merge.distance));
+    s.push_back(
+        fmt::format("merged {} vertices into others (distance <= {:.3g})", merge.n_merged, merge.distance));
   if (drop.n_collapsed_corners > 0)
     s.push_back(fmt::format("collapsed {} repeated consecutive corners", drop.n_collapsed_corners));
   if (drop.n_dropped() > 0)
@@ -234,7 +237,8 @@ std::vector<std::string> RepairReport::summary() const {
   if (dedup.n_removed() > 0)
     s.push_back(fmt::format("removed {} duplicate faces ({} same orientation, {} opposite orientation)",
                             dedup.n_removed(), dedup.n_same_orientation, dedup.n_opposite_orientation));
-  if (unreferenced.n_removed > 0) s.push_back(fmt::format("removed {} unreferenced vertices", unreferenced.n_removed));
+  if (unreferenced.n_removed > 0)
+    s.push_back(fmt::format("removed {} unreferenced vertices", unreferenced.n_removed));
   if (s.empty()) s.push_back("nothing changed");
   return s;
 }

@@ -3,10 +3,10 @@
 // reason and index maps from the old vertex/face numbering to the new one (-1 = removed).
 #pragma once
 
-#include "dec/mesh.h"
-
 #include <string>
 #include <vector>
+
+#include "dec/mesh.h"
 
 namespace polydec {
 
@@ -33,10 +33,10 @@ struct FaceDropOptions {
 
 // Result of drop_invalid_faces, counted by the first reason that applies.
 struct FaceDrop {
-  int n_out_of_range = 0;     // an index outside [0, |V|)
-  int n_too_few = 0;          // fewer than 3 distinct corners (after collapsing)
-  int n_repeated_vertex = 0;  // a vertex occurring twice, not consecutively
-  int n_zero_area = 0;        // all corners collinear up to the tolerance
+  int n_out_of_range = 0;       // an index outside [0, |V|)
+  int n_too_few = 0;            // fewer than 3 distinct corners (after collapsing)
+  int n_repeated_vertex = 0;    // a vertex occurring twice, not consecutively
+  int n_zero_area = 0;          // all corners collinear up to the tolerance
   int n_collapsed_corners = 0;  // corners removed from kept or dropped faces by collapsing repeats
   std::vector<int> face_map;    // old face -> new face, -1 if dropped
   int n_dropped() const { return n_out_of_range + n_too_few + n_repeated_vertex + n_zero_area; }

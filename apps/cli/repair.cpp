@@ -1,13 +1,15 @@
 // apps/cli/repair.cpp — `polydec repair IN OUT [--merge-tolerance R]`: the opt-in repair steps of
 // dec/repair.h (merge coincident vertices, drop invalid faces, remove duplicate faces and
 // unreferenced vertices), printing what each changed, then the diagnostics of the result.
+#include "dec/repair.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
 #include "apps/cli/command.h"
 #include "dec/io.h"
 #include "dec/mesh_checks.h"
-#include "dec/repair.h"
-
-#include <cmath>
-#include <fmt/format.h>
 
 namespace polydec::cli {
 namespace {
@@ -31,7 +33,8 @@ void run(const Options& o) {
   try {
     mesh = Mesh(std::move(soup));
   } catch (const InvalidMeshError& e) {
-    throw InvalidMeshError(e.element, e.index, fmt::format("{}: still invalid after repair: {}", o.in, e.what()));
+    throw InvalidMeshError(e.element, e.index,
+                           fmt::format("{}: still invalid after repair: {}", o.in, e.what()));
   }
   write_mesh(o.out, mesh);
   const MeshReport checks = check_mesh(mesh);
@@ -64,18 +67,19 @@ void run(const Options& o) {
   }
 }
 
-const RegisterCommand reg("repair", "Merge duplicate vertices, drop invalid and duplicate faces and unreferenced vertices",
-                          [](CLI::App& app) {
-                            auto o = std::make_shared<Options>();
-                            app.add_option("in", o->in, "input mesh (.obj, .off, .ply)")->required();
-                            app.add_option("out", o->out, "output mesh (.obj, .off, .ply)")->required();
-                            app.add_option("--merge-tolerance", o->merge_tolerance,
-                                           "merge vertices closer than R x bounding-box diagonal (default 0: "
-                                           "coincident vertices only)");
-                            app.add_flag("--no-merge", o->no_merge, "do not merge vertices");
-                            app.add_flag("--json", o->json, "print one JSON object instead of text");
-                            app.callback([o] { run(*o); });
-                          });
+const RegisterCommand reg(
+    "repair", "Merge duplicate vertices, drop invalid and duplicate faces and unreferenced vertices",
+    [](CLI::App& app) {
+      auto o = std::make_shared<Options>();
+      app.add_option("in", o->in, "input mesh (.obj, .off, .ply)")->required();
+      app.add_option("out", o->out, "output mesh (.obj, .off, .ply)")->required();
+      app.add_option("--merge-tolerance", o->merge_tolerance,
+                     "merge vertices closer than R x bounding-box diagonal (default 0: "
+                     "coincident vertices only)");
+      app.add_flag("--no-merge", o->no_merge, "do not merge vertices");
+      app.add_flag("--json", o->json, "print one JSON object instead of text");
+      app.callback([o] { run(*o); });
+    });
 
 }  // namespace
 }  // namespace polydec::cli

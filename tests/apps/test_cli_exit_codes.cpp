@@ -1,16 +1,17 @@
 // tests/apps/test_cli_exit_codes.cpp — the built `polydec` program maps failures to distinct
 // exit codes (0 ok, 2 usage, 3 bad input, 4 solver failure) and says why in exactly one line on
 // stderr.
-#include "dec/generators.h"
-#include "dec/io.h"
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <catch2/catch.hpp>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <sys/wait.h>
-#include <unistd.h>
+
+#include "dec/generators.h"
+#include "dec/io.h"
 
 using namespace polydec;
 namespace fs = std::filesystem;
@@ -99,14 +100,17 @@ TEST_CASE("polydec exits 3 on bad input, naming the file and the problem", "[rob
   write_text(s.path("junk.off"), "this is not a mesh\n");
   expect_failure(run(s.dir, "geodesics " + s.path("junk.off") + " --source 0"), 3, "junk.off");
   // A fin: three faces on the edge (1, 2).
-  write_text(s.path("fin.obj"), "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 1 0.5 1\nv 2 0.5 0\nf 1 2 3\nf 1 3 4\nf 2 3 5\nf 3 2 6\n");
+  write_text(
+      s.path("fin.obj"),
+      "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 1 0.5 1\nv 2 0.5 0\nf 1 2 3\nf 1 3 4\nf 2 3 5\nf 3 2 6\n");
   expect_failure(run(s.dir, "geodesics " + s.path("fin.obj") + " --source 0"), 3, "non-manifold");
   expect_failure(run(s.dir, "geodesics " + grid + " --source 99"), 3, "99");
   // A vertex that no face uses cannot be a source.
   write_text(s.path("lonely.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 5 5 5\nf 1 2 3\n");
   expect_failure(run(s.dir, "geodesics " + s.path("lonely.obj") + " --source 3"), 3, "source vertex 3");
   // Repair cannot fix a non-manifold edge: still bad input, said so.
-  expect_failure(run(s.dir, "repair " + s.path("fin.obj") + " " + s.path("out.obj")), 3, "still invalid after repair");
+  expect_failure(run(s.dir, "repair " + s.path("fin.obj") + " " + s.path("out.obj")), 3,
+                 "still invalid after repair");
 }
 
 TEST_CASE("polydec exits 4 when a factorization fails, naming the operator", "[robust][cli]") {
@@ -116,11 +120,12 @@ TEST_CASE("polydec exits 4 when a factorization fails, naming the operator", "[r
   Scratch s;
   PolygonSoup soup;
   const Mesh tiny = triangle_grid(12, 12);
-  const double decagon[10][2] = {{0.66008772929804027, 0.38310639457895351},  {0.06042048096178998, 0.059255361334458079},
-                                 {0.012069786289089999, 0.1616883075842106},  {-0.15404306852644853, 0.22305280334330982},
-                                 {-0.33664512915794165, 0.18328097007149002}, {-0.91595804655426061, -0.26006271076774889},
-                                 {-0.5058396898122679, -0.53862784288435039}, {-0.0073885978573050362, -0.27039794338713941},
-                                 {0.041029612926050125, -0.090695463299041948}, {0.056109728765853434, -0.0052887316637353658}};
+  const double decagon[10][2] = {
+      {0.66008772929804027, 0.38310639457895351},    {0.06042048096178998, 0.059255361334458079},
+      {0.012069786289089999, 0.1616883075842106},    {-0.15404306852644853, 0.22305280334330982},
+      {-0.33664512915794165, 0.18328097007149002},   {-0.91595804655426061, -0.26006271076774889},
+      {-0.5058396898122679, -0.53862784288435039},   {-0.0073885978573050362, -0.27039794338713941},
+      {0.041029612926050125, -0.090695463299041948}, {0.056109728765853434, -0.0052887316637353658}};
   soup.positions.resize(10 + tiny.n_vertices(), 3);
   std::vector<int> face;
   for (int k = 0; k < 10; ++k) {
@@ -128,14 +133,16 @@ TEST_CASE("polydec exits 4 when a factorization fails, naming the operator", "[r
     face.push_back(k);
   }
   soup.add_face(face);
-  soup.positions.bottomRows(tiny.n_vertices()) = (1e-3 * tiny.positions()).rowwise() + Eigen::RowVector3d(2, 0, 0);
+  soup.positions.bottomRows(tiny.n_vertices()) =
+      (1e-3 * tiny.positions()).rowwise() + Eigen::RowVector3d(2, 0, 0);
   for (int f = 0; f < tiny.n_faces(); ++f) {
     std::vector<int> t(tiny.face(f).begin(), tiny.face(f).end());
     for (int& v : t) v += 10;
     soup.add_face(t);
   }
   write_mesh(s.path("negative_mass.obj"), Mesh(soup));
-  expect_failure(run(s.dir, "geodesics " + s.path("negative_mass.obj") + " --source 0"), 4, "heat operator M - t S");
+  expect_failure(run(s.dir, "geodesics " + s.path("negative_mass.obj") + " --source 0"), 4,
+                 "heat operator M - t S");
 }
 
 TEST_CASE("polydec repair reports what it changed and writes a valid mesh", "[robust][cli]") {

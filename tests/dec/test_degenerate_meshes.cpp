@@ -2,6 +2,11 @@
 // (docs/robustness.md): rejected with the location, or accepted with operators that stay finite,
 // symmetric, with S 1 = 0 and S = D G, and heat geodesics that are finite wherever a source
 // reaches and +inf elsewhere.
+#include <fmt/format.h>
+
+#include <catch2/catch.hpp>
+#include <cmath>
+
 #include "apps/geodesics.h"
 #include "dec/generators.h"
 #include "dec/io.h"
@@ -10,10 +15,6 @@
 #include "operators/gradient.h"
 #include "operators/laplacian.h"
 #include "tests/support.h"
-
-#include <catch2/catch.hpp>
-#include <cmath>
-#include <fmt/format.h>
 
 using namespace polydec;
 
@@ -186,7 +187,8 @@ TEST_CASE("policy: duplicate faces", "[robust][degenerate]") {
   SECTION("same orientation: rejected as inconsistent orientation; repair makes it valid") {
     PolygonSoup s = to_soup(quad_grid(2, 2));
     s.add_face(std::vector<int>(s.face_indices.begin(), s.face_indices.begin() + 4));
-    CHECK_THROWS_WITH(Mesh(s), Catch::Contains("inconsistent orientation") || Catch::Contains("non-manifold"));
+    CHECK_THROWS_WITH(Mesh(s),
+                      Catch::Contains("inconsistent orientation") || Catch::Contains("non-manifold"));
     CHECK(remove_duplicate_faces(s).n_same_orientation == 1);
     CHECK(Mesh(s).n_faces() == 4);
   }
@@ -199,7 +201,8 @@ TEST_CASE("policy: duplicate faces", "[robust][degenerate]") {
     CHECK(remove_duplicate_faces(s).n_opposite_orientation == 1);
     CHECK_NOTHROW(Mesh(s));
   }
-  SECTION("a doubled sheet (two faces, opposite orientation) is a valid closed mesh: reported, operators sound") {
+  SECTION(
+      "a doubled sheet (two faces, opposite orientation) is a valid closed mesh: reported, operators sound") {
     PolygonSoup s;
     s.positions.resize(5, 3);
     s.positions << 0, 0, 0, 1, 0, 0, 1.2, 0.8, 0, 0.3, 1.1, 0, -0.4, 0.5, 0;
@@ -221,7 +224,8 @@ TEST_CASE("policy: duplicate faces", "[robust][degenerate]") {
   }
 }
 
-TEST_CASE("policy: a zero-area face adds nothing; vertices only it holds are unreachable", "[robust][degenerate]") {
+TEST_CASE("policy: a zero-area face adds nothing; vertices only it holds are unreachable",
+          "[robust][degenerate]") {
   // A collinear triangle hanging off the bottom boundary edge (a, b) of a grid: c on the line
   // through a and b, beyond b.
   const Mesh grid = quad_grid(3, 3);
@@ -237,8 +241,8 @@ TEST_CASE("policy: a zero-area face adds nothing; vertices only it holds are unr
   CHECK(o.r.quality.n_faces_affected == 1);
   // S on the grid's vertices is the grid's S; row c is zero.
   const SparseMatrix Sg = stiffness(grid, refine(grid));
-  CHECK(test::relative_difference(SparseMatrix(o.L.S.topLeftCorner(grid.n_vertices(), grid.n_vertices())), Sg) <=
-        1e-15);
+  CHECK(test::relative_difference(SparseMatrix(o.L.S.topLeftCorner(grid.n_vertices(), grid.n_vertices())),
+                                  Sg) <= 1e-15);
   CHECK(o.L.S.col(c).norm() == 0);
   std::vector<bool> reach(mesh.n_vertices(), true);
   reach[c] = false;
@@ -257,8 +261,10 @@ TEST_CASE("policy: a row of collapsed quads splits the mesh for the operators", 
   Eigen::MatrixX3d P = grid.positions();
   std::vector<bool> reach(grid.n_vertices(), true);
   for (int v = 0; v < grid.n_vertices(); ++v) {
-    if (std::abs(P(v, 1) - 1.0 / 3) < 1e-12) P(v, 1) = 0;
-    else if (P(v, 1) == 0) reach[v] = false;
+    if (std::abs(P(v, 1) - 1.0 / 3) < 1e-12)
+      P(v, 1) = 0;
+    else if (P(v, 1) == 0)
+      reach[v] = false;
   }
   const Mesh mesh = grid.with_positions(P);
   const MeshReport rep = check_mesh(mesh);
@@ -269,7 +275,8 @@ TEST_CASE("policy: a row of collapsed quads splits the mesh for the operators", 
   check_distances(HeatGeodesics(mesh).distance(source), reach);
 }
 
-TEST_CASE("policy: collinear consecutive corners are accepted; linear precision holds", "[robust][degenerate]") {
+TEST_CASE("policy: collinear consecutive corners are accepted; linear precision holds",
+          "[robust][degenerate]") {
   // A T-junction: a pentagon (0,0) (1,0) (1,1) (1,2) (0,2) beside two unit quads; the pentagon's
   // corner (1,1) is collinear with its neighbours.
   PolygonSoup s;
@@ -294,7 +301,8 @@ TEST_CASE("policy: collinear consecutive corners are accepted; linear precision 
   CHECK(SX.row(2).norm() <= 1e-12 * o.L.S.norm());
 }
 
-TEST_CASE("policy: virtual vertex on an edge's line (tetris.obj): counted, zero weight, finite", "[robust][degenerate]") {
+TEST_CASE("policy: virtual vertex on an edge's line (tetris.obj): counted, zero weight, finite",
+          "[robust][degenerate]") {
   POLYDEC_SHARED_MESH(path, "tetris.obj");
   const Mesh mesh = read_mesh(path);
   const Operators o = check_operators(mesh);
@@ -317,7 +325,8 @@ TEST_CASE("policy: virtual vertex on an edge's line (tetris.obj): counted, zero 
   check_distances(heat.distance(mesh.n_vertices() - 1), std::vector<bool>(mesh.n_vertices(), true));
 }
 
-TEST_CASE("policy: extremely thin polygons: finite operators, degenerate fans counted", "[robust][degenerate]") {
+TEST_CASE("policy: extremely thin polygons: finite operators, degenerate fans counted",
+          "[robust][degenerate]") {
   // A strip of quads whose second column has relative width 1e-7 (thin) and fourth 1e-13 (zero
   // area up to the tolerance: it carries no stiffness and separates the strip for the heat flow).
   const std::vector<double> xs = {0, 1, 1 + 1e-7, 2, 2 + 1e-13, 3};
@@ -327,14 +336,16 @@ TEST_CASE("policy: extremely thin polygons: finite operators, degenerate fans co
     s.positions.row(2 * long(i)) << xs[i], 0, 0;
     s.positions.row(2 * long(i) + 1) << xs[i], 1, 0;
   }
-  for (int i = 0; i + 1 < int(xs.size()); ++i) s.add_face(std::vector<int>{2 * i, 2 * i + 2, 2 * i + 3, 2 * i + 1});
+  for (int i = 0; i + 1 < int(xs.size()); ++i)
+    s.add_face(std::vector<int>{2 * i, 2 * i + 2, 2 * i + 3, 2 * i + 1});
   const Mesh mesh(s);
   const MeshReport rep = check_mesh(mesh);
   CHECK(rep.thin_faces == std::vector<int>{1});
   CHECK(rep.zero_area_faces == std::vector<int>{3});
   const Operators o = check_operators(mesh);
   CHECK(o.r.quality.n_degenerate == 4);  // all of the 1e-13 quad's, none of the 1e-7 quad's
-  for (int h = mesh.face_offsets()[3]; h < mesh.face_offsets()[4]; ++h) CHECK(o.r.fan[h] == FanTriangle::Degenerate);
+  for (int h = mesh.face_offsets()[3]; h < mesh.face_offsets()[4]; ++h)
+    CHECK(o.r.fan[h] == FanTriangle::Degenerate);
   const HeatGeodesics heat(mesh);
   std::vector<bool> left(mesh.n_vertices()), right(mesh.n_vertices());
   for (int v = 0; v < mesh.n_vertices(); ++v) {

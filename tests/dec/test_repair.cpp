@@ -1,11 +1,11 @@
 // tests/dec/test_repair.cpp — the opt-in repair steps of dec/repair.h: each does what it reports,
 // its index maps are consistent, tolerances are relative to the mesh's scale, and what a step
 // leaves behind passes validation.
-#include "dec/mesh_checks.h"
-#include "dec/repair.h"
-
 #include <catch2/catch.hpp>
 #include <random>
+
+#include "dec/mesh_checks.h"
+#include "dec/repair.h"
 
 using namespace polydec;
 
@@ -105,8 +105,9 @@ TEST_CASE("zero area is decided relative to the face's own size", "[robust][repa
     for (double offset : {0.0, 1e3 * scale}) {
       for (double h : {1e-12, 1e-6}) {
         const Eigen::RowVector3d o(offset, -offset, offset);
-        PolygonSoup s = soup_of({o, o + scale * Eigen::RowVector3d(1, 0, 0), o + scale * Eigen::RowVector3d(0.5, h, 0)},
-                                {{0, 1, 2}});
+        PolygonSoup s =
+            soup_of({o, o + scale * Eigen::RowVector3d(1, 0, 0), o + scale * Eigen::RowVector3d(0.5, h, 0)},
+                    {{0, 1, 2}});
         const FaceDrop d = drop_invalid_faces(s);
         INFO("scale " << scale << " offset " << offset << " h " << h);
         CHECK(d.n_zero_area == (h < 1e-10 ? 1 : 0));
@@ -180,7 +181,8 @@ TEST_CASE("merge_duplicate_vertices agrees with a brute-force clustering", "[rob
 TEST_CASE("remove_duplicate_faces removes repeats in either orientation", "[robust][repair]") {
   // Two triangles sharing edge (1, 2), then a copy of the first (rotated), and a reversed copy
   // of the second: validation rejects it, deduplication makes it valid.
-  PolygonSoup s = soup_of({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}, {{0, 1, 2}, {1, 3, 2}, {2, 0, 1}, {2, 3, 1}});
+  PolygonSoup s =
+      soup_of({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}, {{0, 1, 2}, {1, 3, 2}, {2, 0, 1}, {2, 3, 1}});
   CHECK_THROWS_AS(Mesh(s), InvalidMeshError);
   const FaceDeduplication r = remove_duplicate_faces(s);
   CHECK(r.n_same_orientation == 1);
@@ -198,9 +200,9 @@ TEST_CASE("repair composes the steps, and its maps describe the result", "[robus
   const int nv0 = s.n_vertices();
   s.positions.conservativeResize(nv0 + 1, 3);
   s.positions.row(nv0) << 5, 5, 5;
-  s.add_face(std::vector<int>{0, 1, 2, 3});        // duplicate of face 0
-  s.add_face(std::vector<int>{1, 4, 7});           // 1 and 4 coincide: (1 7) after welding, too few
-  s.add_face(std::vector<int>{0, 1, nv0 + 5});     // out of range
+  s.add_face(std::vector<int>{0, 1, 2, 3});     // duplicate of face 0
+  s.add_face(std::vector<int>{1, 4, 7});        // 1 and 4 coincide: (1 7) after welding, too few
+  s.add_face(std::vector<int>{0, 1, nv0 + 5});  // out of range
   const PolygonSoup input = s;
 
   RepairOptions o;

@@ -2,18 +2,19 @@
 // a mesh sits or how large it is; the virtual-vertex weights equal a direct least-squares
 // solution of eq. (38) and, unlike a literal port of it, keep their digits far from the origin;
 // failed factorizations raise SolverError naming the operator.
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
+#include <Eigen/QR>
+#include <catch2/catch.hpp>
+#include <random>
+
 #include "dec/generators.h"
 #include "dec/io.h"
 #include "dec/refinement.h"
 #include "operators/cholesky.h"
 #include "operators/laplacian.h"
 #include "tests/support.h"
-
-#include <Eigen/Dense>
-#include <Eigen/QR>
-#include <catch2/catch.hpp>
-#include <fmt/format.h>
-#include <random>
 
 using namespace polydec;
 
@@ -119,12 +120,13 @@ TEST_CASE("squared-area weights equal the least-norm solution of eq. (38)", "[ro
   int n_tested = 0;
   for (int trial = 0; trial < 200; ++trial) {
     const int n = 3 + trial % 8;
-    const double r_min = trial % 3 == 0 ? 1.0 : (trial % 3 == 1 ? 0.7 : 0.2);  // convex .. strongly non-convex
-    const double bump = trial % 2 == 0 ? 0.0 : 0.3;                            // planar (rotated) or not
+    const double r_min =
+        trial % 3 == 0 ? 1.0 : (trial % 3 == 1 ? 0.7 : 0.2);  // convex .. strongly non-convex
+    const double bump = trial % 2 == 0 ? 0.0 : 0.3;           // planar (rotated) or not
     const PolygonPositions X = random_polygon(rng, n, r_min, bump);
     const Eigen::VectorXd w = squared_area_weights(X), ref = eq38_weights(X);
     INFO("trial " << trial << " n " << n << " r_min " << r_min << " bump " << bump << " rel "
-                   << fmt::format("{:.3e}", rel(w, ref)));
+                  << fmt::format("{:.3e}", rel(w, ref)));
     CHECK(std::abs(w.sum() - 1) <= 1e-14);
     CHECK(rel(w, ref) <= 1e-12);
     ++n_tested;
@@ -164,7 +166,8 @@ TEST_CASE("failed factorizations raise SolverError naming the operator", "[robus
   const Mesh mesh = quad_grid(4, 4);
   const SparseMatrix S = stiffness(mesh, refine(mesh));
   // -S is positive semi-definite with the constants in its kernel: singular.
-  CHECK_THROWS_WITH(SparseCholesky(SparseMatrix(-S), "Poisson operator -S"), Catch::Contains("Poisson operator -S"));
+  CHECK_THROWS_WITH(SparseCholesky(SparseMatrix(-S), "Poisson operator -S"),
+                    Catch::Contains("Poisson operator -S"));
   CHECK_THROWS_AS(SparseCholesky(SparseMatrix(-S), "Poisson operator -S"), SolverError);
   // S itself is negative semi-definite: not positive definite.
   CHECK_THROWS_AS(SparseCholesky(S, "stiffness S"), SolverError);
