@@ -6,10 +6,10 @@
 // centroid as virtual vertex). A parameter follows a colon, e.g. "aw11:0.5".
 #pragma once
 
+#include <string>
+
 #include "dec/refinement.h"
 #include "operators/laplacian.h"
-
-#include <string>
 
 namespace polydec {
 
@@ -26,7 +26,10 @@ struct OperatorSet {
   // Gradient (3k x |V|, one 3-vector per element) and divergence D = -G^T W (|V| x 3k) with
   // S = D G; empty where the method defines none.
   SparseMatrix G, D;
-  FanQuality quality;        // fan-triangle counts where the method refines faces
+  FanQuality quality;              // fan-triangle counts where the method refines faces
+  int n_degenerate_triangles = 0;  // triangle-based methods: triangles given no stiffness (zero area)
+  int n_folded_triangles = 0;      // triangulations: triangles oriented against their polygon's normal
+  int n_flips = 0;                 // intrinsic-delaunay: edge flips performed
 };
 
 // A parsed method name with its parameter.
