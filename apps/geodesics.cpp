@@ -105,8 +105,9 @@ Eigen::VectorXd HeatGeodesics::distance(std::span<const int> sources) const {
     reached_component[component_[s]] = 1;
   }
   // (31): (M - t S) u = M delta
-  Eigen::VectorXd rhs =
-      options_.lumped_mass ? Eigen::VectorXd(ops_.M_lumped.cwiseProduct(delta)) : Eigen::VectorXd(ops_.M * delta);
+  Eigen::VectorXd rhs = !options_.mass_weighted_source ? delta
+                        : options_.lumped_mass        ? Eigen::VectorXd(ops_.M_lumped.cwiseProduct(delta))
+                                                      : Eigen::VectorXd(ops_.M * delta);
   for (int v = 0; v < nv; ++v)
     if (component_[v] < 0) rhs[v] = 0;
   const Eigen::VectorXd u = heat_->solve(rhs);

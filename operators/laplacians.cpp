@@ -22,6 +22,9 @@ struct MethodInfo {
 const MethodInfo kMethods[] = {
     {"ours", false},
     {"centroid", false},
+    {"abs-area", false},
+    {"convex", false},
+    {"trace-min", false},
     {"triangulated-minarea", false},
     {"triangulated-maxminangle", false},
     {"refined", false},
@@ -167,6 +170,12 @@ OperatorSet build_operators(const Mesh& mesh, const LaplacianChoice& choice, boo
     ops = virtual_vertex_operators(mesh, VirtualVertexRule::SquaredArea, with_gradient);
   else if (m == "centroid")
     ops = virtual_vertex_operators(mesh, VirtualVertexRule::Centroid, with_gradient);
+  else if (m == "abs-area")
+    ops = virtual_vertex_operators(mesh, VirtualVertexRule::AbsArea, with_gradient);
+  else if (m == "convex")
+    ops = virtual_vertex_operators(mesh, VirtualVertexRule::Convex, with_gradient);
+  else if (m == "trace-min")
+    ops = virtual_vertex_operators(mesh, VirtualVertexRule::TraceMin, with_gradient);
   else if (m == "triangulated-minarea")
     ops = triangulated_operators(mesh, TriangulationRule::MinSquaredArea, with_gradient);
   else if (m == "triangulated-maxminangle")

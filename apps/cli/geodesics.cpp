@@ -13,7 +13,7 @@ namespace {
 struct Options {
   std::string mesh, out;
   std::vector<int> sources;
-  bool json = false, euclidean = false;
+  bool json = false, euclidean = false, delta_source = false;
   std::string mass = "lumped", laplacian = "ours";
 };
 
@@ -22,6 +22,7 @@ void run(const Options& o) {
   if (o.mass != "lumped" && o.mass != "unlumped") throw UsageError("--mass must be lumped or unlumped");
   HeatGeodesicsOptions hopt;
   hopt.lumped_mass = o.mass == "lumped";
+  hopt.mass_weighted_source = !o.delta_source;
   const HeatGeodesics heat(build_operators(mesh, parse_laplacian(o.laplacian)), mesh.mean_edge_length(), hopt);
   const Eigen::VectorXd d = heat.distance(o.sources);
   double mn = INFINITY, mx = -INFINITY, sum = 0;
@@ -65,6 +66,8 @@ const RegisterCommand reg("geodesics", "Geodesic distances by the heat method (p
   app.add_option("--out", o->out, "output mesh with a 'distance' vertex property (.ply)");
   app.add_option("--mass", o->mass, "lumped (default) or unlumped mass in the heat step");
   app.add_option("--laplacian", o->laplacian, "Laplacian: " + fmt::format("{}", fmt::join(laplacian_names(), ", ")));
+  app.add_flag("--delta-source", o->delta_source,
+               "heat step (M - t S) u = delta instead of M delta (as the paper authors' program; matters with --mass unlumped)");
   app.add_flag("--euclidean", o->euclidean, "also report the RMSE against the Euclidean distance (planar meshes)");
   app.add_flag("--json", o->json, "print one JSON object instead of text");
   app.callback([o] { run(*o); });
