@@ -5,7 +5,9 @@
 
 #include <stdexcept>
 
+#include "operators/aw11.h"
 #include "operators/cotan.h"
+#include "operators/degoes20.h"
 #include "operators/gradient.h"
 #include "operators/intrinsic_delaunay.h"
 #include "operators/triangulation.h"
@@ -29,6 +31,8 @@ const MethodInfo kMethods[] = {
     {"triangulated-maxminangle", false},
     {"refined", false},
     {"intrinsic-delaunay", false},
+    {"aw11", true},
+    {"degoes20", true},
 };
 
 const MethodInfo* find_method(const std::string& name) {
@@ -184,6 +188,10 @@ OperatorSet build_operators(const Mesh& mesh, const LaplacianChoice& choice, boo
     ops = refined_operators(mesh, with_gradient);
   else if (m == "intrinsic-delaunay")
     ops = intrinsic_delaunay_operators(mesh, with_gradient);
+  else if (m == "aw11")
+    ops = aw11_operators(mesh, choice.parameter, with_gradient);
+  else if (m == "degoes20")
+    ops = degoes20_operators(mesh, choice.parameter, with_gradient);
   else
     throw std::invalid_argument("unknown Laplacian '" + m + "'");
   ops.name = choice.canonical_name();

@@ -26,6 +26,9 @@ struct OperatorSet {
   // Gradient (3k x |V|, one 3-vector per element) and divergence D = -G^T W (|V| x 3k) with
   // S = D G; empty where the method defines none.
   SparseMatrix G, D;
+  // Row blocks of G that the heat method normalizes as one vector: block k is rows
+  // [G_blocks[k], G_blocks[k+1]). Empty means blocks of 3 rows (one 3-vector per element).
+  std::vector<int> G_blocks;
   FanQuality quality;              // fan-triangle counts where the method refines faces
   int n_degenerate_triangles = 0;  // triangle-based methods: triangles given no stiffness (zero area)
   int n_folded_triangles = 0;      // triangulations: triangles oriented against their polygon's normal
