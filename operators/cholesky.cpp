@@ -16,7 +16,8 @@ void check(const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>& s, const st
     throw SolverError("Cholesky factorization of " + name + " failed (matrix not positive definite?)");
   const Eigen::VectorXd d = s.vectorD();
   if (d.size() > 0 && (!(d.minCoeff() > 0) || !d.allFinite()))
-    throw SolverError("Cholesky factorization of " + name + " failed: matrix is singular or not positive definite");
+    throw SolverError("Cholesky factorization of " + name +
+                      " failed: matrix is singular or not positive definite");
 }
 
 }  // namespace

@@ -48,6 +48,15 @@ TriangleOperators cotan_operators(const Eigen::MatrixX3d& positions,
 TriangleOperators cotan_operators(const LengthTriangles& triangles, bool with_gradient = true,
                                   double degenerate_tolerance = 1e-10);
 
+// Mixed Voronoi vertex areas (Meyer et al. 2003) of triangles given by lengths: per corner the
+// circumcentric dual area in non-obtuse triangles; in an obtuse triangle half its area to the
+// obtuse corner and a quarter to each other one. Sums to the total area. This is libigl's
+// default (Voronoi) lumped mass, which the paper's [BS07] numbers were computed with.
+Eigen::VectorXd voronoi_areas(const LengthTriangles& triangles);
+
+// Mean length of the undirected edges of `triangles` over `positions` (each edge once).
+double mean_edge_length(const Eigen::MatrixX3d& positions, const std::vector<Eigen::Vector3i>& triangles);
+
 // Area of a triangle with side lengths a, b, c (Kahan's stable Heron formula; 0 if the lengths
 // violate the triangle inequality).
 double triangle_area_from_lengths(double a, double b, double c);

@@ -139,6 +139,7 @@ OperatorSet triangulated_operators(const Mesh& mesh, TriangulationRule rule, boo
   ops.n_input_vertices = mesh.n_vertices();
   const auto tris = triangulate(mesh, rule);
   take(ops, cotan_operators(mesh.positions(), tris, with_gradient));
+  ops.mean_edge_length = mean_edge_length(mesh.positions(), tris);
   ops.n_folded_triangles = count_folded(mesh, tris);
   return ops;
 }
@@ -150,6 +151,7 @@ OperatorSet refined_operators(const Mesh& mesh, bool with_gradient) {
   ops.n_input_vertices = mesh.n_vertices();
   ops.quality = r.quality;
   take(ops, cotan_operators(ops.domain, with_gradient));
+  ops.mean_edge_length = ops.domain.mean_edge_length();
   return ops;
 }
 
@@ -161,7 +163,9 @@ OperatorSet intrinsic_delaunay_operators(const Mesh& mesh, bool with_gradient) {
   ops.n_folded_triangles = count_folded(mesh, tris);
   const IntrinsicTriangulation T = intrinsic_delaunay(mesh.positions(), tris);
   take(ops, cotan_operators(T.triangles, with_gradient));
+  ops.M_lumped = voronoi_areas(T.triangles);  // libigl's default for the intrinsic Laplacian (see header)
   ops.n_flips = T.n_flips;
+  ops.mean_edge_length = mean_edge_length(mesh.positions(), tris);
   return ops;
 }
 
@@ -195,6 +199,7 @@ OperatorSet build_operators(const Mesh& mesh, const LaplacianChoice& choice, boo
   else
     throw std::invalid_argument("unknown Laplacian '" + m + "'");
   ops.name = choice.canonical_name();
+  if (ops.mean_edge_length == 0.0) ops.mean_edge_length = mesh.mean_edge_length();
   return ops;
 }
 
