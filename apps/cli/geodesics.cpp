@@ -1,22 +1,21 @@
 // apps/cli/geodesics.cpp — `polydec geodesics MESH --source V [...] --out FILE.ply`: heat-method
-// distances (paper section 5.5) written as a per-vertex PLY property.
+// distances (paper section 5.5) written as a per-vertex PLY property and/or a picture (--png).
+#include "apps/cli/command.h"
 #include "apps/geodesics.h"
-
-#include <fmt/format.h>
+#include "apps/render.h"
+#include "dec/io.h"
 
 #include <cmath>
-
-#include "apps/cli/command.h"
-#include "dec/io.h"
+#include <fmt/format.h>
 
 namespace polydec::cli {
 namespace {
 
 struct Options {
-  std::string mesh, out;
+  std::string mesh, out, png;
   std::vector<int> sources;
-  bool json = false, euclidean = false, delta_source = false;
-  std::string mass = "lumped", laplacian = "ours", time_step_edges = "input";
+  bool json = false, euclidean = false;
+  std::string mass = "lumped", laplacian = "ours";
 };
 
 void run(const Options& o) {
@@ -24,12 +23,7 @@ void run(const Options& o) {
   if (o.mass != "lumped" && o.mass != "unlumped") throw UsageError("--mass must be lumped or unlumped");
   HeatGeodesicsOptions hopt;
   hopt.lumped_mass = o.mass == "lumped";
-  hopt.mass_weighted_source = !o.delta_source;
-  if (o.time_step_edges != "input" && o.time_step_edges != "operator")
-    throw UsageError("--time-step-edges must be input or operator");
-  OperatorSet ops = build_operators(mesh, parse_laplacian(o.laplacian));
-  const double h = o.time_step_edges == "input" ? mesh.mean_edge_length() : ops.mean_edge_length;
-  const HeatGeodesics heat(std::move(ops), h, hopt);
+  const HeatGeodesics heat(build_operators(mesh, parse_laplacian(o.laplacian)), mesh.mean_edge_length(), hopt);
   const Eigen::VectorXd d = heat.distance(o.sources);
   double mn = INFINITY, mx = -INFINITY, sum = 0;
   int finite = 0;
@@ -40,26 +34,28 @@ void run(const Options& o) {
       sum += d[v];
       ++finite;
     }
-  nlohmann::json j = {{"mesh", o.mesh},
-                      {"laplacian", heat.operators().name},
-                      {"sources", o.sources},
-                      {"time_step", heat.time_step()},
-                      {"min", mn},
-                      {"max", mx},
-                      {"mean", finite ? sum / finite : 0.0},
-                      {"unreached", int(d.size()) - finite},
-                      {"fan_degenerate", heat.operators().quality.n_degenerate},
+  nlohmann::json j = {{"mesh", o.mesh}, {"laplacian", heat.operators().name}, {"sources", o.sources},       {"time_step", heat.time_step()},
+                      {"min", mn},              {"max", mx},                  {"mean", finite ? sum / finite : 0.0},
+                      {"unreached", int(d.size()) - finite}, {"fan_degenerate", heat.operators().quality.n_degenerate},
                       {"fan_inverted", heat.operators().quality.n_inverted}};
   if (o.euclidean) {
     // Error against the Euclidean distance from the first source, shifted to minimum 0 (planar meshes).
     Eigen::VectorXd e(mesh.n_vertices());
-    for (int v = 0; v < mesh.n_vertices(); ++v)
-      e[v] = (mesh.position(v) - mesh.position(o.sources[0])).norm();
+    for (int v = 0; v < mesh.n_vertices(); ++v) e[v] = (mesh.position(v) - mesh.position(o.sources[0])).norm();
     j["rmse_vs_euclidean"] = rmse(d, e.array() - e.minCoeff());
   }
   if (!o.out.empty()) {
     write_mesh(o.out, mesh, {{"distance", d}});
     j["out"] = o.out;
+  }
+  if (!o.png.empty()) {
+    RenderOptions ropt;
+    ropt.isolines = 15;
+    ropt.scalar_label = "distance";
+    ropt.title = fmt::format("heat geodesics ({})", heat.operators().name);
+    ropt.view_direction = view_facing_vertex(mesh, o.sources[0]);
+    render_png(o.png, mesh, d, ropt);
+    j["png"] = o.png;
   }
   if (o.json) {
     print_json(j);
@@ -68,32 +64,23 @@ void run(const Options& o) {
   fmt::print("{}: {} vertices, {} faces, time step {:.6g}\n", o.mesh, mesh.n_vertices(), mesh.n_faces(),
              heat.time_step());
   fmt::print("distance: min {:.6g}, max {:.6g}, mean {:.6g}\n", mn, mx, finite ? sum / finite : 0.0);
-  if (o.euclidean)
-    fmt::print("RMSE against Euclidean distance: {:.6g}\n", j["rmse_vs_euclidean"].get<double>());
+  if (o.euclidean) fmt::print("RMSE against Euclidean distance: {:.6g}\n", j["rmse_vs_euclidean"].get<double>());
   if (!o.out.empty()) fmt::print("wrote {} (property 'distance')\n", o.out);
+  if (!o.png.empty()) fmt::print("wrote {}\n", o.png);
 }
 
-const RegisterCommand reg(
-    "geodesics", "Geodesic distances by the heat method (paper section 5.5)", [](CLI::App& app) {
-      auto o = std::make_shared<Options>();
-      app.add_option("mesh", o->mesh, "input mesh (.obj, .off, .ply)")->required();
-      app.add_option("--source", o->sources, "source vertex (0-based; repeat for several)")->required();
-      app.add_option("--out", o->out, "output mesh with a 'distance' vertex property (.ply)");
-      app.add_option("--mass", o->mass, "lumped (default) or unlumped mass in the heat step");
-      app.add_option("--laplacian", o->laplacian,
-                     "Laplacian: " + fmt::format("{}", fmt::join(laplacian_names(), ", ")));
-      app.add_option(
-          "--time-step-edges", o->time_step_edges,
-          "time step from the mean edge length of the input mesh (default) or of the mesh the operator is "
-          "built on (operator: a triangulation's includes its diagonals, as libigl computes it)");
-      app.add_flag("--delta-source", o->delta_source,
-                   "heat step (M - t S) u = delta instead of M delta (as the paper authors' program; matters "
-                   "with --mass unlumped)");
-      app.add_flag("--euclidean", o->euclidean,
-                   "also report the RMSE against the Euclidean distance (planar meshes)");
-      app.add_flag("--json", o->json, "print one JSON object instead of text");
-      app.callback([o] { run(*o); });
-    });
+const RegisterCommand reg("geodesics", "Geodesic distances by the heat method (paper section 5.5)", [](CLI::App& app) {
+  auto o = std::make_shared<Options>();
+  app.add_option("mesh", o->mesh, "input mesh (.obj, .off, .ply)")->required();
+  app.add_option("--source", o->sources, "source vertex (0-based; repeat for several)")->required();
+  app.add_option("--out", o->out, "output mesh with a 'distance' vertex property (.ply)");
+  app.add_option("--png", o->png, "picture of the distance with isolines and a colour bar (.png)");
+  app.add_option("--mass", o->mass, "lumped (default) or unlumped mass in the heat step");
+  app.add_option("--laplacian", o->laplacian, "Laplacian: " + fmt::format("{}", fmt::join(laplacian_names(), ", ")));
+  app.add_flag("--euclidean", o->euclidean, "also report the RMSE against the Euclidean distance (planar meshes)");
+  app.add_flag("--json", o->json, "print one JSON object instead of text");
+  app.callback([o] { run(*o); });
+});
 
 }  // namespace
 }  // namespace polydec::cli
