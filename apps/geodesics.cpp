@@ -115,22 +115,27 @@ Eigen::VectorXd HeatGeodesics::distance(std::span<const int> sources) const {
     reached_component[component_[s]] = 1;
   }
   // (31): (M - t S) u = M delta
-  Eigen::VectorXd rhs =
-      options_.lumped_mass ? Eigen::VectorXd(ops_.M_lumped.cwiseProduct(delta)) : Eigen::VectorXd(ops_.M * delta);
+  Eigen::VectorXd rhs = !options_.mass_weighted_source ? delta
+                        : options_.lumped_mass        ? Eigen::VectorXd(ops_.M_lumped.cwiseProduct(delta))
+                                                      : Eigen::VectorXd(ops_.M * delta);
   for (int v = 0; v < nv; ++v)
     if (component_[v] < 0) rhs[v] = 0;
   const Eigen::VectorXd u = heat_->solve(rhs);
 
-  // (32): g = -grad u / |grad u| per fan triangle; zero where the gradient vanishes.
+  // (32): g = -grad u / |grad u| per element (fan triangle; or the blocks the operator set names);
+  // zero where the gradient vanishes.
   Eigen::VectorXd g = ops_.G * u;
-  for (int h = 0; h < g.size() / 3; ++h) {
-    auto gh = g.segment<3>(3 * h);
+  const int n_blocks = ops_.G_blocks.empty() ? int(g.size() / 3) : int(ops_.G_blocks.size()) - 1;
+  for (int h = 0; h < n_blocks; ++h) {
+    const int b0 = ops_.G_blocks.empty() ? 3 * h : ops_.G_blocks[h];
+    const int b1 = ops_.G_blocks.empty() ? 3 * h + 3 : ops_.G_blocks[h + 1];
+    auto gh = g.segment(b0, b1 - b0);
     const double m = gh.cwiseAbs().maxCoeff();  // rescale first: far from the source |grad u| underflows when squared
     if (!(m > 0) || !std::isfinite(m)) {
       gh.setZero();
       continue;
     }
-    const Eigen::Vector3d s = gh / m;
+    const Eigen::VectorXd s = gh / m;
     gh = -s / s.norm();
   }
   // (33): S d = D g, solved as (-S) d = -D g with pinned vertices.

@@ -22,6 +22,10 @@ namespace polydec {
 struct HeatGeodesicsOptions {
   double time_step_factor = 1.0;  // t = factor * mean_edge_length^2
   bool lumped_mass = true;        // lumped (default, as in the paper's tables) or Galerkin mass in eq. (31)
+  // Right-hand side of eq. (31): M delta (the paper's equation) or delta alone (what the authors'
+  // program solves; identical up to a factor with lumped mass, different with Galerkin mass: their
+  // Table 6 "un-lumped" column is reproduced only with delta).
+  bool mass_weighted_source = true;
 };
 
 class HeatGeodesics {
