@@ -66,7 +66,7 @@ Eigen::VectorXd squared_area_weights(const PolygonPositions& X) {
   // orthogonal to the columns of Y, so w = 1/n + pinv(Y^T) y. The pseudo-inverse comes from the
   // SVD of Y itself (not of Y^T Y, which would square the condition number of nearly planar
   // polygons); singular values below sqrt(kRankTolerance) of the largest count as zero.
-  Eigen::JacobiSVD<PolygonPositions> svd(Y, Eigen::ComputeThinU | Eigen::ComputeThinV);
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(Eigen::MatrixXd(Y), Eigen::ComputeThinU | Eigen::ComputeThinV);
   const Eigen::Vector3d sigma = svd.singularValues();
   const double cut = std::sqrt(kRankTolerance) * sigma[0];
   Eigen::Vector3d z = svd.matrixV().transpose() * y;
