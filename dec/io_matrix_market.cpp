@@ -55,6 +55,8 @@ Eigen::SparseMatrix<double> read_matrix_market_from_memory(std::string_view byte
       c < 0 || nnz < 0)
     throw FileError(name, lines.line(), -1, "expected 'ROWS COLS ENTRIES', three non-negative integers");
   if (r > INT_MAX || c > INT_MAX) throw FileError(name, lines.line(), -1, "matrix too large");
+  if (mirror != 0.0 && r != c)
+    throw FileError(name, lines.line(), -1, fmt::format("{} matrix must be square, is {} x {}", symmetry, r, c));
   if (nnz > (long long)(lines.remaining() + 1) / 6)
     throw FileError(name, lines.line(), -1,
                     fmt::format("claims {} entries but only {} bytes follow", nnz, lines.remaining()));

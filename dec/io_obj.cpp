@@ -64,7 +64,7 @@ SoupRead read_obj(std::string_view bytes, const std::string& name) {
           throw FileError(name, ln, -1, "bad face entry " + quote(t) + " (expected i, i/t, i//n or i/t/n)");
         if (i == 0) throw FileError(name, ln, -1, "face index 0 (OBJ indices start at 1)");
         if (i < 0) {
-          if (-i > nv_so_far)
+          if (i < -nv_so_far)
             throw FileError(name, ln, -1,
                             fmt::format("relative face index {} reaches before the first vertex ({} vertices so far)",
                                         i, nv_so_far));

@@ -48,6 +48,7 @@ const Case kCases[] = {
     {"obj/index_out_of_range.obj", R, 5, -1, "face index 5 out of range (the file has 4 vertices)"},
     {"obj/index_negative_out_of_range.obj", R, 5, -1, "relative face index -5 reaches before the first vertex"},
     {"obj/index_zero.obj", R, 5, -1, "face index 0 (OBJ indices start at 1)"},
+    {"obj/index_llong_min.obj", R, 5, -1, "relative face index -9223372036854775808 reaches before the first"},
     {"obj/index_overflow.obj", R, 5, -1, "bad face entry '99999999999999999999'"},
     {"obj/index_huge.obj", R, 5, -1, "face index 3000000000 out of range"},
     {"obj/repeated_vertex.obj", V, 5, -1, "face 0 repeats vertex 1"},
@@ -123,6 +124,7 @@ const Case kMatrixCases[] = {
     {"mtx/truncated.mtx", R, 3, -1, "claims 3 entries but only 12 bytes follow"},
     {"mtx/array.mtx", R, 1, -1, "only the coordinate format is supported"},
     {"mtx/png.mtx", R, 1, -1, "expected '%%MatrixMarket matrix coordinate FIELD SYMMETRY'"},
+    {"mtx/symmetric_not_square.mtx", R, 2, -1, "symmetric matrix must be square, is 4 x 1"},  // found by fuzz_mtx
 };
 
 // Read as the unit square (checked in test_io.cpp) instead of rejected.
