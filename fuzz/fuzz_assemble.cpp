@@ -1,15 +1,15 @@
 // fuzz/fuzz_assemble.cpp — libFuzzer target "validate then assemble": the bytes are read as a
 // small OBJ; when validation accepts the mesh, the refinement and every operator (S, M, lumped
 // M, G, D, P) are built and must be free of NaN and Inf (abort otherwise).
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
 #include "dec/io.h"
 #include "dec/prolongation.h"
 #include "dec/refinement.h"
 #include "operators/gradient.h"
 #include "operators/laplacian.h"
-
-#include <cmath>
-#include <cstdio>
-#include <cstdlib>
 
 namespace {
 
@@ -28,7 +28,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size > 4096) return 0;  // small meshes only: the operators are what is exercised
   Mesh mesh;
   try {
-    mesh = read_mesh_from_memory(std::string_view(reinterpret_cast<const char*>(data), size), "obj", "fuzz.obj");
+    mesh =
+        read_mesh_from_memory(std::string_view(reinterpret_cast<const char*>(data), size), "obj", "fuzz.obj");
   } catch (const FileError&) {
     return 0;
   }

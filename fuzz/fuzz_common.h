@@ -5,12 +5,12 @@
 // InvalidMeshError.
 #pragma once
 
-#include "dec/io.h"
-
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <string_view>
+
+#include "dec/io.h"
 
 namespace polydec::fuzz {
 

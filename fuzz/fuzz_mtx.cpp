@@ -1,9 +1,9 @@
 // fuzz/fuzz_mtx.cpp — libFuzzer target: arbitrary bytes through the Matrix Market reader; it
 // either throws FileError or returns a matrix whose entries lie inside its declared size.
-#include "dec/io.h"
-
 #include <cstdint>
 #include <cstdlib>
+
+#include "dec/io.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {

@@ -23,7 +23,11 @@ mkdir -p "$OUT/objects" "$OUT/artifacts"
 # rebuilt when it or any library header is newer than its object.
 newest_header=$(ls -t "$ROOT"/dec/*.h "$ROOT"/operators/*.h | head -1)
 stale=()
-for src in "$ROOT"/dec/*.cpp "$ROOT"/operators/*.cpp; do
+SOURCES=(dec/io.cpp dec/io_obj.cpp dec/io_off.cpp dec/io_ply.cpp dec/io_matrix_market.cpp dec/mesh.cpp
+         dec/virtual_vertex.cpp dec/refinement.cpp dec/complex.cpp dec/prolongation.cpp
+         operators/local_matrices.cpp operators/laplacian.cpp operators/gradient.cpp)
+for rel in "${SOURCES[@]}"; do
+  src=$ROOT/$rel
   obj="$OUT/objects/$(basename "$(dirname "$src")")_$(basename "${src%.cpp}").o"
   if [[ ! -f $obj || $src -nt $obj || $newest_header -nt $obj ]]; then stale+=("$src:$obj"); fi
 done
