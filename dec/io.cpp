@@ -3,17 +3,18 @@
 // io_ply.cpp and io_matrix_market.cpp.
 #include "dec/io.h"
 
-#include "dec/io_common.h"
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <filesystem>
-#include <fmt/format.h>
 #include <fstream>
+
+#include "dec/io_common.h"
 
 namespace polydec {
 
 FileError::FileError(std::string file_, long line_, long byte_offset_, std::string reason_)
-    : std::runtime_error(line_ > 0 ? fmt::format("{}:{}: {}", file_, line_, reason_)
+    : std::runtime_error(line_ > 0           ? fmt::format("{}:{}: {}", file_, line_, reason_)
                          : byte_offset_ >= 0 ? fmt::format("{}: byte {}: {}", file_, byte_offset_, reason_)
                                              : fmt::format("{}: {}", file_, reason_)),
       file(std::move(file_)),
@@ -114,7 +115,8 @@ void write_mesh(const std::string& path, const Mesh& mesh, const VertexScalars& 
   } else if (ext == "ply") {
     for (const auto& [name, values] : scalars) {
       if (name.empty() || std::any_of(name.begin(), name.end(), [](char c) { return c <= ' ' || c == 127; }))
-        throw FileError(path, 0, -1, fmt::format("scalar property name {} is empty or has whitespace", quote(name)));
+        throw FileError(path, 0, -1,
+                        fmt::format("scalar property name {} is empty or has whitespace", quote(name)));
       if (values.size() != mesh.n_vertices())
         throw FileError(path, 0, -1,
                         fmt::format("scalar property '{}' has {} values for {} vertices", name, values.size(),

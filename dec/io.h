@@ -3,13 +3,13 @@
 // format accepts and rejects is documented in docs/io.md.
 #pragma once
 
-#include "dec/mesh.h"
-
 #include <Eigen/Sparse>
 #include <map>
 #include <stdexcept>
 #include <string>
 #include <string_view>
+
+#include "dec/mesh.h"
 
 namespace polydec {
 

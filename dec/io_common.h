@@ -3,15 +3,16 @@
 // bounds-checked binary cursor.
 #pragma once
 
-#include "dec/io.h"
+#include <fmt/format.h>
 
 #include <bit>
 #include <charconv>
 #include <cstdint>
 #include <cstring>
-#include <fmt/format.h>
 #include <string_view>
 #include <vector>
+
+#include "dec/io.h"
 
 namespace polydec::io_detail {
 
@@ -58,7 +59,7 @@ class LineReader {
     ++line_;
     return true;
   }
-  long line() const { return line_; }   // number of the line last returned (0 before the first)
+  long line() const { return line_; }       // number of the line last returned (0 before the first)
   size_t position() const { return pos_; }  // byte offset of the next line
   size_t remaining() const { return text_.size() - pos_; }
 
@@ -97,7 +98,8 @@ inline bool parse_int(std::string_view t, long long& x) {
 // Shortens a token for an error message (a 1 MB token is not quoted in full).
 inline std::string quote(std::string_view t) {
   std::string s;
-  for (char c : t.substr(0, 40)) s += (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) >= 127) ? '?' : c;
+  for (char c : t.substr(0, 40))
+    s += (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) >= 127) ? '?' : c;
   if (t.size() > 40) s += "...";
   return "'" + s + "'";
 }
@@ -114,8 +116,9 @@ class BinaryCursor {
   // Throws a FileError naming `what` when fewer than n bytes are left.
   void need(size_t n, const char* what) const {
     if (remaining() < n)
-      throw FileError(name_, 0, long(pos_),
-                      fmt::format("truncated {}: needs {} bytes, the file ends after {}", what, n, remaining()));
+      throw FileError(
+          name_, 0, long(pos_),
+          fmt::format("truncated {}: needs {} bytes, the file ends after {}", what, n, remaining()));
   }
   template <class T>
   T read(const char* what) {

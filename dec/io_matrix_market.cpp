@@ -1,11 +1,11 @@
 // dec/io_matrix_market.cpp — Matrix Market coordinate files: written as "real general",
 // 1-based, 17 significant digits; read as real or integer, general, symmetric or
 // skew-symmetric.
-#include "dec/io_common.h"
-
 #include <climits>
 #include <filesystem>
 #include <fstream>
+
+#include "dec/io_common.h"
 
 namespace polydec {
 
@@ -39,7 +39,8 @@ Eigen::SparseMatrix<double> read_matrix_market_from_memory(std::string_view byte
   if (field != "real" && field != "integer" && field != "double")
     throw FileError(name, 1, -1, "field " + quote(tok[3]) + " not supported (real or integer)");
   if (symmetry != "general" && symmetry != "symmetric" && symmetry != "skew-symmetric")
-    throw FileError(name, 1, -1, "symmetry " + quote(tok[4]) + " not supported (general, symmetric, skew-symmetric)");
+    throw FileError(name, 1, -1,
+                    "symmetry " + quote(tok[4]) + " not supported (general, symmetric, skew-symmetric)");
   const double mirror = symmetry == "general" ? 0.0 : symmetry == "symmetric" ? 1.0 : -1.0;
 
   auto next_data = [&]() {
@@ -55,6 +56,9 @@ Eigen::SparseMatrix<double> read_matrix_market_from_memory(std::string_view byte
       c < 0 || nnz < 0)
     throw FileError(name, lines.line(), -1, "expected 'ROWS COLS ENTRIES', three non-negative integers");
   if (r > INT_MAX || c > INT_MAX) throw FileError(name, lines.line(), -1, "matrix too large");
+  if (mirror != 0.0 && r != c)
+    throw FileError(name, lines.line(), -1,
+                    fmt::format("{} matrix must be square, is {} x {}", symmetry, r, c));
   if (nnz > (long long)(lines.remaining() + 1) / 6)
     throw FileError(name, lines.line(), -1,
                     fmt::format("claims {} entries but only {} bytes follow", nnz, lines.remaining()));
@@ -62,13 +66,15 @@ Eigen::SparseMatrix<double> read_matrix_market_from_memory(std::string_view byte
   t.reserve(size_t(nnz) * (mirror != 0.0 ? 2 : 1));
   for (long long k = 0; k < nnz; ++k) {
     if (!next_data())
-      throw FileError(name, lines.line(), -1, fmt::format("unexpected end of file after {} of {} entries", k, nnz));
+      throw FileError(name, lines.line(), -1,
+                      fmt::format("unexpected end of file after {} of {} entries", k, nnz));
     long long i, j;
     double v;
     if (tok.size() != 3 || !parse_int(tok[0], i) || !parse_int(tok[1], j) || !parse_double(tok[2], v))
       throw FileError(name, lines.line(), -1, "expected 'ROW COL VALUE'");
     if (i < 1 || i > r || j < 1 || j > c)
-      throw FileError(name, lines.line(), -1, fmt::format("entry ({}, {}) outside the {} x {} matrix", i, j, r, c));
+      throw FileError(name, lines.line(), -1,
+                      fmt::format("entry ({}, {}) outside the {} x {} matrix", i, j, r, c));
     t.emplace_back(int(i - 1), int(j - 1), v);
     if (mirror != 0.0 && i != j) t.emplace_back(int(j - 1), int(i - 1), mirror * v);
   }

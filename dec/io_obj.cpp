@@ -1,10 +1,10 @@
 // dec/io_obj.cpp — Wavefront OBJ: `v` and `f` statements (face entries i, i/t, i//n, i/t/n,
 // negative = relative indices); every other statement, comments, CRLF and a UTF-8 BOM are
 // accepted and ignored.
-#include "dec/io_common.h"
-
 #include <climits>
 #include <cstring>
+
+#include "dec/io_common.h"
 
 namespace polydec::io_detail {
 
@@ -28,8 +28,9 @@ bool valid_tail(std::string_view tail) {
 
 SoupRead read_obj(std::string_view bytes, const std::string& name) {
   if (std::memchr(bytes.data(), '\0', bytes.size()))
-    throw FileError(name, 0, long(static_cast<const char*>(std::memchr(bytes.data(), '\0', bytes.size())) - bytes.data()),
-                    "NUL byte: binary data, not an OBJ text file");
+    throw FileError(
+        name, 0, long(static_cast<const char*>(std::memchr(bytes.data(), '\0', bytes.size())) - bytes.data()),
+        "NUL byte: binary data, not an OBJ text file");
   const std::string_view text = strip_bom(bytes);
   SoupRead r;
   std::vector<double> xyz;
@@ -64,10 +65,11 @@ SoupRead read_obj(std::string_view bytes, const std::string& name) {
           throw FileError(name, ln, -1, "bad face entry " + quote(t) + " (expected i, i/t, i//n or i/t/n)");
         if (i == 0) throw FileError(name, ln, -1, "face index 0 (OBJ indices start at 1)");
         if (i < 0) {
-          if (-i > nv_so_far)
-            throw FileError(name, ln, -1,
-                            fmt::format("relative face index {} reaches before the first vertex ({} vertices so far)",
-                                        i, nv_so_far));
+          if (i < -nv_so_far)
+            throw FileError(
+                name, ln, -1,
+                fmt::format("relative face index {} reaches before the first vertex ({} vertices so far)", i,
+                            nv_so_far));
           i = nv_so_far + i + 1;
         }
         if (i > INT_MAX / 2) throw FileError(name, ln, -1, fmt::format("face index {} out of range", i));
@@ -88,7 +90,8 @@ SoupRead read_obj(std::string_view bytes, const std::string& name) {
                         fmt::format("face index {} out of range (the file has {} vertices)", raw[k], nv));
       r.soup.face_indices[k] = int(raw[k] - 1);
     }
-  r.soup.positions = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(xyz.data(), nv, 3);
+  r.soup.positions =
+      Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(xyz.data(), nv, 3);
   return r;
 }
 

@@ -3,9 +3,9 @@
 // '#' comments and blank lines anywhere; one vertex or face per line. Binary: "OFF BINARY"
 // as pmp-library writes it (little-endian int32 counts, float32 positions, per face an
 // int32 valence and int32 indices, no colors).
-#include "dec/io_common.h"
-
 #include <climits>
+
+#include "dec/io_common.h"
 
 namespace polydec::io_detail {
 
@@ -26,7 +26,8 @@ long long count(std::string_view t, const char* what, const std::string& name, l
   long long n;
   if (!parse_int(t, n)) throw FileError(name, ln, -1, fmt::format("bad {} count {}", what, quote(t)));
   if (n < 0) throw FileError(name, ln, -1, fmt::format("negative {} count {}", what, n));
-  if (n > INT_MAX / 2) throw FileError(name, ln, -1, fmt::format("{} count {} is too large (at most {})", what, n, INT_MAX / 2));
+  if (n > INT_MAX / 2)
+    throw FileError(name, ln, -1, fmt::format("{} count {} is too large (at most {})", what, n, INT_MAX / 2));
   return n;
 }
 
@@ -45,16 +46,19 @@ SoupRead read_off_binary(std::string_view bytes, size_t start, const std::string
     const std::int32_t snf = std::int32_t(byteswap32(std::uint32_t(nf)));
     const bool swapped = snv >= 0 && snf >= 0 && 12LL * snv + 4LL * snf <= (long long)in.remaining();
     const std::string hint =
-        swapped ? fmt::format(" (read big-endian they would be {} and {}: polydec reads OFF BINARY as "
-                              "little-endian, the layout pmp-library writes)",
-                              snv, snf)
+        swapped ? fmt::format(
+                      " (read big-endian they would be {} and {}: polydec reads OFF BINARY as "
+                      "little-endian, the layout pmp-library writes)",
+                      snv, snf)
                 : "";
     if (nv < 0 || nf < 0)
-      throw FileError(name, 0, long(start), fmt::format("negative counts {} vertices, {} faces{}", nv, nf, hint));
-    throw FileError(name, 0, long(start),
-                    fmt::format("header claims {} vertices and {} faces (at least {} bytes) but only {} bytes "
-                                "follow{}",
-                                nv, nf, need, in.remaining(), hint));
+      throw FileError(name, 0, long(start),
+                      fmt::format("negative counts {} vertices, {} faces{}", nv, nf, hint));
+    throw FileError(
+        name, 0, long(start),
+        fmt::format("header claims {} vertices and {} faces (at least {} bytes) but only {} bytes "
+                    "follow{}",
+                    nv, nf, need, in.remaining(), hint));
   }
   SoupRead r;
   r.where_is_byte = true;
@@ -71,8 +75,9 @@ SoupRead read_off_binary(std::string_view bytes, size_t start, const std::string
     r.face_where.push_back(long(in.position()));
     const std::int32_t n = in.read<std::int32_t>("face record");
     if (n < 0 || size_t(n) > in.remaining() / 4)
-      throw FileError(name, 0, r.face_where.back(),
-                      fmt::format("face {} claims {} vertices but only {} bytes follow", f, n, in.remaining()));
+      throw FileError(
+          name, 0, r.face_where.back(),
+          fmt::format("face {} claims {} vertices but only {} bytes follow", f, n, in.remaining()));
     for (int k = 0; k < n; ++k) {
       const long at = long(in.position());
       const std::int32_t i = in.read<std::int32_t>("face record");
@@ -100,7 +105,8 @@ SoupRead read_off(std::string_view bytes, const std::string& name) {
   if (key.substr(0, 1) == "C") key.remove_prefix(1);
   if (key.substr(0, 1) == "N") key.remove_prefix(1);
   if (key == "4OFF" || key == "nOFF")
-    throw FileError(name, head_line, -1, fmt::format("{} (non-3D vertices) is not supported", quote(full_key)));
+    throw FileError(name, head_line, -1,
+                    fmt::format("{} (non-3D vertices) is not supported", quote(full_key)));
   if (key != "OFF")
     throw FileError(name, head_line, -1, fmt::format("expected an OFF header, found {}", quote(full_key)));
   if (tok.size() >= 2 && tok[1] == "BINARY") {
@@ -121,10 +127,11 @@ SoupRead read_off(std::string_view bytes, const std::string& name) {
   const long long nf = count(tok[1], "face", name, count_line);
   const long long need = 6 * nv + 2 * nf;
   if (need > (long long)lines.remaining() + 1)
-    throw FileError(name, count_line, -1,
-                    fmt::format("header claims {} vertices and {} faces (at least {} bytes) but only {} bytes "
-                                "follow",
-                                nv, nf, need, lines.remaining()));
+    throw FileError(
+        name, count_line, -1,
+        fmt::format("header claims {} vertices and {} faces (at least {} bytes) but only {} bytes "
+                    "follow",
+                    nv, nf, need, lines.remaining()));
   SoupRead r;
   r.soup.positions.resize(nv, 3);
   r.vertex_where.resize(nv);
@@ -144,13 +151,15 @@ SoupRead read_off(std::string_view bytes, const std::string& name) {
   std::vector<int> face;
   for (long long f = 0; f < nf; ++f) {
     if (!next_significant(lines, tok))
-      throw FileError(name, lines.line(), -1, fmt::format("unexpected end of file after {} of {} faces", f, nf));
+      throw FileError(name, lines.line(), -1,
+                      fmt::format("unexpected end of file after {} of {} faces", f, nf));
     const long ln = lines.line();
     long long n;
     if (!parse_int(tok[0], n) || n < 0) throw FileError(name, ln, -1, "bad face valence " + quote(tok[0]));
     if (n > (long long)tok.size() - 1)
-      throw FileError(name, ln, -1, fmt::format("face lists {} vertices but the line has {} more numbers", n,
-                                                tok.size() - 1));
+      throw FileError(
+          name, ln, -1,
+          fmt::format("face lists {} vertices but the line has {} more numbers", n, tok.size() - 1));
     face.clear();
     for (long long k = 1; k <= n; ++k) {
       long long i;

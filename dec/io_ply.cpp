@@ -1,9 +1,9 @@
 // dec/io_ply.cpp — Stanford PLY: ascii, binary_little_endian, binary_big_endian. Vertex x, y, z
 // of any numeric type; faces from the list property vertex_indices (or vertex_index) with any
 // integer count and index types; every other element and property (lists too) is skipped.
-#include "dec/io_common.h"
-
 #include <climits>
+
+#include "dec/io_common.h"
 
 namespace polydec::io_detail {
 
@@ -13,10 +13,10 @@ enum class Type { I8, U8, I16, U16, I32, U32, F32, F64 };
 
 bool parse_type(std::string_view s, Type& t) {
   static const std::pair<const char*, Type> names[] = {
-      {"char", Type::I8},     {"int8", Type::I8},     {"uchar", Type::U8},     {"uint8", Type::U8},
-      {"short", Type::I16},   {"int16", Type::I16},   {"ushort", Type::U16},   {"uint16", Type::U16},
-      {"int", Type::I32},     {"int32", Type::I32},   {"uint", Type::U32},     {"uint32", Type::U32},
-      {"float", Type::F32},   {"float32", Type::F32}, {"double", Type::F64},   {"float64", Type::F64}};
+      {"char", Type::I8},   {"int8", Type::I8},     {"uchar", Type::U8},   {"uint8", Type::U8},
+      {"short", Type::I16}, {"int16", Type::I16},   {"ushort", Type::U16}, {"uint16", Type::U16},
+      {"int", Type::I32},   {"int32", Type::I32},   {"uint", Type::U32},   {"uint32", Type::U32},
+      {"float", Type::F32}, {"float32", Type::F32}, {"double", Type::F64}, {"float64", Type::F64}};
   for (const auto& [n, ty] : names)
     if (s == n) {
       t = ty;
@@ -28,13 +28,17 @@ bool parse_type(std::string_view s, Type& t) {
 size_t size_of(Type t) {
   switch (t) {
     case Type::I8:
-    case Type::U8: return 1;
+    case Type::U8:
+      return 1;
     case Type::I16:
-    case Type::U16: return 2;
+    case Type::U16:
+      return 2;
     case Type::I32:
     case Type::U32:
-    case Type::F32: return 4;
-    case Type::F64: return 8;
+    case Type::F32:
+      return 4;
+    case Type::F64:
+      return 8;
   }
   return 0;
 }
@@ -59,14 +63,22 @@ enum class Format { Ascii, Little, Big };
 // Reads one binary value of type t as a double (integers exactly).
 double read_value(BinaryCursor& in, Type t, const char* what) {
   switch (t) {
-    case Type::I8: return in.read<std::int8_t>(what);
-    case Type::U8: return in.read<std::uint8_t>(what);
-    case Type::I16: return in.read<std::int16_t>(what);
-    case Type::U16: return in.read<std::uint16_t>(what);
-    case Type::I32: return in.read<std::int32_t>(what);
-    case Type::U32: return in.read<std::uint32_t>(what);
-    case Type::F32: return in.read<float>(what);
-    case Type::F64: return in.read<double>(what);
+    case Type::I8:
+      return in.read<std::int8_t>(what);
+    case Type::U8:
+      return in.read<std::uint8_t>(what);
+    case Type::I16:
+      return in.read<std::int16_t>(what);
+    case Type::U16:
+      return in.read<std::uint16_t>(what);
+    case Type::I32:
+      return in.read<std::int32_t>(what);
+    case Type::U32:
+      return in.read<std::uint32_t>(what);
+    case Type::F32:
+      return in.read<float>(what);
+    case Type::F64:
+      return in.read<double>(what);
   }
   return 0;
 }
@@ -104,7 +116,8 @@ SoupRead read_ply(std::string_view bytes, const std::string& name) {
   std::vector<std::string_view> tok;
   if (!lines.next(line)) throw FileError(name, 0, -1, "empty file (no 'ply' header)");
   split(line, tok);
-  if (tok.size() != 1 || tok[0] != "ply") throw FileError(name, 1, -1, "not a PLY file (first line is not 'ply')");
+  if (tok.size() != 1 || tok[0] != "ply")
+    throw FileError(name, 1, -1, "not a PLY file (first line is not 'ply')");
 
   // Header.
   Format format = Format::Ascii;
@@ -120,10 +133,14 @@ SoupRead read_ply(std::string_view bytes, const std::string& name) {
     }
     if (tok[0] == "format") {
       if (tok.size() < 2) throw FileError(name, ln, -1, "format line without a format");
-      if (tok[1] == "ascii") format = Format::Ascii;
-      else if (tok[1] == "binary_little_endian") format = Format::Little;
-      else if (tok[1] == "binary_big_endian") format = Format::Big;
-      else throw FileError(name, ln, -1, "unknown PLY format " + quote(tok[1]));
+      if (tok[1] == "ascii")
+        format = Format::Ascii;
+      else if (tok[1] == "binary_little_endian")
+        format = Format::Little;
+      else if (tok[1] == "binary_big_endian")
+        format = Format::Big;
+      else
+        throw FileError(name, ln, -1, "unknown PLY format " + quote(tok[1]));
       have_format = true;
     } else if (tok[0] == "element") {
       if (tok.size() != 3) throw FileError(name, ln, -1, "expected 'element NAME COUNT'");
@@ -142,10 +159,12 @@ SoupRead read_ply(std::string_view bytes, const std::string& name) {
         p.list = true;
         if (!parse_type(tok[2], p.count_type) || !parse_type(tok[3], p.type))
           throw FileError(name, ln, -1, "unknown property type in " + quote(line));
-        if (!is_integer(p.count_type)) throw FileError(name, ln, -1, "list count type must be an integer type");
+        if (!is_integer(p.count_type))
+          throw FileError(name, ln, -1, "list count type must be an integer type");
         p.name = std::string(tok[4]);
       } else if (tok.size() == 3) {
-        if (!parse_type(tok[1], p.type)) throw FileError(name, ln, -1, "unknown property type " + quote(tok[1]));
+        if (!parse_type(tok[1], p.type))
+          throw FileError(name, ln, -1, "unknown property type " + quote(tok[1]));
         p.name = std::string(tok[2]);
       } else {
         throw FileError(name, ln, -1, "expected 'property TYPE NAME' or 'property list CTYPE TYPE NAME'");
@@ -172,7 +191,8 @@ SoupRead read_ply(std::string_view bytes, const std::string& name) {
           }
       if (px[0] < 0 || px[1] < 0 || px[2] < 0)
         throw FileError(name, el.line, -1, "vertex element lacks an x, y or z property");
-      if (el.count > INT_MAX / 2) throw FileError(name, el.line, -1, fmt::format("{} vertices: too many", el.count));
+      if (el.count > INT_MAX / 2)
+        throw FileError(name, el.line, -1, fmt::format("{} vertices: too many", el.count));
     } else if (el.name == "face") {
       ef = e;
       for (int p = 0; p < int(el.props.size()) && pf < 0; ++p)
@@ -180,7 +200,8 @@ SoupRead read_ply(std::string_view bytes, const std::string& name) {
       if (pf < 0) throw FileError(name, el.line, -1, "face element lacks a vertex_indices list");
       if (!el.props[pf].list || !is_integer(el.props[pf].type))
         throw FileError(name, el.line, -1, "vertex_indices must be a list of an integer type");
-      if (el.count > INT_MAX / 2) throw FileError(name, el.line, -1, fmt::format("{} faces: too many", el.count));
+      if (el.count > INT_MAX / 2)
+        throw FileError(name, el.line, -1, fmt::format("{} faces: too many", el.count));
     }
   }
   if (ev < 0) throw FileError(name, 0, -1, "no vertex element");
@@ -195,10 +216,11 @@ SoupRead read_ply(std::string_view bytes, const std::string& name) {
     for (const Property& p : el.props)
       rec += format == Format::Ascii ? 2 : static_cast<long long>(size_of(p.list ? p.count_type : p.type));
     if (rec > 0 && el.count > (avail - need) / rec)
-      throw FileError(name, el.line, -1,
-                      fmt::format("element {} claims {} records (at least {} bytes each) but only {} bytes of data "
-                                  "follow",
-                                  quote(el.name), el.count, rec, avail - (format == Format::Ascii ? 1 : 0)));
+      throw FileError(
+          name, el.line, -1,
+          fmt::format("element {} claims {} records (at least {} bytes each) but only {} bytes of data "
+                      "follow",
+                      quote(el.name), el.count, rec, avail - (format == Format::Ascii ? 1 : 0)));
     need += rec * el.count;
   }
 
@@ -238,7 +260,8 @@ SoupRead read_ply(std::string_view bytes, const std::string& name) {
             continue;
           }
           long long n;
-          if (!parse_int(first, n) || n < 0) throw FileError(name, in.line(), -1, "bad list count " + quote(first));
+          if (!parse_int(first, n) || n < 0)
+            throw FileError(name, in.line(), -1, "bad list count " + quote(first));
           for (long long k = 0; k < n; ++k) {
             const std::string_view v = next(el, i);
             if (e == ef && p == pf) {
@@ -286,9 +309,9 @@ SoupRead read_ply(std::string_view bytes, const std::string& name) {
         const double n = read_value(in, pr.count_type, what.c_str());
         const size_t item = size_of(pr.type);
         if (n < 0 || n > double(in.remaining() / item))
-          throw FileError(name, 0, at,
-                          fmt::format("{} {}: list of {} items but only {} bytes follow", el.name, i, n,
-                                      in.remaining()));
+          throw FileError(
+              name, 0, at,
+              fmt::format("{} {}: list of {} items but only {} bytes follow", el.name, i, n, in.remaining()));
         const size_t count = size_t(n);
         if (e == ef && p == pf) {
           if (r.soup.face_indices.size() + count > size_t(INT_MAX / 2))
@@ -297,7 +320,8 @@ SoupRead read_ply(std::string_view bytes, const std::string& name) {
             const long iat = long(in.position());
             const double idx = read_value(in, pr.type, what.c_str());
             if (idx < 0 || idx >= double(nv))
-              throw FileError(name, 0, iat, fmt::format("face {} vertex index {} out of range [0, {})", i, idx, nv));
+              throw FileError(name, 0, iat,
+                              fmt::format("face {} vertex index {} out of range [0, {})", i, idx, nv));
             r.soup.face_indices.push_back(int(idx));
           }
           r.soup.face_offsets.push_back(int(r.soup.face_indices.size()));
@@ -328,8 +352,10 @@ std::string write_ply(const Mesh& mesh, const VertexScalars& scalars, bool binar
       for (const auto& [name, values] : scalars) put_le<double>(s, values[v]);
     }
     for (int f = 0; f < mesh.n_faces(); ++f) {
-      if (small) put_le<std::uint8_t>(s, std::uint8_t(mesh.face_size(f)));
-      else put_le<std::int32_t>(s, mesh.face_size(f));
+      if (small)
+        put_le<std::uint8_t>(s, std::uint8_t(mesh.face_size(f)));
+      else
+        put_le<std::int32_t>(s, mesh.face_size(f));
       for (int v : mesh.face(f)) put_le<std::int32_t>(s, v);
     }
     return s;

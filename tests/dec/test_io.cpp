@@ -1,9 +1,6 @@
 // tests/dec/test_io.cpp — mesh and matrix readers/writers: round trips in every format
 // (positions bit-exact, faces identical), the paper's meshes (including pmp-library's binary
 // OFF), accepted format variants, PLY scalar properties, Matrix Market, error messages.
-#include "dec/io.h"
-#include "tests/support.h"
-
 #include <charconv>
 #include <cmath>
 #include <cstring>
@@ -11,6 +8,9 @@
 #include <fstream>
 #include <map>
 #include <random>
+
+#include "dec/io.h"
+#include "tests/support.h"
 
 using namespace polydec;
 
@@ -35,8 +35,8 @@ std::string slurp(const std::string& path) {
 Mesh mixed_mesh() {
   PolygonSoup s;
   s.positions.resize(10, 3);
-  s.positions << 0, 0, 0, 1.0 / 3, 0, 1e-7, 1, 0.1, 0, 1, 1, 0.2, 0, 1, 0, -0.7, 0.5, 1e-300, 2.0 / 3, 2, -0.1,
-      -1, 2, 0, 1.6, 1.9, 0.3, 0.4, 2.5, 3.14159265358979;
+  s.positions << 0, 0, 0, 1.0 / 3, 0, 1e-7, 1, 0.1, 0, 1, 1, 0.2, 0, 1, 0, -0.7, 0.5, 1e-300, 2.0 / 3, 2,
+      -0.1, -1, 2, 0, 1.6, 1.9, 0.3, 0.4, 2.5, 3.14159265358979;
   s.add_face(std::vector<int>{0, 1, 2, 3, 4});
   s.add_face(std::vector<int>{0, 4, 5});
   s.add_face(std::vector<int>{4, 3, 8, 9, 6, 7});
@@ -108,9 +108,9 @@ TEST_CASE("faces with more than 255 vertices round-trip in PLY (int list counts)
 
 TEST_CASE("the paper's meshes load and round-trip through OBJ, OFF and PLY", "[io]") {
   const fs::path d = temp_dir();
-  for (const char* name : {"L-plane.obj", "quad-plane.obj", "tetris.obj", "tetris_2.obj", "suzanne-half.obj",
-                           "amo_quad.off", "quad-sphere.off", "noisy-sphere.off", "unit-sphere-low.off",
-                           "bunny-hexa.off"}) {
+  for (const char* name :
+       {"L-plane.obj", "quad-plane.obj", "tetris.obj", "tetris_2.obj", "suzanne-half.obj", "amo_quad.off",
+        "quad-sphere.off", "noisy-sphere.off", "unit-sphere-low.off", "bunny-hexa.off"}) {
     POLYDEC_SHARED_MESH(path, name);
     INFO(name);
     const Mesh m = read_mesh(path);
@@ -133,8 +133,8 @@ TEST_CASE("pmp-library's OFF BINARY: the bunny loads whole and is rewritten byte
   const std::string bytes = slurp(path);
   REQUIRE(m.n_vertices() == 11764);
   REQUIRE(m.n_faces() == 5884);
-  CHECK(bytes.size() == 11 + 12 + 12 * size_t(m.n_vertices()) + 4 * size_t(m.n_faces()) +
-                            4 * size_t(m.n_halfedges()));
+  CHECK(bytes.size() ==
+        11 + 12 + 12 * size_t(m.n_vertices()) + 4 * size_t(m.n_faces()) + 4 * size_t(m.n_halfedges()));
   CHECK(m.positions().allFinite());
   std::map<int, int> valences;
   for (int f = 0; f < m.n_faces(); ++f) ++valences[m.face_size(f)];
@@ -167,8 +167,8 @@ TEST_CASE("OBJ negative indices and face entry forms name the same vertices", "[
     CHECK(b.face_indices == a.face_indices);
   }
   // Relative indices count the vertices read so far, not the file's total.
-  const PolygonSoup c = read_polygon_soup_from_memory("v 0 0 0\nv 1 0 0\nv 1 1 0\nf -3 -2 -1\nv 0 1 0\nf 1 3 -1\n",
-                                                      "obj", "c");
+  const PolygonSoup c =
+      read_polygon_soup_from_memory("v 0 0 0\nv 1 0 0\nv 1 1 0\nf -3 -2 -1\nv 0 1 0\nf 1 3 -1\n", "obj", "c");
   CHECK(c.face_indices == std::vector<int>{0, 1, 2, 0, 2, 3});
 }
 
@@ -245,7 +245,8 @@ TEST_CASE("writers refuse bad scalar fields, unknown formats and unwritable path
                     Catch::Contains("'short' has 3 values for 10 vertices"));
   CHECK_THROWS_AS(write_mesh((temp_dir() / "w.stl").string(), m), FileError);
   CHECK_THROWS_WITH(write_mesh("/nonexistent-dir/x.obj", m), Catch::Contains("cannot open file for writing"));
-  CHECK_THROWS_WITH(read_mesh("/nonexistent-dir/x.obj"), Catch::Contains("/nonexistent-dir/x.obj: cannot open"));
+  CHECK_THROWS_WITH(read_mesh("/nonexistent-dir/x.obj"),
+                    Catch::Contains("/nonexistent-dir/x.obj: cannot open"));
   CHECK_THROWS_WITH(read_mesh(temp_dir().string() + "/dir.off/"), Catch::Contains("unknown mesh format"));
   fs::create_directories(temp_dir() / "dir.off");
   CHECK_THROWS_WITH(read_mesh((temp_dir() / "dir.off").string()), Catch::Contains("is a directory"));

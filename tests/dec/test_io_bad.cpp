@@ -3,12 +3,12 @@
 // reader, or Mesh validation reached through read_mesh), the line or byte offset, and the
 // reason — or, for the accepted variants, that it reads as the intended square. docs/io.md
 // tabulates the same cases.
-#include "dec/io.h"
-#include "tests/support.h"
-
 #include <filesystem>
 #include <fstream>
 #include <set>
+
+#include "dec/io.h"
+#include "tests/support.h"
 
 using namespace polydec;
 
@@ -17,11 +17,11 @@ namespace {
 enum class Stage { Reader, Validation };
 
 struct Case {
-  const char* file;   // under tests/data/bad/
+  const char* file;  // under tests/data/bad/
   Stage stage;
-  long line;          // expected FileError::line
-  long byte;          // expected FileError::byte_offset (-1: none); for PLY relative to the data start
-  const char* reason; // substring of FileError::reason
+  long line;           // expected FileError::line
+  long byte;           // expected FileError::byte_offset (-1: none); for PLY relative to the data start
+  const char* reason;  // substring of FileError::reason
 };
 
 const std::string kDir = POLYDEC_TEST_DATA "/bad/";
@@ -46,8 +46,11 @@ const Case kCases[] = {
     {"obj/face_1.obj", V, 6, -1, "face 1 has 1 vertices (at least 3 needed)"},
     {"obj/face_2.obj", V, 6, -1, "face 1 has 2 vertices (at least 3 needed)"},
     {"obj/index_out_of_range.obj", R, 5, -1, "face index 5 out of range (the file has 4 vertices)"},
-    {"obj/index_negative_out_of_range.obj", R, 5, -1, "relative face index -5 reaches before the first vertex"},
+    {"obj/index_negative_out_of_range.obj", R, 5, -1,
+     "relative face index -5 reaches before the first vertex"},
     {"obj/index_zero.obj", R, 5, -1, "face index 0 (OBJ indices start at 1)"},
+    {"obj/index_llong_min.obj", R, 5, -1,
+     "relative face index -9223372036854775808 reaches before the first"},
     {"obj/index_overflow.obj", R, 5, -1, "bad face entry '99999999999999999999'"},
     {"obj/index_huge.obj", R, 5, -1, "face index 3000000000 out of range"},
     {"obj/repeated_vertex.obj", V, 5, -1, "face 0 repeats vertex 1"},
@@ -62,7 +65,8 @@ const Case kCases[] = {
     {"off/counts_too_large.off", R, 6, -1, "unexpected end of file after 4 of 8 vertices"},
     {"off/negative_counts.off", R, 2, -1, "negative vertex count -4"},
     {"off/claims_1e12.off", R, 2, -1, "vertex count 1000000000000 is too large"},
-    {"off/claims_1e9.off", R, 2, -1, "header claims 1000000000 vertices and 1 faces (at least 6000000002 bytes)"},
+    {"off/claims_1e9.off", R, 2, -1,
+     "header claims 1000000000 vertices and 1 faces (at least 6000000002 bytes)"},
     {"off/nan.off", V, 5, -1, "vertex 2 has a non-finite coordinate"},
     {"off/inf.off", V, 6, -1, "vertex 3 has a non-finite coordinate"},
     {"off/face_2.off", V, 8, -1, "face 1 has 2 vertices"},
@@ -76,7 +80,8 @@ const Case kCases[] = {
     {"off/bad_number.off", R, 5, -1, "bad vertex coordinate '1,5'"},
     // OFF binary (pmp-library layout)
     {"offb/header_only.off", R, 0, 11, "truncated header counts: needs 4 bytes, the file ends after 0"},
-    {"offb/counts_too_large.off", R, 0, 11, "header claims 8 vertices and 1 faces (at least 100 bytes) but only 68"},
+    {"offb/counts_too_large.off", R, 0, 11,
+     "header claims 8 vertices and 1 faces (at least 100 bytes) but only 68"},
     {"offb/negative_counts.off", R, 0, 11, "negative counts -4 vertices, 1 faces"},
     {"offb/claims_2e9.off", R, 0, 11, "header claims 2000000000 vertices"},
     {"offb/truncated_face.off", R, 0, 23 + 48, "face 0 claims 4 vertices but only 12 bytes follow"},
@@ -87,11 +92,13 @@ const Case kCases[] = {
     {"offb/index_negative.off", R, 0, 23 + 48 + 16, "face 0 vertex index -1 out of range"},
     {"offb/repeated_vertex.off", V, 0, 23 + 48, "face 0 repeats vertex 2"},
     {"offb/negative_valence.off", R, 0, 23 + 48, "face 0 claims -4 vertices"},
-    {"offb/big_endian.off", R, 0, 11, "(read big-endian they would be 4 and 1: polydec reads OFF BINARY as little"},
+    {"offb/big_endian.off", R, 0, 11,
+     "(read big-endian they would be 4 and 1: polydec reads OFF BINARY as little"},
     {"offb/png_after_header.off", R, 0, 11, "header claims 1196314761 vertices"},
     // PLY
     {"ply/empty.ply", R, 0, -1, "empty file (no 'ply' header)"},
-    {"ply/header_only.ply", R, 4, -1, "element 'vertex' claims 4 records (at least 6 bytes each) but only 0 bytes"},
+    {"ply/header_only.ply", R, 4, -1,
+     "element 'vertex' claims 4 records (at least 6 bytes each) but only 0 bytes"},
     {"ply/no_end_header.ply", R, 4, -1, "header has no 'end_header'"},
     {"ply/no_format.ply", R, 6, -1, "header has no 'format' line"},
     {"ply/counts_too_large.ply", R, 14, -1, "unexpected end of file in vertex 4 of 8"},
@@ -105,7 +112,8 @@ const Case kCases[] = {
     {"ply/repeated_vertex.ply", V, 15, -1, "face 0 repeats vertex 1"},
     {"ply/truncated_binary.ply", R, 0, 48, "face 0: list of 4 items but only 10 bytes follow"},
     {"ply/truncated_big_endian.ply", R, 4, -1, "element 'vertex' claims 4 records (at least 12 bytes each)"},
-    {"ply/truncated_mid_record.ply", R, 0, 26 + 100 + 13, "truncated face record: needs 4 bytes, the file ends after 2"},
+    {"ply/truncated_mid_record.ply", R, 0, 26 + 100 + 13,
+     "truncated face record: needs 4 bytes, the file ends after 2"},
     {"ply/wrong_endianness.ply", R, 0, 48 + 1 + 4, "face 0 vertex index 16777216 out of range"},
     {"ply/list_count_huge.ply", R, 0, 48, "face 0: list of 4294967295 items but only 16 bytes follow"},
     {"ply/float_indices.ply", R, 8, -1, "vertex_indices must be a list of an integer type"},
@@ -123,12 +131,14 @@ const Case kMatrixCases[] = {
     {"mtx/truncated.mtx", R, 3, -1, "claims 3 entries but only 12 bytes follow"},
     {"mtx/array.mtx", R, 1, -1, "only the coordinate format is supported"},
     {"mtx/png.mtx", R, 1, -1, "expected '%%MatrixMarket matrix coordinate FIELD SYMMETRY'"},
+    {"mtx/symmetric_not_square.mtx", R, 2, -1,
+     "symmetric matrix must be square, is 4 x 1"},  // found by fuzz_mtx
 };
 
 // Read as the unit square (checked in test_io.cpp) instead of rejected.
-const char* const kAccepted[] = {"obj/bom_crlf_tabs.obj", "off/bom.off", "off/crlf_tabs_comments.off",
-                                 "off/coff.off", "off/noff.off", "ply/bom_crlf_tabs.ply",
-                                 "ply/mixed_types_big_endian.ply"};
+const char* const kAccepted[] = {
+    "obj/bom_crlf_tabs.obj", "off/bom.off",           "off/crlf_tabs_comments.off",    "off/coff.off",
+    "off/noff.off",          "ply/bom_crlf_tabs.ply", "ply/mixed_types_big_endian.ply"};
 
 void check_error(const FileError& e, const Case& c, const std::string& path) {
   long byte = c.byte;
@@ -202,16 +212,18 @@ TEST_CASE("a claimed 10^12 or 10^9 elements fail before any proportional allocat
   for (const std::string tail : {"", "0 0 0\n"}) {
     CHECK_THROWS_WITH(read_polygon_soup_from_memory("OFF\n1000000000 0 0\n" + tail, "off", "m.off"),
                       Catch::Contains("m.off:2: header claims 1000000000 vertices"));
-    CHECK_THROWS_WITH(
-        read_polygon_soup_from_memory("ply\nformat ascii 1.0\nelement vertex 1000000000000\nproperty float x\n"
-                                      "property float y\nproperty float z\nend_header\n" + tail,
-                                      "ply", "m.ply"),
-        Catch::Contains("m.ply:3: 1000000000000 vertices: too many"));
-    CHECK_THROWS_WITH(
-        read_polygon_soup_from_memory("ply\nformat binary_little_endian 1.0\nelement vertex 0\nproperty float x\n"
-                                      "property float y\nproperty float z\nelement junk 100000000000\n"
-                                      "property double a\nend_header\n" + tail,
-                                      "ply", "m.ply"),
-        Catch::Contains("m.ply:7: element 'junk' claims 100000000000 records"));
+    CHECK_THROWS_WITH(read_polygon_soup_from_memory(
+                          "ply\nformat ascii 1.0\nelement vertex 1000000000000\nproperty float x\n"
+                          "property float y\nproperty float z\nend_header\n" +
+                              tail,
+                          "ply", "m.ply"),
+                      Catch::Contains("m.ply:3: 1000000000000 vertices: too many"));
+    CHECK_THROWS_WITH(read_polygon_soup_from_memory(
+                          "ply\nformat binary_little_endian 1.0\nelement vertex 0\nproperty float x\n"
+                          "property float y\nproperty float z\nelement junk 100000000000\n"
+                          "property double a\nend_header\n" +
+                              tail,
+                          "ply", "m.ply"),
+                      Catch::Contains("m.ply:7: element 'junk' claims 100000000000 records"));
   }
 }

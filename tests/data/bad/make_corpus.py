@@ -37,6 +37,7 @@ put("obj/face_2.obj", V + "f 1 2 3 4\nf 2 3\n")
 put("obj/index_out_of_range.obj", V + "f 1 2 5\n")
 put("obj/index_negative_out_of_range.obj", V + "f -1 -2 -5\n")
 put("obj/index_zero.obj", V + "f 0 1 2\n")
+put("obj/index_llong_min.obj", V + "f 1 2 -9223372036854775808\n")
 put("obj/index_overflow.obj", V + "f 1 2 99999999999999999999\n")
 put("obj/index_huge.obj", V + "f 1 2 3000000000\n")
 put("obj/repeated_vertex.obj", V + "f 1 2 2 3\n")
@@ -176,3 +177,5 @@ put("mtx/out_of_range.mtx", "%%MatrixMarket matrix coordinate real general\n3 3 
 put("mtx/truncated.mtx", "%%MatrixMarket matrix coordinate real general\n% a comment\n3 3 3\n1 1 1\n2 2 2\n")
 put("mtx/array.mtx", "%%MatrixMarket matrix array real general\n2 2\n1\n2\n3\n4\n")
 put("mtx/png.mtx", PNG)
+# Found by fuzz_mtx: a symmetric matrix that is not square (the mirrored entry fell outside).
+put("mtx/symmetric_not_square.mtx", "%%MatrixMarket matrix coordinate integer symmetric\n4 1 2\n1 1 4\n2 1 -1\n")

@@ -1,0 +1,70 @@
+#!/usr/bin/env bash
+# fuzz/run.sh [SECONDS] — builds the libFuzzer targets (clang++, AddressSanitizer +
+# UndefinedBehaviorSanitizer, LeakSanitizer) in their own directory, outside the CMake build,
+# and runs each for SECONDS (default 60; the Matrix Market target for a quarter of it) from
+# the committed seed corpus. Exits non-zero on any crash, leak, timeout, allocation beyond
+# the limit, or sanitizer report; the offending input is left in $OUT/artifacts/.
+#   OUT (default build-fuzz/ beside fuzz/) may be set with POLYDEC_FUZZ_BUILD.
+set -euo pipefail
+
+SECS=${1:-60}
+ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+OUT=${POLYDEC_FUZZ_BUILD:-$ROOT/build-fuzz}
+CXX=${POLYDEC_FUZZ_CXX:-clang++}
+command -v "$CXX" >/dev/null || { echo "fuzz/run.sh: $CXX not found" >&2; exit 2; }
+
+EIGEN=$(pkg-config --cflags-only-I eigen3 2>/dev/null || echo -I/usr/include/eigen3)
+# -include mirrors the main build's precompiled headers (some sources rely on them for Eigen/Geometry).
+CFLAGS=(-std=c++20 -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all
+        -I"$ROOT" ${EIGEN//-I/-isystem } -include Eigen/Dense -include Eigen/Sparse)
+mkdir -p "$OUT/objects" "$OUT/artifacts"
+
+# The library sources the targets need, compiled with coverage instrumentation; a source is
+# rebuilt when it or any library header is newer than its object.
+newest_header=$(ls -t "$ROOT"/dec/*.h "$ROOT"/operators/*.h | head -1)
+stale=()
+SOURCES=(dec/io.cpp dec/io_obj.cpp dec/io_off.cpp dec/io_ply.cpp dec/io_matrix_market.cpp dec/mesh.cpp
+         dec/virtual_vertex.cpp dec/refinement.cpp dec/complex.cpp dec/prolongation.cpp
+         operators/local_matrices.cpp operators/laplacian.cpp operators/gradient.cpp)
+for rel in "${SOURCES[@]}"; do
+  src=$ROOT/$rel
+  obj="$OUT/objects/$(basename "$(dirname "$src")")_$(basename "${src%.cpp}").o"
+  if [[ ! -f $obj || $src -nt $obj || $newest_header -nt $obj ]]; then stale+=("$src:$obj"); fi
+done
+t0=$(date +%s)
+if ((${#stale[@]})); then
+  printf '%s\n' "${stale[@]}" | xargs -P 2 -I{} bash -c 'src=${1%%:*}; obj=${1#*:}; shift; "$@" -fsanitize=fuzzer-no-link -c "$src" -o "$obj"' _ {} "$CXX" "${CFLAGS[@]}"
+  rm -f "$OUT/libpolydec_fuzz.a"
+fi
+[[ -f $OUT/libpolydec_fuzz.a ]] || ar rcs "$OUT/libpolydec_fuzz.a" "$OUT"/objects/*.o
+
+TARGETS=(obj off ply assemble mtx)
+for t in "${TARGETS[@]}"; do
+  bin="$OUT/fuzz_$t"
+  src="$ROOT/fuzz/fuzz_$t.cpp"
+  if [[ ! -f $bin || $src -nt $bin || $ROOT/fuzz/fuzz_common.h -nt $bin || $OUT/libpolydec_fuzz.a -nt $bin ]]; then
+    "$CXX" "${CFLAGS[@]}" -fsanitize=fuzzer "$src" "$OUT/libpolydec_fuzz.a" -lfmt -o "$bin"
+  fi
+done
+echo "fuzz/run.sh: build took $(( $(date +%s) - t0 )) s"
+
+status=0
+for t in "${TARGETS[@]}"; do
+  secs=$SECS
+  max_len=16384
+  [[ $t == mtx ]] && secs=$(( SECS / 4 > 5 ? SECS / 4 : 5 ))
+  [[ $t == assemble ]] && max_len=4096
+  mkdir -p "$OUT/corpus/$t"
+  log="$OUT/fuzz_$t.log"
+  if "$OUT/fuzz_$t" "$OUT/corpus/$t" "$ROOT/fuzz/corpus/$t" -dict="$ROOT/fuzz/dict/$t.dict" \
+      -max_total_time="$secs" -max_len="$max_len" -timeout=10 -rss_limit_mb=1024 -malloc_limit_mb=256 \
+      -artifact_prefix="$OUT/artifacts/$t-" -print_final_stats=1 >"$log" 2>&1; then
+    runs=$(grep -m1 -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || echo '?')
+    echo "fuzz_$t: ok, $runs inputs in $secs s"
+  else
+    status=1
+    echo "fuzz_$t: FAILED (log: $log)" >&2
+    grep -E 'ERROR|SUMMARY|contract violated|non-finite|Test unit written' "$log" | head -20 >&2 || tail -30 "$log" >&2
+  fi
+done
+exit $status
