@@ -32,23 +32,29 @@ CellPattern cell_pattern(int n_cells, int n_faces, FaceCells cells_of) {
   std::vector<int> faces(start[n_cells]), fill(start.begin(), start.end() - 1);
   for (int f = 0; f < n_faces; ++f)
     for (int c : cells_of(f)) faces[fill[c]++] = f;
-  // Column c: all cells of the faces of c, sorted and unique.
-  std::vector<int> outer(n_cells + 1, 0), inner, buf;
+  // Column c: all cells of the faces of c, sorted and unique, written straight into the
+  // pattern's index arrays (sized for the bound sum_f m_f^2, then trimmed without copying).
+  size_t bound = 0;
+  for (int f = 0; f < n_faces; ++f) bound += cells_of(f).size() * cells_of(f).size();
+  CellPattern cp;
+  cp.pattern.resize(n_cells, n_cells);
+  cp.pattern.resizeNonZeros(long(bound));
+  int* outer = cp.pattern.outerIndexPtr();
+  int* inner = cp.pattern.innerIndexPtr();
+  std::vector<int> buf;
+  long nnz = 0;
+  outer[0] = 0;
   for (int c = 0; c < n_cells; ++c) {
     buf.clear();
     for (int k = start[c]; k < start[c + 1]; ++k)
       for (int d : cells_of(faces[k])) buf.push_back(d);
     std::sort(buf.begin(), buf.end());
-    buf.erase(std::unique(buf.begin(), buf.end()), buf.end());
-    inner.insert(inner.end(), buf.begin(), buf.end());
-    outer[c + 1] = int(inner.size());
+    const auto e = std::unique(buf.begin(), buf.end());
+    nnz = std::copy(buf.begin(), e, inner + nnz) - inner;
+    outer[c + 1] = int(nnz);
   }
-  CellPattern cp;
-  cp.pattern.resize(n_cells, n_cells);
-  cp.pattern.resizeNonZeros(long(inner.size()));
-  std::copy(outer.begin(), outer.end(), cp.pattern.outerIndexPtr());
-  std::copy(inner.begin(), inner.end(), cp.pattern.innerIndexPtr());
-  std::fill(cp.pattern.valuePtr(), cp.pattern.valuePtr() + inner.size(), 0.0);
+  cp.pattern.data().resize(nnz);
+  std::fill(cp.pattern.valuePtr(), cp.pattern.valuePtr() + nnz, 0.0);
   cp.offsets.assign(n_faces + 1, 0);
   for (int f = 0; f < n_faces; ++f) {
     const long m = long(cells_of(f).size());
@@ -60,9 +66,9 @@ CellPattern cell_pattern(int n_cells, int n_faces, FaceCells cells_of) {
     const int m = int(cells.size());
     int* slot = cp.slots.data() + cp.offsets[f];
     for (int b = 0; b < m; ++b) {
-      const int* cb = inner.data() + outer[cells[b]];
-      const int* ce = inner.data() + outer[cells[b] + 1];
-      for (int a = 0; a < m; ++a) slot[a * m + b] = int(std::lower_bound(cb, ce, cells[a]) - inner.data());
+      const int* cb = inner + outer[cells[b]];
+      const int* ce = inner + outer[cells[b] + 1];
+      for (int a = 0; a < m; ++a) slot[a * m + b] = int(std::lower_bound(cb, ce, cells[a]) - inner);
     }
   }
   return cp;
@@ -232,15 +238,15 @@ HodgeStars hodge_stars(const Mesh& mesh, const Refinement& refinement, const Coa
   CellPattern p0, p1, p2;
   if (want0) {
     p0 = cell_pattern(mesh.n_vertices(), nf, [&](int f) { return mesh.face(f); });
-    H.star0 = p0.pattern;
+    H.star0 = std::move(p0.pattern);
   }
   if (parts.star1) {
     p1 = cell_pattern(complex.n_pairs(), nf, [&](int f) { return complex.face_pairs(f); });
-    H.star1 = p1.pattern;
+    H.star1 = std::move(p1.pattern);
   }
   if (parts.star2) {
     p2 = cell_pattern(complex.n_triples(), nf, [&](int f) { return complex.face_triples(f); });
-    H.star2 = p2.pattern;
+    H.star2 = std::move(p2.pattern);
   }
   for (int f = 0; f < nf; ++f) {
     const PolygonPositions X = face_positions(mesh, f);

@@ -39,6 +39,10 @@ std::vector<std::pair<std::string, Mesh>> hodge_meshes() {
   m.emplace_back("genus-2 quad surface", test::genus2(2, 0.1, false));
   m.emplace_back("genus-2 hexagon surface", test::genus2(1, 0.1, true));
   m.emplace_back("mixed planar grid", test::planar_grid(8, 6, 0.2, true));
+  m.emplace_back("noisy torus (library)", add_noise(polydec::torus(16, 8), 0.15, 2));
+  m.emplace_back("noisy genus2 (library)", add_noise(polydec::genus2(1), 0.1, 3));
+  m.emplace_back("hex_sphere (library)", hex_sphere(2));
+  m.emplace_back("hex_grid (library)", hex_grid(5, 5));
   for (const char* name : {"quad-sphere.off", "noisy-sphere.off", "L-plane.obj", "suzanne-half.obj"}) {
     const std::string path = test::shared_path(name);
     if (!path.empty()) m.emplace_back(name, read_mesh(path));
@@ -56,6 +60,7 @@ TEST_CASE("generated test surfaces have the intended topology", "[feec]") {
   CHECK(test::genus2(1, 0.1, true).n_boundary_edges() == 0);
   CHECK(test::genus2(1, 0.1, true).max_face_size() == 6);
   CHECK(test::dual_mesh(test::icosphere(1), true).euler_characteristic() == 2);
+  CHECK(polydec::genus2(1).euler_characteristic() == -2);
 }
 
 TEST_CASE("Hodge parts are star1-orthogonal, harmonic part closed and co-closed, sum exact", "[feec]") {
