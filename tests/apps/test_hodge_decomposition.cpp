@@ -6,6 +6,7 @@
 #include "dec/form_span.h"
 #include "dec/hodge_star.h"
 #include "dec/prolongation.h"
+#include "operators/laplacian.h"
 #include "operators/span_solver.h"
 #include "tests/dec/feec_meshes.h"
 
@@ -174,4 +175,31 @@ TEST_CASE("the gradient of a function is purely exact; bad input is rejected", "
   Eigen::VectorXd bad = Eigen::VectorXd::Zero(hd.complex().n_pairs());
   bad[1] = std::numeric_limits<double>::quiet_NaN();
   CHECK_THROWS_AS(hd.decompose(bad), std::invalid_argument);
+}
+
+TEST_CASE("docs/feec.md example: operators composed from d0, d1 and the stars", "[feec]") {
+  const Mesh mesh = test::torus(12, 8, 0.15, true);
+  const Refinement r = refine(mesh);
+  const CoarseComplex K(mesh);
+  const HodgeStars H = hodge_stars(mesh, r, K);
+  const SparseMatrix d0 = K.d0(), d1 = K.d1();
+  const SparseMatrix S = -SparseMatrix(d0.transpose()) * H.star1 * d0;
+  CHECK(test::relative_difference(S, stiffness(mesh, r)) <= 1e-12);
+  const SpanSolver S1(H.star1, form_span(mesh, r, K, 1), "star1");
+  auto lap1 = [&](const Eigen::VectorXd& omega) -> Eigen::VectorXd {
+    return d0 * ((d0.transpose() * (H.star1 * omega)).cwiseQuotient(H.star0_lumped)) +
+           S1.solve(d1.transpose() * (H.star2 * (d1 * omega)));
+  };
+  const HodgeDecomposer hd(mesh);
+  REQUIRE(hd.harmonic_dimension() == 2);
+  auto norm = [&](const Eigen::VectorXd& x) { return std::sqrt(std::max(0.0, x.dot(H.star1 * x))); };
+  const Eigen::VectorXd omega = random_vector(K.n_pairs(), 8);
+  const double typical = norm(lap1(omega)) / norm(omega);
+  REQUIRE(typical > 0);
+  for (long k = 0; k < 2; ++k) CHECK(norm(lap1(hd.harmonic_basis().col(k))) <= 1e-8 * typical);
+  // Weak divergence of the gradient of f is the core Laplacian's S f.
+  const Eigen::VectorXd f = mesh.positions().col(2);
+  const Eigen::VectorXd div = -(d0.transpose() * (H.star1 * (d0 * f)));
+  const Eigen::VectorXd Sf = stiffness(mesh, r) * f;
+  CHECK((div - Sf).norm() <= 1e-12 * Sf.norm());
 }
