@@ -18,18 +18,18 @@
 // operators/span_solver.h factors it.
 #pragma once
 
+#include <Eigen/Sparse>
+
 #include "dec/complex.h"
 #include "dec/refinement.h"
-
-#include <Eigen/Sparse>
 
 namespace polydec {
 
 struct FormSpan {
   int degree = 1;
   double tolerance = 1e-10;
-  std::vector<int> cells;             // selected coarse k-cells, ascending
-  Eigen::SparseMatrix<double> R;      // |C_k| x rank(), column c is the unit vector of cells[c]
+  std::vector<int> cells;         // selected coarse k-cells, ascending
+  Eigen::SparseMatrix<double> R;  // |C_k| x rank(), column c is the unit vector of cells[c]
   int rank() const { return int(cells.size()); }
 };
 

@@ -2,9 +2,9 @@
 // face by face into a precomputed sparse pattern.
 #include "dec/hodge_star.h"
 
-#include "dec/whitney.h"
-
 #include <algorithm>
+
+#include "dec/whitney.h"
 
 namespace polydec {
 
@@ -90,7 +90,8 @@ std::vector<int> corner_ranks(std::span<const int> order) {
 }
 
 // Coarse star0 of one polygon, P_f^T star0^f_f P_f with P_f = [I; w^T], in face order.
-Eigen::MatrixXd polygon_star0(const PolygonPositions& X, const Eigen::VectorXd& w, const Eigen::Vector3d& xf) {
+Eigen::MatrixXd polygon_star0(const PolygonPositions& X, const Eigen::VectorXd& w,
+                              const Eigen::Vector3d& xf) {
   const int n = int(X.rows());
   Eigen::MatrixXd Mc = Eigen::MatrixXd::Zero(n, n);
   Eigen::VectorXd m = Eigen::VectorXd::Zero(n);
@@ -118,8 +119,8 @@ SparseMatrix refined_star0(const Mesh& mesh, const Refinement& refinement) {
   for (int h = 0; h < mesh.n_halfedges(); ++h) {
     const int f = mesh.halfedge_face(h);
     const int v[3] = {mesh.halfedge_source(h), mesh.halfedge_target(h), nv + f};
-    const Eigen::Matrix3d m = whitney0_mass(mesh.position(v[0]), mesh.position(v[1]),
-                                            row3(refinement.virtual_points, f));
+    const Eigen::Matrix3d m =
+        whitney0_mass(mesh.position(v[0]), mesh.position(v[1]), row3(refinement.virtual_points, f));
     for (int a = 0; a < 3; ++a)
       for (int b = 0; b < 3; ++b) t.emplace_back(v[a], v[b], m(a, b));
   }
@@ -155,9 +156,10 @@ SparseMatrix refined_star2(const Mesh& mesh, const Refinement& refinement) {
   t.reserve(mesh.n_halfedges());
   for (int h = 0; h < mesh.n_halfedges(); ++h) {
     if (refinement.fan[h] == FanTriangle::Degenerate) continue;
-    t.emplace_back(h, h,
-                   whitney2_mass(mesh.position(mesh.halfedge_source(h)), mesh.position(mesh.halfedge_target(h)),
-                                 row3(refinement.virtual_points, mesh.halfedge_face(h))));
+    t.emplace_back(
+        h, h,
+        whitney2_mass(mesh.position(mesh.halfedge_source(h)), mesh.position(mesh.halfedge_target(h)),
+                      row3(refinement.virtual_points, mesh.halfedge_face(h))));
   }
   SparseMatrix S(mesh.n_halfedges(), mesh.n_halfedges());
   S.setFromTriplets(t.begin(), t.end());

@@ -21,11 +21,11 @@
 // hexagons; callers should warn on very high valence (see kHighValence).
 #pragma once
 
-#include "dec/complex.h"
-#include "dec/refinement.h"
-
 #include <Eigen/Sparse>
 #include <span>
+
+#include "dec/complex.h"
+#include "dec/refinement.h"
 
 namespace polydec {
 
@@ -58,10 +58,10 @@ struct HodgeStarParts {
 };
 
 struct HodgeStars {
-  SparseMatrix star0;             // |V| x |V|, Galerkin (eq. 20, 27)
-  Eigen::VectorXd star0_lumped;   // row sums of star0
-  SparseMatrix star1;             // |C1| x |C1| (eq. 21, 27)
-  SparseMatrix star2;             // |C2| x |C2| (eq. 22, 27)
+  SparseMatrix star0;            // |V| x |V|, Galerkin (eq. 20, 27)
+  Eigen::VectorXd star0_lumped;  // row sums of star0
+  SparseMatrix star1;            // |C1| x |C1| (eq. 21, 27)
+  SparseMatrix star2;            // |C2| x |C2| (eq. 22, 27)
 };
 
 // One pass over the faces computing the requested coarse stars.

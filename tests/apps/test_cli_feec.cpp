@@ -1,18 +1,19 @@
 // tests/apps/test_cli_feec.cpp — `polydec dec` and `polydec hodge`: files written match the
 // library's matrices and cell lists; norms printed; bad input mapped to exit codes.
-#include "apps/hodge_decomposition.h"
-#include "dec/hodge_star.h"
-#include "dec/io.h"
-#include "tests/dec/feec_meshes.h"
+#include <fmt/format.h>
+#include <sys/wait.h>
 
 #include <catch2/catch.hpp>
 #include <cstdlib>
 #include <filesystem>
-#include <fmt/format.h>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
-#include <sys/wait.h>
+
+#include "apps/hodge_decomposition.h"
+#include "dec/hodge_star.h"
+#include "dec/io.h"
+#include "tests/dec/feec_meshes.h"
 
 using namespace polydec;
 
@@ -25,7 +26,8 @@ struct Run {
 
 Run run_cli(const std::string& args, const std::string& dir) {
   const std::string out = dir + "/stdout.txt";
-  const std::string cmd = std::string(POLYDEC_CLI_PATH) + " " + args + " > " + out + " 2> " + dir + "/stderr.txt";
+  const std::string cmd =
+      std::string(POLYDEC_CLI_PATH) + " " + args + " > " + out + " 2> " + dir + "/stderr.txt";
   const int status = std::system(cmd.c_str());
   std::ifstream in(out);
   std::stringstream ss;
@@ -34,7 +36,8 @@ Run run_cli(const std::string& args, const std::string& dir) {
 }
 
 std::string temp_dir(const std::string& name) {
-  const auto p = std::filesystem::temp_directory_path() / ("polydec_feec_" + name + "_" + std::to_string(::getpid()));
+  const auto p =
+      std::filesystem::temp_directory_path() / ("polydec_feec_" + name + "_" + std::to_string(::getpid()));
   std::filesystem::create_directories(p);
   return p.string();
 }
@@ -89,7 +92,8 @@ TEST_CASE("polydec hodge decomposes a given 1-form and reports its norms", "[fee
     for (long p = 0; p < omega.size(); ++p) f << fmt::format("{:.17g}\n", omega[p]);
   }
   const HodgeParts expect = hd.decompose(omega);
-  const Run r = run_cli("hodge " + dir + "/torus.obj --form " + dir + "/form.txt --json --out " + dir + "/parts.txt", dir);
+  const Run r = run_cli(
+      "hodge " + dir + "/torus.obj --form " + dir + "/form.txt --json --out " + dir + "/parts.txt", dir);
   REQUIRE(r.code == 0);
   const auto j = nlohmann::json::parse(r.out);
   CHECK(j["harmonic_dimension"] == 2);

@@ -2,6 +2,11 @@
 // closedness and co-closedness of the harmonic part, harmonic dimension = first Betti number
 // (checked against an independent dense rank count), co-exact part orthogonal to every closed
 // form, and recovery of parts built from known potentials.
+#include <Eigen/LU>
+#include <Eigen/SVD>
+#include <catch2/catch.hpp>
+#include <random>
+
 #include "apps/hodge_decomposition.h"
 #include "dec/form_span.h"
 #include "dec/hodge_star.h"
@@ -9,11 +14,6 @@
 #include "operators/laplacian.h"
 #include "operators/span_solver.h"
 #include "tests/dec/feec_meshes.h"
-
-#include <Eigen/LU>
-#include <Eigen/SVD>
-#include <catch2/catch.hpp>
-#include <random>
 
 using namespace polydec;
 
@@ -97,8 +97,9 @@ TEST_CASE("Hodge parts are star1-orthogonal, harmonic part closed and co-closed,
   }
 }
 
-TEST_CASE("harmonic dimension = dim W1 - rank d0 - rank d1 counted densely; co-exact part is orthogonal to ker d1",
-          "[feec]") {
+TEST_CASE(
+    "harmonic dimension = dim W1 - rank d0 - rank d1 counted densely; co-exact part is orthogonal to ker d1",
+    "[feec]") {
   for (const auto& [name, mesh] : std::vector<std::pair<std::string, Mesh>>{
            {"noisy hexagon torus", test::torus(8, 6, 0.15, true)},
            {"genus-2 hexagon surface", test::genus2(1, 0.1, true)},

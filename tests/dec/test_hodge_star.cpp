@@ -2,6 +2,10 @@
 // quadrature, the coarse stars against P_k^T star_k^f P_k and against a plain per-triangle
 // implementation on triangle meshes, S = -d0^T star1 d0, symmetry, semi-definiteness, scaling,
 // and solving on the span.
+#include <Eigen/Eigenvalues>
+#include <catch2/catch.hpp>
+#include <random>
+
 #include "dec/form_span.h"
 #include "dec/hodge_star.h"
 #include "dec/prolongation.h"
@@ -9,10 +13,6 @@
 #include "operators/laplacian.h"
 #include "operators/span_solver.h"
 #include "tests/dec/feec_meshes.h"
-
-#include <Eigen/Eigenvalues>
-#include <catch2/catch.hpp>
-#include <random>
 
 using namespace polydec;
 using polydec::test::relative_difference;
@@ -26,7 +26,8 @@ struct PlainTriangle {
   double area;
 };
 
-PlainTriangle plain_triangle(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2) {
+PlainTriangle plain_triangle(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
+                             const Eigen::Vector3d& p2) {
   Eigen::Matrix<double, 3, 2> T;
   T << p1 - p0, p2 - p0;
   const Eigen::Matrix<double, 3, 2> Tinv = T * (T.transpose() * T).inverse();  // g . t_k = rhs_k
@@ -119,7 +120,9 @@ TEST_CASE("on triangle meshes star1 is the standard Whitney mass and star2 = dia
           quadrature_whitney1_mass(mesh.position(v[0]), mesh.position(v[1]), mesh.position(v[2]), edges);
       for (int a = 0; a < 3; ++a)
         for (int b = 0; b < 3; ++b) t1.emplace_back(cell[a], cell[b], M(a, b));
-      const double area = 0.5 * (mesh.position(v[1]) - mesh.position(v[0])).cross(mesh.position(v[2]) - mesh.position(v[0])).norm();
+      const double area =
+          0.5 *
+          (mesh.position(v[1]) - mesh.position(v[0])).cross(mesh.position(v[2]) - mesh.position(v[0])).norm();
       t2.emplace_back(K.triple_index(v[0], v[1], v[2]), K.triple_index(v[0], v[1], v[2]), 1 / area);
     }
     Eigen::SparseMatrix<double> S1(K.n_pairs(), K.n_pairs()), S2(K.n_triples(), K.n_triples());
@@ -158,7 +161,8 @@ TEST_CASE("S = -d0^T star1 d0 to 1e-12 relative", "[feec]") {
     const Refinement r = refine(mesh);
     const CoarseComplex K(mesh);
     const Eigen::SparseMatrix<double> d0 = K.d0();
-    const Eigen::SparseMatrix<double> S = -Eigen::SparseMatrix<double>(d0.transpose()) * star1(mesh, r, K) * d0;
+    const Eigen::SparseMatrix<double> S =
+        -Eigen::SparseMatrix<double>(d0.transpose()) * star1(mesh, r, K) * d0;
     CHECK(relative_difference(S, stiffness(mesh, r)) <= 1e-12);
   }
 }
