@@ -204,3 +204,29 @@ TEST_CASE("docs/feec.md example: operators composed from d0, d1 and the stars", 
   const Eigen::VectorXd Sf = stiffness(mesh, r) * f;
   CHECK((div - Sf).norm() <= 1e-12 * Sf.norm());
 }
+
+TEST_CASE("several components and an unreferenced vertex: Betti numbers add up", "[feec]") {
+  const Mesh a = test::torus(10, 6, 0.1, true), b = test::dual_mesh(test::icosphere(1), true);
+  PolygonSoup s;
+  s.positions.resize(a.n_vertices() + b.n_vertices() + 1, 3);
+  s.positions.topRows(a.n_vertices()) = a.positions();
+  s.positions.middleRows(a.n_vertices(), b.n_vertices()) = b.positions().rowwise() + Eigen::RowVector3d(5, 0, 0);
+  s.positions.bottomRows(1) << 9, 9, 9;  // unreferenced
+  for (int f = 0; f < a.n_faces(); ++f) s.add_face(a.face(f));
+  for (int f = 0; f < b.n_faces(); ++f) {
+    std::vector<int> face(b.face(f).begin(), b.face(f).end());
+    for (int& v : face) v += a.n_vertices();
+    s.add_face(face);
+  }
+  const Mesh mesh(std::move(s));
+  REQUIRE(mesh.n_components() == 2);
+  const HodgeDecomposer hd(mesh);
+  CHECK(hd.harmonic_dimension() == 2);
+  const Eigen::VectorXd omega = random_vector(hd.complex().n_pairs(), 12);
+  const HodgeParts p = hd.decompose(omega);
+  const double w2 = omega.dot(hd.star1() * omega);
+  CHECK(std::abs(p.exact.dot(hd.star1() * p.coexact)) <= 1e-10 * w2);
+  CHECK(std::abs(p.coexact.dot(hd.star1() * p.harmonic)) <= 1e-10 * w2);
+  CHECK((hd.complex().d1() * p.harmonic).cwiseAbs().maxCoeff() <= 1e-12 * p.harmonic.cwiseAbs().maxCoeff());
+  CHECK(std::isfinite(p.potential.sum()));
+}
