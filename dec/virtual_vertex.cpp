@@ -1,8 +1,13 @@
-// dec/virtual_vertex.cpp — virtual-vertex weights of a single polygon (paper Appendix A).
+// dec/virtual_vertex.cpp — virtual-vertex weights of a single polygon (paper Appendix A, section
+// 4.2 variants, Bunge et al. 2024 trace minimizer).
 #include "dec/virtual_vertex.h"
 
 #include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <stdexcept>
+#include <vector>
 
 namespace polydec {
 
@@ -23,22 +28,53 @@ Eigen::Vector3d psd_solve(const Eigen::Matrix3d& A, const Eigen::Vector3d& b) {
   const double cut = kRankTolerance * lambda.cwiseAbs().maxCoeff();
   Eigen::Vector3d x = Eigen::Vector3d::Zero();
   for (int i = 0; i < 3; ++i)
-    if (lambda[i] > cut && lambda[i] > 0) x += es.eigenvectors().col(i) * (es.eigenvectors().col(i).dot(b) / lambda[i]);
+    if (lambda[i] > cut && lambda[i] > 0)
+      x += es.eigenvectors().col(i) * (es.eigenvectors().col(i).dot(b) / lambda[i]);
   return x;
 }
+
+// Least-norm w with sum w = 1 and Y^T w = y, for centred positions Y. Because Y is centred, the
+// row of ones is orthogonal to the columns of Y, so w = 1/n + pinv(Y^T) y. The pseudo-inverse
+// comes from the SVD of Y itself (not of Y^T Y, which would square the condition number of nearly
+// planar polygons); singular values below sqrt(kRankTolerance) of the largest count as zero.
+Eigen::VectorXd least_norm_affine_weights(const PolygonPositions& Y, const Eigen::Vector3d& y) {
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(Eigen::MatrixXd(Y), Eigen::ComputeThinU | Eigen::ComputeThinV);
+  const Eigen::Vector3d sigma = svd.singularValues();
+  const double cut = std::sqrt(kRankTolerance) * sigma[0];
+  Eigen::Vector3d z = svd.matrixV().transpose() * y;
+  for (int i = 0; i < 3; ++i) z[i] = sigma[i] > cut ? z[i] / sigma[i] : 0.0;
+  return Eigen::VectorXd::Constant(Y.rows(), 1.0 / double(Y.rows())) + svd.matrixU() * z;
+}
+
+PolygonPositions centred(const PolygonPositions& X) { return X.rowwise() - X.colwise().mean(); }
+
+// Squared diameter proxy of a polygon: the largest squared distance of a corner from the centroid.
+double scale2(const PolygonPositions& Y) { return Y.rowwise().squaredNorm().maxCoeff(); }
 
 }  // namespace
 
 VirtualVertexRule parse_virtual_vertex_rule(const std::string& name) {
   if (name == "squared-area" || name == "affine") return VirtualVertexRule::SquaredArea;
   if (name == "centroid") return VirtualVertexRule::Centroid;
-  throw std::invalid_argument("unknown virtual-vertex rule '" + name + "' (squared-area, centroid)");
+  if (name == "abs-area") return VirtualVertexRule::AbsArea;
+  if (name == "convex") return VirtualVertexRule::Convex;
+  if (name == "trace-min") return VirtualVertexRule::TraceMin;
+  throw std::invalid_argument("unknown virtual-vertex rule '" + name +
+                              "' (squared-area, centroid, abs-area, convex, trace-min)");
 }
 
 std::string to_string(VirtualVertexRule rule) {
   switch (rule) {
-    case VirtualVertexRule::SquaredArea: return "squared-area";
-    case VirtualVertexRule::Centroid: return "centroid";
+    case VirtualVertexRule::SquaredArea:
+      return "squared-area";
+    case VirtualVertexRule::Centroid:
+      return "centroid";
+    case VirtualVertexRule::AbsArea:
+      return "abs-area";
+    case VirtualVertexRule::Convex:
+      return "convex";
+    case VirtualVertexRule::TraceMin:
+      return "trace-min";
   }
   return "unknown";
 }
@@ -62,24 +98,293 @@ Eigen::VectorXd squared_area_weights(const PolygonPositions& X) {
   }
   const Eigen::Vector3d y = psd_solve(A, b);
 
-  // Least-norm w with sum w = 1 and Y^T w = y. Because Y is centred, the row of ones is
-  // orthogonal to the columns of Y, so w = 1/n + pinv(Y^T) y. The pseudo-inverse comes from the
-  // SVD of Y itself (not of Y^T Y, which would square the condition number of nearly planar
-  // polygons); singular values below sqrt(kRankTolerance) of the largest count as zero.
-  Eigen::JacobiSVD<Eigen::MatrixXd> svd(Eigen::MatrixXd(Y), Eigen::ComputeThinU | Eigen::ComputeThinV);
-  const Eigen::Vector3d sigma = svd.singularValues();
-  const double cut = std::sqrt(kRankTolerance) * sigma[0];
-  Eigen::Vector3d z = svd.matrixV().transpose() * y;
-  for (int i = 0; i < 3; ++i) z[i] = sigma[i] > cut ? z[i] / sigma[i] : 0.0;
-  return Eigen::VectorXd::Constant(n, 1.0 / n) + svd.matrixU() * z;
+  return least_norm_affine_weights(Y, y);
 }
 
 Eigen::VectorXd virtual_vertex_weights(const PolygonPositions& X, VirtualVertexRule rule) {
   switch (rule) {
-    case VirtualVertexRule::SquaredArea: return squared_area_weights(X);
-    case VirtualVertexRule::Centroid: return centroid_weights(int(X.rows()));
+    case VirtualVertexRule::SquaredArea:
+      return squared_area_weights(X);
+    case VirtualVertexRule::Centroid:
+      return centroid_weights(int(X.rows()));
+    case VirtualVertexRule::AbsArea:
+      return abs_area_weights(X);
+    case VirtualVertexRule::Convex:
+      return convex_weights(X);
+    case VirtualVertexRule::TraceMin:
+      return trace_min_weights(X);
   }
   throw std::invalid_argument("unknown virtual-vertex rule");
+}
+
+}  // namespace polydec
+
+namespace polydec {
+
+// ---- absolute-area minimizer -------------------------------------------------------------
+
+Eigen::VectorXd abs_area_weights(const PolygonPositions& X) {
+  const int n = int(X.rows());
+  const PolygonPositions Y = centred(X);
+  const double floor = 1e-14 * scale2(Y);
+  // Twice the area vector of fan triangle i: c_i(x) = (y_i - x) x e_i = y_i x e_i + e_i x x.
+  std::vector<Eigen::Vector3d> e(n), a(n);
+  for (int i = 0; i < n; ++i) {
+    e[i] = (Y.row((i + 1) % n) - Y.row(i)).transpose();
+    a[i] = Y.row(i).transpose().cross(e[i]);
+  }
+  auto objective = [&](const Eigen::Vector3d& x) {
+    double f = 0;
+    for (int i = 0; i < n; ++i) f += (a[i] + e[i].cross(x)).norm();
+    return f;
+  };
+  Eigen::Vector3d x = Eigen::Vector3d::Zero();  // the centroid
+  double f = objective(x);
+  for (int it = 0; it < 200; ++it) {
+    // Minimize sum_i omega_i |a_i + [e_i]x x|^2: (sum omega_i B_i) x = -sum omega_i [e_i]x^T a_i with
+    // B_i = [e_i]x^T [e_i]x = |e_i|^2 I - e_i e_i^T.
+    Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d b = Eigen::Vector3d::Zero();
+    for (int i = 0; i < n; ++i) {
+      const double omega = 1.0 / std::max((a[i] + e[i].cross(x)).norm(), floor);
+      A += omega * (e[i].squaredNorm() * Eigen::Matrix3d::Identity() - e[i] * e[i].transpose());
+      b += omega * e[i].cross(a[i]);  // -[e]x^T a = [e]x a = e x a
+    }
+    const Eigen::Vector3d x_new = psd_solve(A, b);
+    const double f_new = objective(x_new);
+    if (!(f_new < f - 1e-12 * f)) break;
+    x = x_new;
+    f = f_new;
+  }
+  return least_norm_affine_weights(Y, x);
+}
+
+// ---- convex squared-area weights -----------------------------------------------------------
+
+Eigen::VectorXd convex_weights(const PolygonPositions& X) {
+  const int n = int(X.rows());
+  const PolygonPositions Y = centred(X);
+  // E(w) = 1/2 sum_k |e_k x (Y^T w - y_k)|^2 = 1/2 w^T H w + g^T w + const with
+  // H = Y A Y^T, g = -Y b (A, b as in squared_area_weights).
+  Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d b = Eigen::Vector3d::Zero();
+  for (int k = 0; k < n; ++k) {
+    const Eigen::Vector3d e = (Y.row((k + 1) % n) - Y.row(k)).transpose();
+    const Eigen::Matrix3d B = e.squaredNorm() * Eigen::Matrix3d::Identity() - e * e.transpose();
+    A += B;
+    b += B * Y.row(k).transpose();
+  }
+  Eigen::MatrixXd H = Y * A * Y.transpose();
+  const Eigen::VectorXd g = -(Y * b);
+  const double mu = 1e-9 * std::max(H.diagonal().mean(), std::numeric_limits<double>::min());
+  H.diagonal().array() += mu;
+  const double tol = 1e-12 * (H.cwiseAbs().maxCoeff() + g.cwiseAbs().maxCoeff());
+
+  Eigen::VectorXd w = Eigen::VectorXd::Constant(n, 1.0 / n);
+  std::vector<char> free_(n, 1);
+  for (int it = 0; it < 10 * n + 10; ++it) {
+    // Equality-constrained minimizer on the free set: H_FF w_F + g_F = nu 1, sum w_F = 1.
+    std::vector<int> F;
+    for (int i = 0; i < n; ++i)
+      if (free_[i]) F.push_back(i);
+    const int m = int(F.size());
+    Eigen::MatrixXd K = Eigen::MatrixXd::Zero(m + 1, m + 1);
+    Eigen::VectorXd r(m + 1);
+    for (int p = 0; p < m; ++p) {
+      for (int q = 0; q < m; ++q) K(p, q) = H(F[p], F[q]);
+      K(p, m) = K(m, p) = -1.0;
+      r[p] = -g[F[p]];
+    }
+    r[m] = -1.0;
+    const Eigen::VectorXd sol = K.fullPivLu().solve(r);
+    const double nu = sol[m];
+    Eigen::VectorXd target = Eigen::VectorXd::Zero(n);
+    for (int p = 0; p < m; ++p) target[F[p]] = sol[p];
+    // Blocking constraint: the first free weight that the step w -> target drives below zero.
+    double alpha = 1.0;
+    int block = -1;
+    for (int i : F)
+      if (target[i] < 0 && w[i] - target[i] > 0) {
+        const double t = w[i] / (w[i] - target[i]);
+        if (t < alpha) {
+          alpha = t;
+          block = i;
+        }
+      }
+    w += alpha * (target - w);
+    if (block >= 0) {
+      w[block] = 0.0;
+      free_[block] = 0;
+      continue;
+    }
+    // Optimal on this face of the simplex; free the fixed weight with the most negative multiplier.
+    const Eigen::VectorXd grad = H * w + g;
+    int enter = -1;
+    double most = -tol;
+    for (int i = 0; i < n; ++i)
+      if (!free_[i] && grad[i] - nu < most) {
+        most = grad[i] - nu;
+        enter = i;
+      }
+    if (enter < 0) break;
+    free_[enter] = 1;
+  }
+  w = w.cwiseMax(0.0);
+  return w / w.sum();
+}
+
+// ---- trace minimizer (Bunge et al. 2024) ---------------------------------------------------
+
+namespace {
+
+double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+// Fan-trace energy sum_i (|a|^2 + |b|^2 + |e|^2) / (4 A_i) of the 2D polygon P around p, with
+// gradient and Hessian; +infinity when a fan triangle is not positively oriented (relative test).
+double fan_trace(const Eigen::MatrixX2d& P, const Eigen::Vector2d& p, Eigen::Vector2d* grad,
+                 Eigen::Matrix2d* hess) {
+  const int n = int(P.rows());
+  double E = 0;
+  if (grad) grad->setZero();
+  if (hess) hess->setZero();
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector2d a = P.row(i).transpose() - p, b = P.row((i + 1) % n).transpose() - p, e = b - a;
+    const double A = 0.5 * cross2(a, b);
+    const double longest2 = std::max({a.squaredNorm(), b.squaredNorm(), e.squaredNorm()});
+    if (!(2 * A > 1e-10 * longest2)) return std::numeric_limits<double>::infinity();
+    const double N = a.squaredNorm() + b.squaredNorm() + e.squaredNorm();
+    E += N / (4 * A);
+    if (grad || hess) {
+      const Eigen::Vector2d dN = -2.0 * (a + b), dA = 0.5 * Eigen::Vector2d(-e.y(), e.x());
+      if (grad) *grad += dN / (4 * A) - N * dA / (4 * A * A);
+      if (hess)
+        *hess += Eigen::Matrix2d::Identity() / A - (dN * dA.transpose() + dA * dN.transpose()) / (4 * A * A) +
+                 N * dA * dA.transpose() / (2 * A * A * A);
+    }
+  }
+  return E;
+}
+
+// Kernel of a counter-clockwise 2D polygon (intersection of the left half-planes of its edges),
+// by clipping its bounding box; empty when the polygon is not star-shaped.
+std::vector<Eigen::Vector2d> polygon_kernel(const Eigen::MatrixX2d& P) {
+  const int n = int(P.rows());
+  const Eigen::Vector2d lo = P.colwise().minCoeff().transpose(), hi = P.colwise().maxCoeff().transpose();
+  std::vector<Eigen::Vector2d> K = {lo, {hi.x(), lo.y()}, hi, {lo.x(), hi.y()}};
+  for (int i = 0; i < n && !K.empty(); ++i) {
+    const Eigen::Vector2d p = P.row(i).transpose(), e = P.row((i + 1) % n).transpose() - p;
+    auto side = [&](const Eigen::Vector2d& q) { return cross2(e, q - p); };
+    std::vector<Eigen::Vector2d> out;
+    for (size_t k = 0; k < K.size(); ++k) {
+      const Eigen::Vector2d &u = K[k], &v = K[(k + 1) % K.size()];
+      const double su = side(u), sv = side(v);
+      if (su >= 0) out.push_back(u);
+      if ((su >= 0) != (sv >= 0)) out.push_back(u + (v - u) * (su / (su - sv)));
+    }
+    K = std::move(out);
+  }
+  return K;
+}
+
+// Area centroid and area of a convex 2D polygon.
+std::pair<Eigen::Vector2d, double> area_centroid(const std::vector<Eigen::Vector2d>& K) {
+  double A = 0;
+  Eigen::Vector2d c = Eigen::Vector2d::Zero();
+  for (size_t k = 0; k < K.size(); ++k) {
+    const Eigen::Vector2d &u = K[k], &v = K[(k + 1) % K.size()];
+    const double t = cross2(u, v);
+    A += t;
+    c += t * (u + v);
+  }
+  return {A != 0 ? Eigen::Vector2d(c / (3 * A)) : Eigen::Vector2d::Zero(), 0.5 * A};
+}
+
+}  // namespace
+
+double coarse_stiffness_trace(const PolygonPositions& X, const Eigen::VectorXd& w) {
+  const int n = int(X.rows());
+  const PolygonPositions Y = centred(X);
+  const Eigen::Vector3d xf = Y.transpose() * w;
+  // Refined fan stiffness (positive version) in blocks: corner diagonal d, corner-virtual
+  // coupling s (off-diagonal, negative), virtual diagonal sigma. trace(P^T K P) with P = [I; w^T]
+  // = sum_i d_i + 2 w^T s + sigma |w|^2.
+  Eigen::VectorXd d = Eigen::VectorXd::Zero(n), s = Eigen::VectorXd::Zero(n);
+  double sigma = 0;
+  for (int i = 0; i < n; ++i) {
+    const int j = (i + 1) % n;
+    const Eigen::Vector3d p = Y.row(i).transpose(), q = Y.row(j).transpose();
+    const double twice_area = (q - p).cross(xf - p).norm();
+    if (!(twice_area > 0)) return std::numeric_limits<double>::infinity();
+    // half cotangents at p, q, xf
+    const double cp = 0.5 * (q - p).dot(xf - p) / twice_area, cq = 0.5 * (p - q).dot(xf - q) / twice_area,
+                 cf = 0.5 * (p - xf).dot(q - xf) / twice_area;
+    d[i] += cf + cq;  // edges (i,j) opposite xf and (i,f) opposite q
+    d[j] += cf + cp;
+    s[i] -= cq;
+    s[j] -= cp;
+    sigma += cp + cq;
+  }
+  return d.sum() + 2 * w.dot(s) + sigma * w.squaredNorm();
+}
+
+Eigen::VectorXd trace_min_weights(const PolygonPositions& X) {
+  const int n = int(X.rows());
+  const PolygonPositions Y = centred(X);
+  const Eigen::VectorXd w_area = squared_area_weights(X);
+  Eigen::Vector3d N = Eigen::Vector3d::Zero();
+  for (int i = 0; i < n; ++i) N += Y.row(i).transpose().cross(Y.row((i + 1) % n).transpose());
+  if (!(N.norm() > 1e-12 * scale2(Y))) return w_area;  // no plane to work in
+  N.normalize();
+  const Eigen::Vector3d u = N.unitOrthogonal(), v = N.cross(u);
+  Eigen::MatrixX2d P(n, 2);
+  P.col(0) = Y * u;
+  P.col(1) = Y * v;
+
+  const Eigen::Vector3d x_area = Y.transpose() * w_area;
+  Eigen::Vector2d p(x_area.dot(u), x_area.dot(v));
+  double E = fan_trace(P, p, nullptr, nullptr);
+  if (!std::isfinite(E)) {
+    const auto K = polygon_kernel(P);
+    if (K.size() < 3) return w_area;
+    const auto [c, area] = area_centroid(K);
+    if (!(area > 1e-12 * scale2(Y))) return w_area;
+    p = c;
+    E = fan_trace(P, p, nullptr, nullptr);
+    if (!std::isfinite(E)) return w_area;
+  }
+  // Damped Newton on the convex barrier E (backtracking keeps p in the kernel).
+  for (int it = 0; it < 100; ++it) {
+    Eigen::Vector2d grad;
+    Eigen::Matrix2d hess;
+    fan_trace(P, p, &grad, &hess);
+    const Eigen::Vector2d step = -hess.ldlt().solve(grad);
+    const double decrement = -grad.dot(step);
+    if (!(decrement > 1e-14 * E)) break;
+    double t = 1.0;
+    bool moved = false;
+    for (int ls = 0; ls < 60; ++ls, t *= 0.5) {
+      const double E_new = fan_trace(P, p + t * step, nullptr, nullptr);
+      if (E_new <= E - 0.25 * t * decrement) {
+        p += t * step;
+        E = E_new;
+        moved = true;
+        break;
+      }
+    }
+    if (!moved) break;
+  }
+  // Harmonic weights: the cotangent weight of each spoke (p, x_i) in the fan, normalized.
+  Eigen::VectorXd w(n);
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector2d xm = P.row((i + n - 1) % n).transpose(), xi = P.row(i).transpose(),
+                          xp = P.row((i + 1) % n).transpose();
+    const Eigen::Vector2d a1 = xi - xm, b1 = p - xm;  // angle at x_{i-1} in (x_{i-1}, x_i, p)
+    const Eigen::Vector2d a2 = xi - xp, b2 = p - xp;  // angle at x_{i+1} in (x_i, x_{i+1}, p)
+    w[i] = 0.5 * (a1.dot(b1) / std::abs(cross2(a1, b1)) + a2.dot(b2) / std::abs(cross2(a2, b2)));
+  }
+  w /= w.sum();
+  if (!w.allFinite() || coarse_stiffness_trace(X, w) > coarse_stiffness_trace(X, w_area)) return w_area;
+  return w;
 }
 
 }  // namespace polydec

@@ -1,9 +1,9 @@
 // operators/laplacian.cpp — face-by-face assembly of S, M and lumped M into a precomputed pattern.
 #include "operators/laplacian.h"
 
-#include "operators/local_matrices.h"
-
 #include <algorithm>
+
+#include "operators/local_matrices.h"
 
 namespace polydec {
 
@@ -36,7 +36,8 @@ FacePattern face_pattern(const Mesh& mesh) {
   std::fill(fp.pattern.valuePtr(), fp.pattern.valuePtr() + nnz, 0.0);
 
   fp.local_offsets.resize(nf + 1, 0);
-  for (int f = 0; f < nf; ++f) fp.local_offsets[f + 1] = fp.local_offsets[f] + long(mesh.face_size(f)) * mesh.face_size(f);
+  for (int f = 0; f < nf; ++f)
+    fp.local_offsets[f + 1] = fp.local_offsets[f] + long(mesh.face_size(f)) * mesh.face_size(f);
   fp.slots.resize(fp.local_offsets[nf]);
   const int* inner = fp.pattern.innerIndexPtr();
   for (int f = 0; f < nf; ++f) {

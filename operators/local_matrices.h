@@ -3,9 +3,9 @@
 // weights and its fan-triangle classification. Pure functions; no mesh needed.
 #pragma once
 
-#include "dec/refinement.h"
-
 #include <Eigen/Core>
+
+#include "dec/refinement.h"
 
 namespace polydec {
 
