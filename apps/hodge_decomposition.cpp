@@ -1,12 +1,13 @@
 // apps/hodge_decomposition.cpp — exact / co-exact / harmonic splitting of 1-cochains.
 #include "apps/hodge_decomposition.h"
 
-#include "dec/hodge_star.h"
+#include <fmt/format.h>
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
-#include <fmt/format.h>
 #include <stdexcept>
+
+#include "dec/hodge_star.h"
 
 namespace polydec {
 
@@ -201,10 +202,10 @@ Eigen::VectorXd HodgeDecomposer::exact_potential(const Eigen::VectorXd& rhs) con
 
 HodgeParts HodgeDecomposer::decompose(const Eigen::VectorXd& omega) const {
   if (omega.size() != complex_.n_pairs())
-    throw std::invalid_argument(
-        fmt::format("hodge decomposition: the 1-form has {} values, the mesh has {} coarse 1-cells (vertex pairs "
-                    "sharing a face)",
-                    omega.size(), complex_.n_pairs()));
+    throw std::invalid_argument(fmt::format(
+        "hodge decomposition: the 1-form has {} values, the mesh has {} coarse 1-cells (vertex pairs "
+        "sharing a face)",
+        omega.size(), complex_.n_pairs()));
   for (long p = 0; p < omega.size(); ++p)
     if (!std::isfinite(omega[p]))
       throw std::invalid_argument(fmt::format("hodge decomposition: value {} (1-cell {} {}) is not finite", p,

@@ -19,12 +19,12 @@
 // complex has the surface's cohomology).
 #pragma once
 
+#include <Eigen/Sparse>
+#include <memory>
+
 #include "dec/complex.h"
 #include "dec/refinement.h"
 #include "operators/cholesky.h"
-
-#include <Eigen/Sparse>
-#include <memory>
 
 namespace polydec {
 

@@ -39,13 +39,15 @@ CoarseComplex::CoarseComplex(const Mesh& mesh) : n_vertices_(mesh.n_vertices()) 
     triple_start_[i + 1] = int(triple_list.size());
   }
   pairs_.resize(long(pair_list.size()), 2);
-  for (size_t p = 0; p < pair_list.size(); ++p) pairs_.row(long(p)) << pair_list[p].first, pair_list[p].second;
+  for (size_t p = 0; p < pair_list.size(); ++p)
+    pairs_.row(long(p)) << pair_list[p].first, pair_list[p].second;
   triples_.resize(long(triple_list.size()), 3);
   for (size_t t = 0; t < triple_list.size(); ++t)
     triples_.row(long(t)) << triple_list[t][0], triple_list[t][1], triple_list[t][2];
 
   pair_is_edge_.assign(pair_list.size(), 0);
-  for (int e = 0; e < mesh.n_edges(); ++e) pair_is_edge_[pair_index(mesh.edges()(e, 0), mesh.edges()(e, 1))] = 1;
+  for (int e = 0; e < mesh.n_edges(); ++e)
+    pair_is_edge_[pair_index(mesh.edges()(e, 0), mesh.edges()(e, 1))] = 1;
 
   // Face-local cells in rank order.
   face_order_offsets_.assign(nf + 1, 0);

@@ -21,10 +21,10 @@
 // Integer-valued, column-major sparse matrices; d1 d0 = 0 exactly.
 #pragma once
 
-#include "dec/mesh.h"
-
 #include <Eigen/Sparse>
 #include <vector>
+
+#include "dec/mesh.h"
 
 namespace polydec {
 
@@ -52,12 +52,14 @@ class CoarseComplex {
   // Face f's corners in increasing vertex index: positions in face order (0..n-1), i.e.
   // sorted_corners(f)[r] is the corner of rank r. Ranks define the face-local cell order.
   std::span<const int> sorted_corners(int f) const {
-    return {face_order_.data() + face_order_offsets_[f], size_t(face_order_offsets_[f + 1] - face_order_offsets_[f])};
+    return {face_order_.data() + face_order_offsets_[f],
+            size_t(face_order_offsets_[f + 1] - face_order_offsets_[f])};
   }
   // The n(n-1)/2 pairs of face f, ids in lexicographic order of corner ranks (r < s), which is
   // increasing id order.
   std::span<const int> face_pairs(int f) const {
-    return {face_pairs_.data() + face_pair_offsets_[f], size_t(face_pair_offsets_[f + 1] - face_pair_offsets_[f])};
+    return {face_pairs_.data() + face_pair_offsets_[f],
+            size_t(face_pair_offsets_[f + 1] - face_pair_offsets_[f])};
   }
   // The n(n-1)(n-2)/6 triples of face f, likewise.
   std::span<const int> face_triples(int f) const {
@@ -87,9 +89,9 @@ inline int local_pair_index(int n, int r, int s) { return r * n - r * (r + 1) / 
 int local_triple_index(int n, int r, int s, int t);
 
 // Refined complex sizes and maps (see the header comment for the numbering).
-int refined_n_vertices(const Mesh& mesh);  // |V| + |F|
-int refined_n_edges(const Mesh& mesh);     // |E| + |H|
-int refined_n_triangles(const Mesh& mesh); // |H|
+int refined_n_vertices(const Mesh& mesh);   // |V| + |F|
+int refined_n_edges(const Mesh& mesh);      // |E| + |H|
+int refined_n_triangles(const Mesh& mesh);  // |H|
 // Vertex indices of refined 1-cell e, (low, high).
 Eigen::Vector2i refined_edge(const Mesh& mesh, int e);
 // Vertex indices of refined triangle h, increasing.

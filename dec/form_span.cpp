@@ -1,12 +1,12 @@
 // dec/form_span.cpp — reduced bases of the Whitney 1- and 2-forms by blockwise pivoted QR.
 #include "dec/form_span.h"
 
-#include "dec/prolongation.h"
-
 #include <Eigen/QR>
 #include <algorithm>
 #include <numeric>
 #include <stdexcept>
+
+#include "dec/prolongation.h"
 
 namespace polydec {
 
@@ -60,7 +60,15 @@ FormSpan form_span(const Mesh& mesh, const Refinement& refinement, const CoarseC
     cols.clear();
     int n_rows = 0;
     for (int f : block) {
-      for (int h = mesh.face_offsets()[f]; h < mesh.face_offsets()[f + 1]; ++h) local_row[row0 + h] = n_rows++;
+      const int h0 = mesh.face_offsets()[f], h1 = mesh.face_offsets()[f + 1];
+      for (int h = h0; h < h1; ++h) {
+        // Only refined cells that carry mass count: a fan triangle that is not degenerate
+        // (k = 2), a spoke with at least one such triangle beside it (k = 1).
+        const int prev = h == h0 ? h1 - 1 : h - 1;
+        const bool massive = refinement.fan[h] != FanTriangle::Degenerate ||
+                             (degree == 1 && refinement.fan[prev] != FanTriangle::Degenerate);
+        if (massive) local_row[row0 + h] = n_rows++;
+      }
       for (int c : face_cells(f))
         if (candidate[c]) cols.push_back(c);
     }

@@ -11,23 +11,25 @@
 // the triples picked by column-pivoted QR of the face's rows of P2. Faces that share a
 // diagonal (or triple) are treated together. A pivot counts when it exceeds `tolerance` times
 // the largest pivot of its block (P_k entries are weights, dimensionless: the choice is
-// independent of the mesh's scale). With R the |C_k| x r selection matrix, R^T star_k R is
-// symmetric positive definite (when no fan triangle is degenerate) and sparse;
+// independent of the mesh's scale). Rows of refined cells without mass (degenerate fan
+// triangles, spokes between two of them) are left out, so the rank is that of star_k. With R
+// the |C_k| x r selection matrix, R^T star_k R is symmetric positive definite and sparse (the
+// one exception: a mesh edge whose fan triangles are all degenerate, then it is singular);
 // operators/span_solver.h factors it.
 #pragma once
 
+#include <Eigen/Sparse>
+
 #include "dec/complex.h"
 #include "dec/refinement.h"
-
-#include <Eigen/Sparse>
 
 namespace polydec {
 
 struct FormSpan {
   int degree = 1;
   double tolerance = 1e-10;
-  std::vector<int> cells;             // selected coarse k-cells, ascending
-  Eigen::SparseMatrix<double> R;      // |C_k| x rank(), column c is the unit vector of cells[c]
+  std::vector<int> cells;         // selected coarse k-cells, ascending
+  Eigen::SparseMatrix<double> R;  // |C_k| x rank(), column c is the unit vector of cells[c]
   int rank() const { return int(cells.size()); }
 };
 

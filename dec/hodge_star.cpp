@@ -2,9 +2,10 @@
 // face by face into a precomputed sparse pattern.
 #include "dec/hodge_star.h"
 
-#include "dec/whitney.h"
-
 #include <algorithm>
+#include <stdexcept>
+
+#include "dec/whitney.h"
 
 namespace polydec {
 
@@ -14,16 +15,8 @@ using Triplet = Eigen::Triplet<double>;
 
 Eigen::Vector3d row3(const Eigen::MatrixX3d& X, int r) { return X.row(r).transpose(); }
 
-// The column-major pattern of "cells sharing a face" and, per face, the slots of its local
-// m x m block (row-major (a, b)) in the value array. `cells` lists the face's cell ids.
-struct CellPattern {
-  SparseMatrix pattern;
-  std::vector<long> offsets;  // |F| + 1 offsets into slots
-  std::vector<int> slots;
-};
-
 template <class FaceCells>
-CellPattern cell_pattern(int n_cells, int n_faces, FaceCells cells_of) {
+StarPattern cell_pattern(int n_cells, int n_faces, FaceCells cells_of) {
   // Cell -> faces incidence (CSR).
   std::vector<int> start(n_cells + 1, 0);
   for (int f = 0; f < n_faces; ++f)
@@ -32,23 +25,29 @@ CellPattern cell_pattern(int n_cells, int n_faces, FaceCells cells_of) {
   std::vector<int> faces(start[n_cells]), fill(start.begin(), start.end() - 1);
   for (int f = 0; f < n_faces; ++f)
     for (int c : cells_of(f)) faces[fill[c]++] = f;
-  // Column c: all cells of the faces of c, sorted and unique.
-  std::vector<int> outer(n_cells + 1, 0), inner, buf;
+  // Column c: all cells of the faces of c, sorted and unique, written straight into the
+  // pattern's index arrays (sized for the bound sum_f m_f^2, then trimmed without copying).
+  size_t bound = 0;
+  for (int f = 0; f < n_faces; ++f) bound += cells_of(f).size() * cells_of(f).size();
+  StarPattern cp;
+  cp.pattern.resize(n_cells, n_cells);
+  cp.pattern.resizeNonZeros(long(bound));
+  int* outer = cp.pattern.outerIndexPtr();
+  int* inner = cp.pattern.innerIndexPtr();
+  std::vector<int> buf;
+  long nnz = 0;
+  outer[0] = 0;
   for (int c = 0; c < n_cells; ++c) {
     buf.clear();
     for (int k = start[c]; k < start[c + 1]; ++k)
       for (int d : cells_of(faces[k])) buf.push_back(d);
     std::sort(buf.begin(), buf.end());
-    buf.erase(std::unique(buf.begin(), buf.end()), buf.end());
-    inner.insert(inner.end(), buf.begin(), buf.end());
-    outer[c + 1] = int(inner.size());
+    const auto e = std::unique(buf.begin(), buf.end());
+    nnz = std::copy(buf.begin(), e, inner + nnz) - inner;
+    outer[c + 1] = int(nnz);
   }
-  CellPattern cp;
-  cp.pattern.resize(n_cells, n_cells);
-  cp.pattern.resizeNonZeros(long(inner.size()));
-  std::copy(outer.begin(), outer.end(), cp.pattern.outerIndexPtr());
-  std::copy(inner.begin(), inner.end(), cp.pattern.innerIndexPtr());
-  std::fill(cp.pattern.valuePtr(), cp.pattern.valuePtr() + inner.size(), 0.0);
+  cp.pattern.data().resize(nnz);
+  std::fill(cp.pattern.valuePtr(), cp.pattern.valuePtr() + nnz, 0.0);
   cp.offsets.assign(n_faces + 1, 0);
   for (int f = 0; f < n_faces; ++f) {
     const long m = long(cells_of(f).size());
@@ -60,15 +59,15 @@ CellPattern cell_pattern(int n_cells, int n_faces, FaceCells cells_of) {
     const int m = int(cells.size());
     int* slot = cp.slots.data() + cp.offsets[f];
     for (int b = 0; b < m; ++b) {
-      const int* cb = inner.data() + outer[cells[b]];
-      const int* ce = inner.data() + outer[cells[b] + 1];
-      for (int a = 0; a < m; ++a) slot[a * m + b] = int(std::lower_bound(cb, ce, cells[a]) - inner.data());
+      const int* cb = inner + outer[cells[b]];
+      const int* ce = inner + outer[cells[b] + 1];
+      for (int a = 0; a < m; ++a) slot[a * m + b] = int(std::lower_bound(cb, ce, cells[a]) - inner);
     }
   }
   return cp;
 }
 
-void scatter(const CellPattern& cp, int f, const Eigen::MatrixXd& local, SparseMatrix& A) {
+void scatter(const StarPattern& cp, int f, const Eigen::MatrixXd& local, SparseMatrix& A) {
   const int m = int(local.rows());
   const int* slot = cp.slots.data() + cp.offsets[f];
   double* v = A.valuePtr();
@@ -84,7 +83,8 @@ std::vector<int> corner_ranks(std::span<const int> order) {
 }
 
 // Coarse star0 of one polygon, P_f^T star0^f_f P_f with P_f = [I; w^T], in face order.
-Eigen::MatrixXd polygon_star0(const PolygonPositions& X, const Eigen::VectorXd& w, const Eigen::Vector3d& xf) {
+Eigen::MatrixXd polygon_star0(const PolygonPositions& X, const Eigen::VectorXd& w,
+                              const Eigen::Vector3d& xf) {
   const int n = int(X.rows());
   Eigen::MatrixXd Mc = Eigen::MatrixXd::Zero(n, n);
   Eigen::VectorXd m = Eigen::VectorXd::Zero(n);
@@ -112,8 +112,8 @@ SparseMatrix refined_star0(const Mesh& mesh, const Refinement& refinement) {
   for (int h = 0; h < mesh.n_halfedges(); ++h) {
     const int f = mesh.halfedge_face(h);
     const int v[3] = {mesh.halfedge_source(h), mesh.halfedge_target(h), nv + f};
-    const Eigen::Matrix3d m = whitney0_mass(mesh.position(v[0]), mesh.position(v[1]),
-                                            row3(refinement.virtual_points, f));
+    const Eigen::Matrix3d m =
+        whitney0_mass(mesh.position(v[0]), mesh.position(v[1]), row3(refinement.virtual_points, f));
     for (int a = 0; a < 3; ++a)
       for (int b = 0; b < 3; ++b) t.emplace_back(v[a], v[b], m(a, b));
   }
@@ -149,9 +149,10 @@ SparseMatrix refined_star2(const Mesh& mesh, const Refinement& refinement) {
   t.reserve(mesh.n_halfedges());
   for (int h = 0; h < mesh.n_halfedges(); ++h) {
     if (refinement.fan[h] == FanTriangle::Degenerate) continue;
-    t.emplace_back(h, h,
-                   whitney2_mass(mesh.position(mesh.halfedge_source(h)), mesh.position(mesh.halfedge_target(h)),
-                                 row3(refinement.virtual_points, mesh.halfedge_face(h))));
+    t.emplace_back(
+        h, h,
+        whitney2_mass(mesh.position(mesh.halfedge_source(h)), mesh.position(mesh.halfedge_target(h)),
+                      row3(refinement.virtual_points, mesh.halfedge_face(h))));
   }
   SparseMatrix S(mesh.n_halfedges(), mesh.n_halfedges());
   S.setFromTriplets(t.begin(), t.end());
@@ -224,29 +225,45 @@ Eigen::MatrixXd polygon_star2(const PolygonPositions& X, const Eigen::VectorXd& 
   return A;
 }
 
+StarPatterns star_patterns(const Mesh& mesh, const CoarseComplex& complex, HodgeStarParts parts) {
+  StarPatterns P;
+  const int nf = mesh.n_faces();
+  if (parts.star0 || parts.star0_lumped)
+    P.star0 = cell_pattern(mesh.n_vertices(), nf, [&](int f) { return mesh.face(f); });
+  if (parts.star1) P.star1 = cell_pattern(complex.n_pairs(), nf, [&](int f) { return complex.face_pairs(f); });
+  if (parts.star2) P.star2 = cell_pattern(complex.n_triples(), nf, [&](int f) { return complex.face_triples(f); });
+  return P;
+}
+
 HodgeStars hodge_stars(const Mesh& mesh, const Refinement& refinement, const CoarseComplex& complex,
-                       HodgeStarParts parts) {
+                       HodgeStarParts parts, const StarPatterns* patterns) {
   HodgeStars H;
   const int nf = mesh.n_faces();
   const bool want0 = parts.star0 || parts.star0_lumped;
-  CellPattern p0, p1, p2;
-  if (want0) {
-    p0 = cell_pattern(mesh.n_vertices(), nf, [&](int f) { return mesh.face(f); });
-    H.star0 = p0.pattern;
+  StarPatterns own;
+  if (!patterns) {
+    own = star_patterns(mesh, complex, parts);
+    patterns = &own;
   }
-  if (parts.star1) {
-    p1 = cell_pattern(complex.n_pairs(), nf, [&](int f) { return complex.face_pairs(f); });
-    H.star1 = p1.pattern;
-  }
-  if (parts.star2) {
-    p2 = cell_pattern(complex.n_triples(), nf, [&](int f) { return complex.face_triples(f); });
-    H.star2 = p2.pattern;
-  }
+  const StarPattern &p0 = patterns->star0, &p1 = patterns->star1, &p2 = patterns->star2;
+  if ((want0 && long(p0.offsets.size()) != nf + 1) || (parts.star1 && long(p1.offsets.size()) != nf + 1) ||
+      (parts.star2 && long(p2.offsets.size()) != nf + 1))
+    throw std::invalid_argument("hodge_stars: the patterns were built for other parts or another mesh");
+  // Eigen's SparseMatrix has no move constructor: swap our own patterns in, copy shared ones.
+  auto take = [&](const StarPattern& p, StarPattern* mine, SparseMatrix& A) {
+    if (mine)
+      A.swap(mine->pattern);
+    else
+      A = p.pattern;
+  };
+  const bool owned = patterns == &own;
+  if (want0) take(p0, owned ? &own.star0 : nullptr, H.star0);
+  if (parts.star1) take(p1, owned ? &own.star1 : nullptr, H.star1);
+  if (parts.star2) take(p2, owned ? &own.star2 : nullptr, H.star2);
   for (int f = 0; f < nf; ++f) {
     const PolygonPositions X = face_positions(mesh, f);
     const int h0 = mesh.face_offsets()[f];
-    const Eigen::Map<const Eigen::VectorXd> wm(refinement.weights.data() + h0, X.rows());
-    const Eigen::VectorXd w = wm;
+    const Eigen::VectorXd w = Eigen::Map<const Eigen::VectorXd>(refinement.weights.data() + h0, X.rows());
     const Eigen::Vector3d xf = row3(refinement.virtual_points, f);
     const FanTriangle* fan = refinement.fan.data() + h0;
     if (want0) scatter(p0, f, polygon_star0(X, w, xf), H.star0);
@@ -263,11 +280,17 @@ HodgeStars hodge_stars(const Mesh& mesh, const Refinement& refinement, const Coa
 }
 
 SparseMatrix star1(const Mesh& mesh, const Refinement& refinement, const CoarseComplex& complex) {
-  return hodge_stars(mesh, refinement, complex, {false, false, true, false}).star1;
+  HodgeStars H = hodge_stars(mesh, refinement, complex, {false, false, true, false});
+  SparseMatrix A;
+  A.swap(H.star1);
+  return A;
 }
 
 SparseMatrix star2(const Mesh& mesh, const Refinement& refinement, const CoarseComplex& complex) {
-  return hodge_stars(mesh, refinement, complex, {false, false, false, true}).star2;
+  HodgeStars H = hodge_stars(mesh, refinement, complex, {false, false, false, true});
+  SparseMatrix A;
+  A.swap(H.star2);
+  return A;
 }
 
 }  // namespace polydec

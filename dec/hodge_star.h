@@ -21,11 +21,12 @@
 // hexagons; callers should warn on very high valence (see kHighValence).
 #pragma once
 
-#include "dec/complex.h"
-#include "dec/refinement.h"
-
 #include <Eigen/Sparse>
 #include <span>
+#include <vector>
+
+#include "dec/complex.h"
+#include "dec/refinement.h"
 
 namespace polydec {
 
@@ -58,15 +59,31 @@ struct HodgeStarParts {
 };
 
 struct HodgeStars {
-  SparseMatrix star0;             // |V| x |V|, Galerkin (eq. 20, 27)
-  Eigen::VectorXd star0_lumped;   // row sums of star0
-  SparseMatrix star1;             // |C1| x |C1| (eq. 21, 27)
-  SparseMatrix star2;             // |C2| x |C2| (eq. 22, 27)
+  SparseMatrix star0;            // |V| x |V|, Galerkin (eq. 20, 27)
+  Eigen::VectorXd star0_lumped;  // row sums of star0
+  SparseMatrix star1;            // |C1| x |C1| (eq. 21, 27)
+  SparseMatrix star2;            // |C2| x |C2| (eq. 22, 27)
 };
 
-// One pass over the faces computing the requested coarse stars.
+// The symbolic part of the assembly: for each star the column-major pattern of "cells sharing
+// a face" (values zero) and, per face, the slots of its local block (row-major) in the value
+// array. Depends on the connectivity only: build once, reuse for any number of re-assemblies
+// on moved vertices.
+struct StarPattern {
+  SparseMatrix pattern;
+  std::vector<long> offsets;  // |F| + 1: face f's slots are slots[offsets[f] ..], m_f^2 of them
+  std::vector<int> slots;     // index into pattern.valuePtr()
+};
+struct StarPatterns {
+  StarPattern star0, star1, star2;  // empty for parts not requested
+};
+StarPatterns star_patterns(const Mesh& mesh, const CoarseComplex& complex, HodgeStarParts parts = {});
+
+// One pass over the faces computing the requested coarse stars. `patterns` (from
+// star_patterns with at least these parts) skips the symbolic step; std::invalid_argument if
+// it does not match.
 HodgeStars hodge_stars(const Mesh& mesh, const Refinement& refinement, const CoarseComplex& complex,
-                       HodgeStarParts parts = {});
+                       HodgeStarParts parts = {}, const StarPatterns* patterns = nullptr);
 
 // Shorthands.
 SparseMatrix star1(const Mesh& mesh, const Refinement& refinement, const CoarseComplex& complex);

@@ -22,7 +22,8 @@ Eigen::SparseMatrix<double> prolongation1(const Mesh& mesh, const Refinement& re
   const int ne = mesh.n_edges();
   std::vector<Triplet> t;
   t.reserve(ne + size_t(mesh.n_halfedges()) * size_t(mesh.max_face_size()));
-  for (int e = 0; e < ne; ++e) t.emplace_back(e, complex.pair_index(mesh.edges()(e, 0), mesh.edges()(e, 1)), 1.0);
+  for (int e = 0; e < ne; ++e)
+    t.emplace_back(e, complex.pair_index(mesh.edges()(e, 0), mesh.edges()(e, 1)), 1.0);
   for (int f = 0; f < mesh.n_faces(); ++f) {
     const int h0 = mesh.face_offsets()[f];
     const auto face = mesh.face(f);

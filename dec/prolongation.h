@@ -9,10 +9,10 @@
 // for coarse cells i<j (i<j<k) and refined cells k<l (k<l<m), all oriented by increasing index.
 #pragma once
 
+#include <Eigen/Sparse>
+
 #include "dec/complex.h"
 #include "dec/refinement.h"
-
-#include <Eigen/Sparse>
 
 namespace polydec {
 

@@ -5,7 +5,8 @@
 
 namespace polydec {
 
-Eigen::Matrix3d hat_gradients(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2) {
+Eigen::Matrix3d hat_gradients(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
+                              const Eigen::Vector3d& p2) {
   // grad lambda_a = n x e_a / (2 area), e_a the edge opposite corner a, counter-clockwise about n.
   const Eigen::Vector3d e0 = p2 - p1, e1 = p0 - p2, e2 = p1 - p0;
   const Eigen::Vector3d N = e2.cross(-e1);  // 2 area * unit normal
@@ -17,14 +18,16 @@ Eigen::Matrix3d hat_gradients(const Eigen::Vector3d& p0, const Eigen::Vector3d& 
   return g;
 }
 
-Eigen::Matrix3d whitney0_mass(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2) {
+Eigen::Matrix3d whitney0_mass(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
+                              const Eigen::Vector3d& p2) {
   const double a12 = 0.5 * (p1 - p0).cross(p2 - p0).norm() / 12.0;
   Eigen::Matrix3d m = Eigen::Matrix3d::Constant(a12);
   m.diagonal().array() += a12;
   return m;
 }
 
-Eigen::Matrix3d whitney1_mass(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2) {
+Eigen::Matrix3d whitney1_mass(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
+                              const Eigen::Vector3d& p2) {
   // The gradient Gram matrix from the opposite edges: G_ab = e_a . e_b / (2 area)^2.
   Eigen::Matrix3d E;
   E << p2 - p1, p0 - p2, p1 - p0;
@@ -47,8 +50,9 @@ double whitney2_mass(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const
   return 2.0 / (p1 - p0).cross(p2 - p0).norm();
 }
 
-Eigen::Vector3d whitney1_value(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2,
-                               const Eigen::Vector3d& c, const Eigen::Vector3d& bary) {
+Eigen::Vector3d whitney1_value(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
+                               const Eigen::Vector3d& p2, const Eigen::Vector3d& c,
+                               const Eigen::Vector3d& bary) {
   const Eigen::Matrix3d g = hat_gradients(p0, p1, p2);
   auto w = [&](int a, int b) { return Eigen::Vector3d(bary[a] * g.col(b) - bary[b] * g.col(a)); };
   return c[0] * w(0, 1) + c[1] * w(0, 2) + c[2] * w(1, 2);

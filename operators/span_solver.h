@@ -2,19 +2,20 @@
 // the Whitney forms (reduced basis of dec/form_span.h; docs/feec.md, "Rank").
 #pragma once
 
-#include "dec/form_span.h"
-#include "operators/cholesky.h"
-
 #include <memory>
 #include <string>
+
+#include "dec/form_span.h"
+#include "operators/cholesky.h"
 
 namespace polydec {
 
 // Solves star x = b on the span: factors R^T star R once (SparseCholesky; SolverError names
-// `name` when it is not positive definite, e.g. with degenerate fan triangles).
+// `name` when it is not positive definite).
 // solve(b) requires b in the range of star, i.e. b orthogonal to ker P_k: true for every
-// b = star y, and for b = d1^T star2 c (d1 maps ker P1 into ker P2 = ker star2). It returns the unique x supported on span.cells with star x = b; every other
-// solution differs from it by an element of ker P_k, i.e. represents the same Whitney form.
+// b = star y, and for b = d1^T star2 c (d1 maps ker P1 into ker P2 = ker star2). It returns
+// the unique x supported on span.cells with star x = b; every other solution differs from it
+// by an element of ker P_k, i.e. represents the same Whitney form.
 class SpanSolver {
  public:
   SpanSolver(const Eigen::SparseMatrix<double>& star, FormSpan span, std::string name);

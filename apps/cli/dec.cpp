@@ -2,16 +2,17 @@
 // in Matrix Market: d0, d1, star0, star1, star2, P0, P1, P2, plus the coarse cell lists
 // edges.txt (vertex pairs) and triangles.txt (vertex triples), 0-based, one per line, in
 // matrix order.
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
 #include "apps/cli/command.h"
 #include "dec/form_span.h"
 #include "dec/hodge_star.h"
 #include "dec/io.h"
 #include "dec/prolongation.h"
-
-#include <filesystem>
-#include <fmt/format.h>
-#include <fstream>
-#include <iostream>
 
 namespace polydec::cli {
 namespace {
@@ -80,8 +81,8 @@ void run(const Options& o) {
                       {"fan_degenerate", r.quality.n_degenerate},
                       {"fan_inverted", r.quality.n_inverted},
                       {"files",
-                       {"d0.mtx", "d1.mtx", "star0.mtx", "star1.mtx", "star2.mtx", "P0.mtx", "P1.mtx", "P2.mtx",
-                        "edges.txt", "triangles.txt"}}};
+                       {"d0.mtx", "d1.mtx", "star0.mtx", "star1.mtx", "star2.mtx", "P0.mtx", "P1.mtx",
+                        "P2.mtx", "edges.txt", "triangles.txt"}}};
   if (o.json) {
     print_json(j);
     return;

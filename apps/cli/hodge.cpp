@@ -1,16 +1,17 @@
 // apps/cli/hodge.cpp — `polydec hodge MESH --out FILE`: Hodge decomposition of a 1-form
 // (one value per coarse 1-cell, in the order of `polydec dec`'s edges.txt) into exact,
 // co-exact and harmonic parts, with their star1 norms.
+#include <fmt/format.h>
+
+#include <Eigen/Geometry>
+#include <fstream>
+#include <iostream>
+#include <random>
+
 #include "apps/cli/command.h"
 #include "apps/hodge_decomposition.h"
 #include "dec/hodge_star.h"
 #include "dec/io.h"
-
-#include <Eigen/Geometry>
-#include <fmt/format.h>
-#include <fstream>
-#include <iostream>
-#include <random>
 
 namespace polydec::cli {
 namespace {
@@ -46,9 +47,10 @@ Eigen::VectorXd read_form(const std::string& path, long expected) {
     v.push_back(x);
   }
   if (long(v.size()) != expected)
-    throw FileError(path, 0, -1,
-                    fmt::format("{} values, but the mesh has {} coarse 1-cells (see `polydec dec`'s edges.txt)",
-                                v.size(), expected));
+    throw FileError(
+        path, 0, -1,
+        fmt::format("{} values, but the mesh has {} coarse 1-cells (see `polydec dec`'s edges.txt)", v.size(),
+                    expected));
   return Eigen::Map<Eigen::VectorXd>(v.data(), long(v.size()));
 }
 
@@ -76,15 +78,16 @@ void run(const Options& o) {
                              mesh.max_face_size());
   const HodgeDecomposer hd(mesh);
   const CoarseComplex& K = hd.complex();
-  const Eigen::VectorXd omega = o.form.empty() ? builtin_form(mesh, K, o.noise, o.seed) : read_form(o.form, K.n_pairs());
+  const Eigen::VectorXd omega =
+      o.form.empty() ? builtin_form(mesh, K, o.noise, o.seed) : read_form(o.form, K.n_pairs());
   const HodgeParts parts = hd.decompose(omega);
   if (!o.out.empty()) {
     std::ofstream out(o.out);
     if (!out) throw FileError(o.out, 0, -1, "cannot open file for writing");
     out << "# i j omega exact coexact harmonic (one line per coarse 1-cell, i < j, 0-based)\n";
     for (int p = 0; p < K.n_pairs(); ++p)
-      out << fmt::format("{} {} {:.17g} {:.17g} {:.17g} {:.17g}\n", K.pairs()(p, 0), K.pairs()(p, 1), omega[p],
-                         parts.exact[p], parts.coexact[p], parts.harmonic[p]);
+      out << fmt::format("{} {} {:.17g} {:.17g} {:.17g} {:.17g}\n", K.pairs()(p, 0), K.pairs()(p, 1),
+                         omega[p], parts.exact[p], parts.coexact[p], parts.harmonic[p]);
     if (!out) throw FileError(o.out, 0, -1, "write failed");
   }
   const nlohmann::json j = {{"mesh", o.mesh},
@@ -100,28 +103,29 @@ void run(const Options& o) {
     print_json(j);
     return;
   }
-  fmt::print("{}: {} vertices, {} faces, {} coarse 1-cells, harmonic dimension {}\n", o.mesh, mesh.n_vertices(),
-             mesh.n_faces(), K.n_pairs(), hd.harmonic_dimension());
+  fmt::print("{}: {} vertices, {} faces, {} coarse 1-cells, harmonic dimension {}\n", o.mesh,
+             mesh.n_vertices(), mesh.n_faces(), K.n_pairs(), hd.harmonic_dimension());
   fmt::print("star1 norms: form {:.6g} = sqrt(exact^2 + co-exact^2 + harmonic^2)\n", parts.norm);
-  fmt::print("  exact    {:.6g}\n  co-exact {:.6g}\n  harmonic {:.6g}\n", parts.norm_exact, parts.norm_coexact,
-             parts.norm_harmonic);
+  fmt::print("  exact    {:.6g}\n  co-exact {:.6g}\n  harmonic {:.6g}\n", parts.norm_exact,
+             parts.norm_coexact, parts.norm_harmonic);
   if (!o.out.empty()) fmt::print("wrote {}\n", o.out);
 }
 
-const RegisterCommand reg("hodge", "Hodge decomposition of a 1-form into exact, co-exact and harmonic parts",
-                          [](CLI::App& app) {
-                            auto o = std::make_shared<Options>();
-                            app.add_option("mesh", o->mesh, "input mesh (.obj, .off, .ply)")->required();
-                            app.add_option("--out", o->out, "output text file: i j omega exact coexact harmonic");
-                            app.add_option("--form", o->form,
-                                           "1-form file, one value per coarse 1-cell in edges.txt order (default: "
-                                           "built-in d(x) + rotation about z + noise)");
-                            app.add_option("--noise", o->noise, "noise amplitude of the built-in form, relative to "
-                                                                "the mean edge length (default 0.05)");
-                            app.add_option("--seed", o->seed, "random seed of the built-in form's noise");
-                            app.add_flag("--json", o->json, "print one JSON object instead of text");
-                            app.callback([o] { run(*o); });
-                          });
+const RegisterCommand reg(
+    "hodge", "Hodge decomposition of a 1-form into exact, co-exact and harmonic parts", [](CLI::App& app) {
+      auto o = std::make_shared<Options>();
+      app.add_option("mesh", o->mesh, "input mesh (.obj, .off, .ply)")->required();
+      app.add_option("--out", o->out, "output text file: i j omega exact coexact harmonic");
+      app.add_option("--form", o->form,
+                     "1-form file, one value per coarse 1-cell in edges.txt order (default: "
+                     "built-in d(x) + rotation about z + noise)");
+      app.add_option("--noise", o->noise,
+                     "noise amplitude of the built-in form, relative to "
+                     "the mean edge length (default 0.05)");
+      app.add_option("--seed", o->seed, "random seed of the built-in form's noise");
+      app.add_flag("--json", o->json, "print one JSON object instead of text");
+      app.callback([o] { run(*o); });
+    });
 
 }  // namespace
 }  // namespace polydec::cli

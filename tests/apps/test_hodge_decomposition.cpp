@@ -2,17 +2,18 @@
 // closedness and co-closedness of the harmonic part, harmonic dimension = first Betti number
 // (checked against an independent dense rank count), co-exact part orthogonal to every closed
 // form, and recovery of parts built from known potentials.
-#include "apps/hodge_decomposition.h"
-#include "dec/form_span.h"
-#include "dec/hodge_star.h"
-#include "dec/prolongation.h"
-#include "operators/span_solver.h"
-#include "tests/dec/feec_meshes.h"
-
 #include <Eigen/LU>
 #include <Eigen/SVD>
 #include <catch2/catch.hpp>
 #include <random>
+
+#include "apps/hodge_decomposition.h"
+#include "dec/form_span.h"
+#include "dec/hodge_star.h"
+#include "dec/prolongation.h"
+#include "operators/laplacian.h"
+#include "operators/span_solver.h"
+#include "tests/dec/feec_meshes.h"
 
 using namespace polydec;
 
@@ -39,6 +40,10 @@ std::vector<std::pair<std::string, Mesh>> hodge_meshes() {
   m.emplace_back("genus-2 quad surface", test::genus2(2, 0.1, false));
   m.emplace_back("genus-2 hexagon surface", test::genus2(1, 0.1, true));
   m.emplace_back("mixed planar grid", test::planar_grid(8, 6, 0.2, true));
+  m.emplace_back("noisy torus (library)", add_noise(polydec::torus(16, 8), 0.15, 2));
+  m.emplace_back("noisy genus2 (library)", add_noise(polydec::genus2(1), 0.1, 3));
+  m.emplace_back("hex_sphere (library)", hex_sphere(2));
+  m.emplace_back("hex_grid (library)", hex_grid(5, 5));
   for (const char* name : {"quad-sphere.off", "noisy-sphere.off", "L-plane.obj", "suzanne-half.obj"}) {
     const std::string path = test::shared_path(name);
     if (!path.empty()) m.emplace_back(name, read_mesh(path));
@@ -56,6 +61,7 @@ TEST_CASE("generated test surfaces have the intended topology", "[feec]") {
   CHECK(test::genus2(1, 0.1, true).n_boundary_edges() == 0);
   CHECK(test::genus2(1, 0.1, true).max_face_size() == 6);
   CHECK(test::dual_mesh(test::icosphere(1), true).euler_characteristic() == 2);
+  CHECK(polydec::genus2(1).euler_characteristic() == -2);
 }
 
 TEST_CASE("Hodge parts are star1-orthogonal, harmonic part closed and co-closed, sum exact", "[feec]") {
@@ -91,8 +97,9 @@ TEST_CASE("Hodge parts are star1-orthogonal, harmonic part closed and co-closed,
   }
 }
 
-TEST_CASE("harmonic dimension = dim W1 - rank d0 - rank d1 counted densely; co-exact part is orthogonal to ker d1",
-          "[feec]") {
+TEST_CASE(
+    "harmonic dimension = dim W1 - rank d0 - rank d1 counted densely; co-exact part is orthogonal to ker d1",
+    "[feec]") {
   for (const auto& [name, mesh] : std::vector<std::pair<std::string, Mesh>>{
            {"noisy hexagon torus", test::torus(8, 6, 0.15, true)},
            {"genus-2 hexagon surface", test::genus2(1, 0.1, true)},
@@ -169,4 +176,57 @@ TEST_CASE("the gradient of a function is purely exact; bad input is rejected", "
   Eigen::VectorXd bad = Eigen::VectorXd::Zero(hd.complex().n_pairs());
   bad[1] = std::numeric_limits<double>::quiet_NaN();
   CHECK_THROWS_AS(hd.decompose(bad), std::invalid_argument);
+}
+
+TEST_CASE("docs/feec.md example: operators composed from d0, d1 and the stars", "[feec]") {
+  const Mesh mesh = test::torus(12, 8, 0.15, true);
+  const Refinement r = refine(mesh);
+  const CoarseComplex K(mesh);
+  const HodgeStars H = hodge_stars(mesh, r, K);
+  const SparseMatrix d0 = K.d0(), d1 = K.d1();
+  const SparseMatrix S = -SparseMatrix(d0.transpose()) * H.star1 * d0;
+  CHECK(test::relative_difference(S, stiffness(mesh, r)) <= 1e-12);
+  const SpanSolver S1(H.star1, form_span(mesh, r, K, 1), "star1");
+  auto lap1 = [&](const Eigen::VectorXd& omega) -> Eigen::VectorXd {
+    return d0 * ((d0.transpose() * (H.star1 * omega)).cwiseQuotient(H.star0_lumped)) +
+           S1.solve(d1.transpose() * (H.star2 * (d1 * omega)));
+  };
+  const HodgeDecomposer hd(mesh);
+  REQUIRE(hd.harmonic_dimension() == 2);
+  auto norm = [&](const Eigen::VectorXd& x) { return std::sqrt(std::max(0.0, x.dot(H.star1 * x))); };
+  const Eigen::VectorXd omega = random_vector(K.n_pairs(), 8);
+  const double typical = norm(lap1(omega)) / norm(omega);
+  REQUIRE(typical > 0);
+  for (long k = 0; k < 2; ++k) CHECK(norm(lap1(hd.harmonic_basis().col(k))) <= 1e-8 * typical);
+  // Weak divergence of the gradient of f is the core Laplacian's S f.
+  const Eigen::VectorXd f = mesh.positions().col(2);
+  const Eigen::VectorXd div = -(d0.transpose() * (H.star1 * (d0 * f)));
+  const Eigen::VectorXd Sf = stiffness(mesh, r) * f;
+  CHECK((div - Sf).norm() <= 1e-12 * Sf.norm());
+}
+
+TEST_CASE("several components and an unreferenced vertex: Betti numbers add up", "[feec]") {
+  const Mesh a = test::torus(10, 6, 0.1, true), b = test::dual_mesh(test::icosphere(1), true);
+  PolygonSoup s;
+  s.positions.resize(a.n_vertices() + b.n_vertices() + 1, 3);
+  s.positions.topRows(a.n_vertices()) = a.positions();
+  s.positions.middleRows(a.n_vertices(), b.n_vertices()) = b.positions().rowwise() + Eigen::RowVector3d(5, 0, 0);
+  s.positions.bottomRows(1) << 9, 9, 9;  // unreferenced
+  for (int f = 0; f < a.n_faces(); ++f) s.add_face(a.face(f));
+  for (int f = 0; f < b.n_faces(); ++f) {
+    std::vector<int> face(b.face(f).begin(), b.face(f).end());
+    for (int& v : face) v += a.n_vertices();
+    s.add_face(face);
+  }
+  const Mesh mesh(std::move(s));
+  REQUIRE(mesh.n_components() == 2);
+  const HodgeDecomposer hd(mesh);
+  CHECK(hd.harmonic_dimension() == 2);
+  const Eigen::VectorXd omega = random_vector(hd.complex().n_pairs(), 12);
+  const HodgeParts p = hd.decompose(omega);
+  const double w2 = omega.dot(hd.star1() * omega);
+  CHECK(std::abs(p.exact.dot(hd.star1() * p.coexact)) <= 1e-10 * w2);
+  CHECK(std::abs(p.coexact.dot(hd.star1() * p.harmonic)) <= 1e-10 * w2);
+  CHECK((hd.complex().d1() * p.harmonic).cwiseAbs().maxCoeff() <= 1e-12 * p.harmonic.cwiseAbs().maxCoeff());
+  CHECK(std::isfinite(p.potential.sum()));
 }

@@ -1,10 +1,10 @@
 // tests/dec/test_complex.cpp — coarse and refined cell complexes, d0 and d1.
+#include <catch2/catch.hpp>
+#include <set>
+
 #include "dec/complex.h"
 #include "dec/refinement.h"
 #include "tests/dec/feec_meshes.h"
-
-#include <catch2/catch.hpp>
-#include <set>
 
 using namespace polydec;
 
@@ -16,8 +16,9 @@ TEST_CASE("coarse complex of one hexagon lists all pairs and triples lexicograph
   int edges = 0;
   for (int p = 0; p < K.n_pairs(); ++p) {
     CHECK(K.pairs()(p, 0) < K.pairs()(p, 1));
-    if (p > 0) CHECK((K.pairs()(p - 1, 0) < K.pairs()(p, 0) ||
-                      (K.pairs()(p - 1, 0) == K.pairs()(p, 0) && K.pairs()(p - 1, 1) < K.pairs()(p, 1))));
+    if (p > 0)
+      CHECK((K.pairs()(p - 1, 0) < K.pairs()(p, 0) ||
+             (K.pairs()(p - 1, 0) == K.pairs()(p, 0) && K.pairs()(p - 1, 1) < K.pairs()(p, 1))));
     CHECK(K.pair_index(K.pairs()(p, 1), K.pairs()(p, 0)) == p);
     edges += K.is_edge(p);
   }
@@ -129,10 +130,12 @@ TEST_CASE("refined complex = coarse complex of the explicit fan triangulation, u
     std::vector<Eigen::Triplet<double>> te, tt;
     for (int e = 0; e < refined_n_edges(mesh); ++e) te.emplace_back(edge_map[e], e, 1.0);
     for (int h = 0; h < refined_n_triangles(mesh); ++h) tt.emplace_back(tri_map[h], h, 1.0);
-    Eigen::SparseMatrix<double> E(KR.n_pairs(), refined_n_edges(mesh)), T(KR.n_triples(), refined_n_triangles(mesh));
+    Eigen::SparseMatrix<double> E(KR.n_pairs(), refined_n_edges(mesh)),
+        T(KR.n_triples(), refined_n_triangles(mesh));
     E.setFromTriplets(te.begin(), te.end());
     T.setFromTriplets(tt.begin(), tt.end());
-    const Eigen::SparseMatrix<double> e0 = E * d0 - D0, e1 = T * d1 * Eigen::SparseMatrix<double>(E.transpose()) - D1;
+    const Eigen::SparseMatrix<double> e0 = E * d0 - D0,
+                                      e1 = T * d1 * Eigen::SparseMatrix<double>(E.transpose()) - D1;
     CHECK(e0.norm() == 0.0);
     CHECK(e1.norm() == 0.0);
   }

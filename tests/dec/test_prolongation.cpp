@@ -1,14 +1,14 @@
 // tests/dec/test_prolongation.cpp — P1 and P2: their definition from P (eq. 23), the commuting
 // relations with d, the rank table of a single n-gon, and linear precision of the Whitney
 // reconstruction.
+#include <Eigen/SVD>
+#include <catch2/catch.hpp>
+
 #include "dec/form_span.h"
 #include "dec/hodge_star.h"
 #include "dec/prolongation.h"
 #include "dec/whitney.h"
 #include "tests/dec/feec_meshes.h"
-
-#include <Eigen/SVD>
-#include <catch2/catch.hpp>
 
 using namespace polydec;
 
@@ -27,7 +27,8 @@ int svd_rank(const Eigen::MatrixXd& A, double rel_tol = 1e-9) {
 }  // namespace
 
 TEST_CASE("P1 and P2 equal the antisymmetrised products of P entries (eq. 23-26)", "[feec]") {
-  for (const auto& mesh : {test::random_polygon(7, 2), test::planar_grid(3, 3, 0.2, true), test::torus(8, 4, 0.1, true)}) {
+  for (const auto& mesh :
+       {test::random_polygon(7, 2), test::planar_grid(3, 3, 0.2, true), test::torus(8, 4, 0.1, true)}) {
     const Refinement r = refine(mesh);
     const CoarseComplex K(mesh);
     const Eigen::MatrixXd P = Eigen::MatrixXd(prolongation(mesh, r));
@@ -79,7 +80,7 @@ TEST_CASE("prolongations commute with d: P1 d0 = d0^f P0, P2 d1 = d1^f P1", "[fe
 TEST_CASE("rank table of a single n-gon: P1, star1, P2, star2", "[feec]") {
   // n, coarse pairs, rank P1 = rank star1, coarse triples, rank P2 = rank star2 (issue 3 table,
   // measured there with an independent implementation).
-  const int table[6][5] = {{3, 3, 3, 1, 1},    {4, 6, 6, 4, 3},     {5, 10, 9, 10, 5},
+  const int table[6][5] = {{3, 3, 3, 1, 1},    {4, 6, 6, 4, 3},    {5, 10, 9, 10, 5},
                            {6, 15, 11, 20, 6}, {7, 21, 13, 35, 7}, {8, 28, 15, 56, 8}};
   for (const auto& row : table) {
     const int n = row[0];
@@ -124,8 +125,8 @@ TEST_CASE("global ranks on a pentagon/hexagon sphere: |E| + sum over faces of (n
 }
 
 TEST_CASE("Whitney reconstruction of d0 f for linear f is grad f on every refined triangle", "[feec]") {
-  std::vector<std::pair<std::string, Mesh>> meshes = {{"mixed planar grid", test::planar_grid(6, 6, 0.3, true)},
-                                                      {"random heptagon (flattened)", Mesh()}};
+  std::vector<std::pair<std::string, Mesh>> meshes = {
+      {"mixed planar grid", test::planar_grid(6, 6, 0.3, true)}, {"random heptagon (flattened)", Mesh()}};
   {
     Mesh hept = test::random_polygon(7, 9);
     Eigen::MatrixX3d X = hept.positions();
@@ -155,14 +156,16 @@ TEST_CASE("Whitney reconstruction of d0 f for linear f is grad f on every refine
       const Eigen::Vector3i t = refined_triangle(mesh, h);
       const int fc = mesh.halfedge_face(h);
       auto pos = [&](int v) -> Eigen::Vector3d {
-        return v < mesh.n_vertices() ? mesh.position(v) : Eigen::Vector3d(r.virtual_points.row(fc).transpose());
+        return v < mesh.n_vertices() ? mesh.position(v)
+                                     : Eigen::Vector3d(r.virtual_points.row(fc).transpose());
       };
       // Edge values in the local order (0,1), (0,2), (1,2): mesh edge, spoke of t[0], spoke of t[1].
       const int ne = mesh.n_edges(), spoke_s = ne + h, spoke_t = ne + mesh.halfedge_next(h);
       const bool up = t[0] == mesh.halfedge_source(h);
-      const Eigen::Vector3d ce(c[mesh.halfedge_edge(h)], c[up ? spoke_s : spoke_t], c[up ? spoke_t : spoke_s]);
-      for (const Eigen::Vector3d bary : {Eigen::Vector3d(1.0 / 3, 1.0 / 3, 1.0 / 3), Eigen::Vector3d(0.6, 0.3, 0.1),
-                                         Eigen::Vector3d(0.05, 0.15, 0.8)}) {
+      const Eigen::Vector3d ce(c[mesh.halfedge_edge(h)], c[up ? spoke_s : spoke_t],
+                               c[up ? spoke_t : spoke_s]);
+      for (const Eigen::Vector3d bary : {Eigen::Vector3d(1.0 / 3, 1.0 / 3, 1.0 / 3),
+                                         Eigen::Vector3d(0.6, 0.3, 0.1), Eigen::Vector3d(0.05, 0.15, 0.8)}) {
         const Eigen::Vector3d v = whitney1_value(pos(t[0]), pos(t[1]), pos(t[2]), ce, bary);
         REQUIRE((v - grad).norm() <= 1e-9 * a.norm());
       }
