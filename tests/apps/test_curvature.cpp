@@ -1,11 +1,11 @@
 // tests/apps/test_curvature.cpp — mean curvature (eq. 29): the paper's Table 2 on the unit-sphere
 // meshes, scale covariance, orientation independence, vertex normals.
+#include <cmath>
+
 #include "apps/curvature.h"
 #include "dec/generators.h"
 #include "dec/io.h"
 #include "tests/support.h"
-
-#include <cmath>
 
 using namespace polydec;
 
@@ -115,4 +115,22 @@ TEST_CASE("curvature: Table 2 RMSE on HEX and FINE SPHERE, lumped and unlumped",
   CHECK(rmse_with(s.fine, true) == Approx(0.13336).epsilon(0.01));
   CHECK(rmse_with(s.hex, false) == Approx(0.003915).epsilon(0.01));
   CHECK(rmse_with(s.fine, false) == Approx(0.36685).epsilon(0.01));
+}
+
+TEST_CASE("curvature: a vertex in no face changes nothing and gets H = 0", "[apps]") {
+  POLYDEC_SHARED_MESH(path, "quad-sphere.off");
+  const Mesh sphere = unit_sphere_mesh(path);
+  PolygonSoup soup;
+  soup.positions.resize(sphere.n_vertices() + 1, 3);
+  soup.positions.topRows(sphere.n_vertices()) = sphere.positions();
+  soup.positions.row(sphere.n_vertices()) = Eigen::RowVector3d(3, 0, 0);
+  for (int f = 0; f < sphere.n_faces(); ++f) soup.add_face(sphere.face(f));
+  const Mesh extra(std::move(soup));
+  for (bool lumped : {true, false}) {
+    CurvatureOptions o;
+    o.lumped_mass = lumped;
+    const Eigen::VectorXd H = mean_curvature(sphere, o), He = mean_curvature(extra, o);
+    CHECK(He[sphere.n_vertices()] == 0.0);
+    CHECK((He.head(sphere.n_vertices()) - H).cwiseAbs().maxCoeff() <= 1e-12);
+  }
 }

@@ -1,12 +1,12 @@
 // tests/apps/test_harmonics.cpp — spherical harmonics (closed forms, orthonormality) and the
 // paper's Table 3 error of eq. (30) on the unit-sphere meshes.
+#include <cmath>
+#include <numbers>
+
 #include "apps/harmonics.h"
 #include "dec/generators.h"
 #include "dec/io.h"
 #include "tests/support.h"
-
-#include <cmath>
-#include <numbers>
 
 using namespace polydec;
 
@@ -75,6 +75,8 @@ TEST_CASE("harmonics: Table 3 error on REGULAR and NOISY SPHERE", "[apps]") {
   // The caption's l = 1..9 adds a ninth, positive band.
   CHECK(regular.sum(9) > regular.sum(8));
   CHECK(regular.band_error.size() == 9);
+  // The per-vertex shares add up to the total.
+  CHECK(regular.vertex_error.sum() == Approx(regular.sum(9)).epsilon(1e-10));
 }
 
 TEST_CASE("harmonics: Table 3 error on HEX and FINE SPHERE", "[apps]") {
