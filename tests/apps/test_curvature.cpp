@@ -5,6 +5,7 @@
 #include "apps/curvature.h"
 #include "dec/generators.h"
 #include "dec/io.h"
+#include "tests/apps/paper_spheres.h"
 #include "tests/support.h"
 
 using namespace polydec;
@@ -83,21 +84,6 @@ TEST_CASE("curvature: a flat plane has zero mean curvature at interior vertices"
 
 namespace {
 
-// HEX SPHERE (dual of unit-sphere.off, projected) and FINE SPHERE (one Catmull-Clark step of it,
-// projected) with their operators, built once per test binary.
-struct SphereOps {
-  OperatorSet hex, fine;
-};
-const SphereOps& sphere_ops(const std::string& path) {
-  static const SphereOps ops = [&] {
-    const Mesh hex = project_to_unit_sphere(dual(read_mesh(path)));
-    const Mesh fine = project_to_unit_sphere(catmull_clark(hex));
-    return SphereOps{build_operators(hex, parse_laplacian("ours"), false),
-                     build_operators(fine, parse_laplacian("ours"), false)};
-  }();
-  return ops;
-}
-
 double rmse_with(const OperatorSet& ops, bool lumped) {
   CurvatureOptions o;
   o.lumped_mass = lumped;
@@ -108,13 +94,14 @@ double rmse_with(const OperatorSet& ops, bool lumped) {
 
 TEST_CASE("curvature: Table 2 RMSE on HEX and FINE SPHERE, lumped and unlumped", "[apps]") {
   POLYDEC_SHARED_MESH(path, "unit-sphere.off");
-  const SphereOps& s = sphere_ops(path);
-  CHECK(s.hex.domain.n_faces() == 16070);
-  CHECK(s.fine.domain.n_faces() == 96408);
-  CHECK(rmse_with(s.hex, true) == Approx(0.001598).epsilon(0.01));
-  CHECK(rmse_with(s.fine, true) == Approx(0.13336).epsilon(0.01));
-  CHECK(rmse_with(s.hex, false) == Approx(0.003915).epsilon(0.01));
-  CHECK(rmse_with(s.fine, false) == Approx(0.36685).epsilon(0.01));
+  const OperatorSet& hex = test::hex_sphere(path).ops;
+  const OperatorSet& fine = test::fine_sphere(path).ops;
+  CHECK(hex.domain.n_faces() == 16070);
+  CHECK(fine.domain.n_faces() == 96408);
+  CHECK(rmse_with(hex, true) == Approx(0.001598).epsilon(0.01));
+  CHECK(rmse_with(fine, true) == Approx(0.13336).epsilon(0.01));
+  CHECK(rmse_with(hex, false) == Approx(0.003915).epsilon(0.01));
+  CHECK(rmse_with(fine, false) == Approx(0.36685).epsilon(0.01));
 }
 
 TEST_CASE("curvature: a vertex in no face changes nothing and gets H = 0", "[apps]") {

@@ -6,6 +6,7 @@
 #include "apps/harmonics.h"
 #include "dec/generators.h"
 #include "dec/io.h"
+#include "tests/apps/paper_spheres.h"
 #include "tests/support.h"
 
 using namespace polydec;
@@ -81,10 +82,8 @@ TEST_CASE("harmonics: Table 3 error on REGULAR and NOISY SPHERE", "[apps]") {
 
 TEST_CASE("harmonics: Table 3 error on HEX and FINE SPHERE", "[apps]") {
   POLYDEC_SHARED_MESH(path, "unit-sphere.off");
-  const Mesh hex = project_to_unit_sphere(dual(read_mesh(path)));
-  const Mesh fine = project_to_unit_sphere(catmull_clark(hex));
   HarmonicsOptions o;
   o.max_band = 8;
-  CHECK(spherical_harmonics_error(hex, o).sum(8) == Approx(7.411e-7).epsilon(0.01));
-  CHECK(spherical_harmonics_error(fine, o).sum(8) == Approx(3.168e-4).epsilon(0.01));
+  CHECK(spherical_harmonics_error(test::hex_sphere(path).ops, o).sum(8) == Approx(7.411e-7).epsilon(0.01));
+  CHECK(spherical_harmonics_error(test::fine_sphere(path).ops, o).sum(8) == Approx(3.168e-4).epsilon(0.01));
 }
