@@ -1,9 +1,9 @@
 // apps/curvature.cpp — mean curvature (eq. 29) and angle-weighted vertex normals.
 #include "apps/curvature.h"
 
-#include "operators/cholesky.h"
-
 #include <cmath>
+
+#include "operators/cholesky.h"
 
 namespace polydec {
 
@@ -30,6 +30,13 @@ Eigen::MatrixX3d vertex_normals(const Mesh& mesh) {
   return N;
 }
 
+SparseMatrix mass_with_unit_rows_for_unreferenced(const OperatorSet& ops) {
+  SparseMatrix M = ops.M;
+  for (int v = 0; v < int(M.rows()); ++v)
+    if (!(ops.M_lumped[v] > 0)) M.coeffRef(v, v) = 1.0;
+  return M;
+}
+
 double signed_volume(const Mesh& mesh) {
   // Sum over a triangle fan of each face of det(x0, xa, xa+1) / 6.
   double vol = 0;
@@ -53,7 +60,7 @@ Eigen::VectorXd mean_curvature(const OperatorSet& ops, const CurvatureOptions& o
     for (int v = 0; v < nv; ++v)
       if (ops.M_lumped[v] > 0) LX.row(v) = SX.row(v) / ops.M_lumped[v];
   } else {
-    LX = SparseCholesky(ops.M, "mass matrix M").solve(SX);
+    LX = SparseCholesky(mass_with_unit_rows_for_unreferenced(ops), "mass matrix M").solve(SX);
   }
   Eigen::MatrixX3d N = vertex_normals(mesh);
   // A closed mesh whose faces are oriented inwards (negative enclosed volume) gets its normals

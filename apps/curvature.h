@@ -33,6 +33,10 @@ Eigen::VectorXd mean_curvature(const OperatorSet& operators, const CurvatureOpti
 // With the paper's operator ("ours").
 Eigen::VectorXd mean_curvature(const Mesh& mesh, const CurvatureOptions& options = {});
 
+// The Galerkin mass with 1 on the diagonal of vertices in no face (whose rows are empty), so
+// that it can be factored; M^-1 S is unchanged at every other vertex and 0 at those.
+SparseMatrix mass_with_unit_rows_for_unreferenced(const OperatorSet& operators);
+
 // Root-mean-square deviation of H from the constant `expected` over all vertices (Table 2 uses
 // expected = 1 on meshes projected to the unit sphere).
 double curvature_rmse(const Eigen::VectorXd& H, double expected);

@@ -1,12 +1,15 @@
 // apps/harmonics.cpp — spherical-harmonics reproduction error (eq. 30).
 #include "apps/harmonics.h"
 
-#include "operators/cholesky.h"
+#include <fmt/format.h>
 
 #include <cmath>
 #include <memory>
 #include <numbers>
 #include <stdexcept>
+
+#include "apps/curvature.h"
+#include "operators/cholesky.h"
 
 namespace polydec {
 
@@ -56,7 +59,12 @@ HarmonicsError spherical_harmonics_error(const OperatorSet& ops, const Harmonics
   const Mesh& mesh = ops.domain;
   const int nv = mesh.n_vertices();
   std::unique_ptr<SparseCholesky> Minv;
-  if (!options.lumped_mass) Minv = std::make_unique<SparseCholesky>(ops.M, "mass matrix M");
+  if (!options.lumped_mass)
+    Minv = std::make_unique<SparseCholesky>(mass_with_unit_rows_for_unreferenced(ops), "mass matrix M");
+  for (int v = 0; v < nv; ++v)
+    if (ops.M_lumped[v] > 0 && !(mesh.position(v).norm() > 0))
+      throw std::invalid_argument(
+          fmt::format("spherical harmonics: vertex {} lies at the origin (no direction)", v));
   // L y = M^-1 S y; vertices without mass (no face) have no Laplacian: their entries are 0.
   auto apply_L = [&](const Eigen::VectorXd& y) -> Eigen::VectorXd {
     const Eigen::VectorXd Sy = ops.S * y;
@@ -66,11 +74,12 @@ HarmonicsError spherical_harmonics_error(const OperatorSet& ops, const Harmonics
       if (ops.M_lumped[v] > 0) Ly[v] = Sy[v] / ops.M_lumped[v];
     return Ly;
   };
-  auto norm_M2 = [&](const Eigen::VectorXd& r) -> double {
-    return Minv ? r.dot(ops.M * r) : r.dot(ops.M_lumped.cwiseProduct(r));
+  auto M_times = [&](const Eigen::VectorXd& r) -> Eigen::VectorXd {
+    return Minv ? Eigen::VectorXd(ops.M * r) : Eigen::VectorXd(ops.M_lumped.cwiseProduct(r));
   };
 
   HarmonicsError err;
+  err.vertex_error = Eigen::VectorXd::Zero(nv);
   Eigen::VectorXd y(nv);
   for (int l = 1; l <= options.max_band; ++l) {
     double band = 0;
@@ -79,7 +88,9 @@ HarmonicsError spherical_harmonics_error(const OperatorSet& ops, const Harmonics
       for (int v = 0; v < nv; ++v) y[v] = spherical_harmonic(mesh.position(v), l, m);
       y.normalize();
       const Eigen::VectorXd r = y - apply_L(y) / eig;
-      band += norm_M2(r);
+      const Eigen::VectorXd share = r.cwiseProduct(M_times(r));
+      err.vertex_error += share;
+      band += share.sum();
     }
     err.band_error.push_back(band);
   }

@@ -8,9 +8,9 @@
 // Table 3 sums e_lm over l = 1..8 (as the authors' program runs it; the caption says 1..9).
 #pragma once
 
-#include "operators/laplacians.h"
-
 #include <vector>
+
+#include "operators/laplacians.h"
 
 namespace polydec {
 
@@ -30,6 +30,9 @@ struct HarmonicsOptions {
 
 struct HarmonicsError {
   std::vector<double> band_error;  // band_error[l-1] = sum over m of e_lm
+  // Where the error sits: vertex v's share r_v (M r)_v summed over all evaluated l, m (r the
+  // residual of eq. 30), so that vertex_error.sum() == sum(max_band).
+  Eigen::VectorXd vertex_error;
   // Sum of the band errors for l = 1..max_l (max_l <= the evaluated max_band).
   double sum(int max_l) const;
 };

@@ -1,15 +1,16 @@
 // apps/parametrization.cpp — spectral conformal parametrization via the boundary Schur complement.
 #include "apps/parametrization.h"
 
-#include "dec/io.h"
-#include "operators/cholesky.h"
+#include <fmt/format.h>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
 #include <cmath>
-#include <fmt/format.h>
 #include <fstream>
 #include <stdexcept>
+
+#include "dec/io.h"
+#include "operators/cholesky.h"
 
 namespace polydec {
 
@@ -94,16 +95,20 @@ ConformalParametrization spectral_conformal_parametrization(const OperatorSet& o
   }
   for (int c = 0; c < 2 * n_comp; ++c) {
     const double len = T.col(c).norm();
-    if (!(len > 0)) throw std::invalid_argument("spectral conformal parametrization: a connected component has no boundary");
+    if (!(len > 0))
+      throw std::invalid_argument(
+          "spectral conformal parametrization: a connected component has no boundary");
     T.col(c) /= len;
   }
-  if (2 * n_comp >= 2 * nb) throw std::invalid_argument("spectral conformal parametrization: too few boundary vertices");
+  if (2 * n_comp >= 2 * nb)
+    throw std::invalid_argument("spectral conformal parametrization: too few boundary vertices");
   const Eigen::HouseholderQR<Eigen::MatrixXd> qr(T);
   const Eigen::MatrixXd Qfull = qr.householderQ();
   const Eigen::MatrixXd Q = Qfull.rightCols(2 * nb - 2 * n_comp);
   const Eigen::MatrixXd Cq = Q.transpose() * C * Q;
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(0.5 * (Cq + Cq.transpose()));
-  if (eig.info() != Eigen::Success) throw SolverError("spectral conformal parametrization: eigensolver failed");
+  if (eig.info() != Eigen::Success)
+    throw SolverError("spectral conformal parametrization: eigensolver failed");
   const Eigen::VectorXd UB = Q * eig.eigenvectors().col(0);
 
   ConformalParametrization p;
@@ -120,7 +125,8 @@ ConformalParametrization spectral_conformal_parametrization(const OperatorSet& o
   const Eigen::RowVector2d lo = p.uv(used, Eigen::all).colwise().minCoeff();
   const Eigen::RowVector2d hi = p.uv(used, Eigen::all).colwise().maxCoeff();
   const double extent = (hi - lo).maxCoeff();
-  if (!(extent > 0)) throw SolverError("spectral conformal parametrization: the parametrization collapsed to a point");
+  if (!(extent > 0))
+    throw SolverError("spectral conformal parametrization: the parametrization collapsed to a point");
   for (int v : used) p.uv.row(v) = (p.uv.row(v) - lo) / extent;
   return p;
 }
@@ -129,13 +135,19 @@ ConformalParametrization spectral_conformal_parametrization(const Mesh& mesh) {
   return spectral_conformal_parametrization(build_operators(mesh, parse_laplacian("ours"), false));
 }
 
-double conformal_distortion(const Mesh& mesh, const Eigen::MatrixX2d& uv) {
-  if (uv.rows() != mesh.n_vertices()) throw std::invalid_argument("conformal distortion: uv needs one row per vertex");
-  auto angle3 = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return std::atan2(a.cross(b).norm(), a.dot(b)); };
+namespace {
+
+// Calls visit(vertex, weight, alpha - beta) for every face corner (see conformal_distortion).
+template <class Visit>
+void for_each_corner_angle_difference(const Mesh& mesh, const Eigen::MatrixX2d& uv, Visit&& visit) {
+  if (uv.rows() != mesh.n_vertices())
+    throw std::invalid_argument("conformal distortion: uv needs one row per vertex");
+  auto angle3 = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    return std::atan2(a.cross(b).norm(), a.dot(b));
+  };
   auto angle2 = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
     return std::atan2(std::abs(a.x() * b.y() - a.y() * b.x()), a.dot(b));
   };
-  double sum = 0, wsum = 0;
   for (int f = 0; f < mesh.n_faces(); ++f) {
     const auto face = mesh.face(f);
     const int n = int(face.size());
@@ -147,11 +159,30 @@ double conformal_distortion(const Mesh& mesh, const Eigen::MatrixX2d& uv) {
       const double alpha = angle3(mesh.position(j) - mesh.position(i), mesh.position(k) - mesh.position(i));
       const Eigen::Vector2d ui = uv.row(i).transpose();
       const double beta = angle2(uv.row(j).transpose() - ui, uv.row(k).transpose() - ui);
-      sum += w * (alpha - beta) * (alpha - beta);
-      wsum += w;
+      visit(i, w, alpha - beta);
     }
   }
+}
+
+}  // namespace
+
+double conformal_distortion(const Mesh& mesh, const Eigen::MatrixX2d& uv) {
+  double sum = 0, wsum = 0;
+  for_each_corner_angle_difference(mesh, uv, [&](int, double w, double d) {
+    sum += w * d * d;
+    wsum += w;
+  });
   return wsum > 0 ? std::sqrt(sum / wsum) : 0.0;
+}
+
+Eigen::VectorXd vertex_conformal_distortion(const Mesh& mesh, const Eigen::MatrixX2d& uv) {
+  Eigen::VectorXd sum = Eigen::VectorXd::Zero(mesh.n_vertices()), wsum = sum;
+  for_each_corner_angle_difference(mesh, uv, [&](int v, double w, double d) {
+    sum[v] += w * d * d;
+    wsum[v] += w;
+  });
+  for (int v = 0; v < mesh.n_vertices(); ++v) sum[v] = wsum[v] > 0 ? std::sqrt(sum[v] / wsum[v]) : 0.0;
+  return sum;
 }
 
 int count_flipped_fan_triangles(const Mesh& mesh, const Refinement& r, const Eigen::MatrixX2d& uv) {
@@ -163,7 +194,8 @@ int count_flipped_fan_triangles(const Mesh& mesh, const Refinement& r, const Eig
     for (int a = 0; a < n; ++a) uf += r.weights[h0 + a] * uv.row(face[a]).transpose();
     for (int a = 0; a < n; ++a) {
       if (r.fan[h0 + a] == FanTriangle::Degenerate) continue;
-      const Eigen::Vector2d p = uv.row(face[a]).transpose() - uf, q = uv.row(face[(a + 1) % n]).transpose() - uf;
+      const Eigen::Vector2d p = uv.row(face[a]).transpose() - uf,
+                            q = uv.row(face[(a + 1) % n]).transpose() - uf;
       if (!(p.x() * q.y() - p.y() * q.x() > 0)) ++flipped;
     }
   }

@@ -12,10 +12,10 @@
 // eigenproblem of size 2 |boundary vertices|), then U_I = -L_II^-1 L_IB U_B.
 #pragma once
 
+#include <string>
+
 #include "dec/refinement.h"
 #include "operators/laplacians.h"
-
-#include <string>
 
 namespace polydec {
 
@@ -36,6 +36,10 @@ ConformalParametrization spectral_conformal_parametrization(const Mesh& mesh);
 // over all face corners c; alpha_c, beta_c in [0, pi] are the angles between the corner's two
 // edges in 3D and in uv, w_c = |vector area of c's face| / (valence of the face).
 double conformal_distortion(const Mesh& mesh, const Eigen::MatrixX2d& uv);
+
+// Per vertex: the root-mean-square of alpha_c - beta_c over the vertex's corners, weighted
+// as above (0 for vertices in no face) — where the distortion sits.
+Eigen::VectorXd vertex_conformal_distortion(const Mesh& mesh, const Eigen::MatrixX2d& uv);
 
 // Number of fan triangles (x_i, x_j, x_f) of the refinement whose image in uv — the virtual
 // vertex mapped with the same affine weights, uv_f = sum_i w_i uv_i — has non-positive signed

@@ -1,12 +1,14 @@
 // apps/poisson.cpp — Dirichlet Poisson solves and the Franke convergence study (section 5.8).
 #include "apps/poisson.h"
 
-#include "dec/generators.h"
-#include "operators/cholesky.h"
+#include <fmt/format.h>
 
 #include <cmath>
-#include <fmt/format.h>
 #include <stdexcept>
+
+#include "apps/plot.h"
+#include "dec/generators.h"
+#include "operators/cholesky.h"
 
 namespace polydec {
 
@@ -55,7 +57,8 @@ Eigen::VectorXd solve_dirichlet_poisson(const OperatorSet& ops, const Eigen::Vec
   std::vector<int> index(nv, -1);  // interior index, or -1 for fixed vertices
   std::vector<unsigned char> is_fixed(nv, 0);
   for (int v : fixed) {
-    if (v < 0 || v >= nv) throw std::out_of_range(fmt::format("Dirichlet Poisson: fixed vertex {} out of range", v));
+    if (v < 0 || v >= nv)
+      throw std::out_of_range(fmt::format("Dirichlet Poisson: fixed vertex {} out of range", v));
     is_fixed[v] = 1;
   }
   int n = 0;
@@ -65,7 +68,8 @@ Eigen::VectorXd solve_dirichlet_poisson(const OperatorSet& ops, const Eigen::Vec
   for (int v = 0; v < nv; ++v)
     if (is_fixed[v]) f[v] = values[v];
   if (n == 0) return f;
-  const Eigen::VectorXd Mb = lumped_mass ? Eigen::VectorXd(ops.M_lumped.cwiseProduct(b)) : Eigen::VectorXd(ops.M * b);
+  const Eigen::VectorXd Mb =
+      lumped_mass ? Eigen::VectorXd(ops.M_lumped.cwiseProduct(b)) : Eigen::VectorXd(ops.M * b);
   // -S_II f_I = -(M b)_I + S_IB f_B
   Eigen::VectorXd rhs(n);
   for (int v = 0; v < nv; ++v)
@@ -82,7 +86,8 @@ Eigen::VectorXd solve_dirichlet_poisson(const OperatorSet& ops, const Eigen::Vec
     }
   SparseMatrix A(n, n);
   A.setFromTriplets(t.begin(), t.end());
-  const Eigen::VectorXd fI = SparseCholesky(A, "-S restricted to the free vertices (Dirichlet Poisson)").solve(rhs);
+  const Eigen::VectorXd fI =
+      SparseCholesky(A, "-S restricted to the free vertices (Dirichlet Poisson)").solve(rhs);
   for (int v = 0; v < nv; ++v)
     if (index[v] >= 0) f[v] = fI[index[v]];
   return f;
@@ -115,25 +120,9 @@ PoissonError franke_poisson(const Mesh& mesh, bool lumped_mass) {
   return franke_poisson(build_operators(mesh, parse_laplacian("ours"), false), lumped_mass);
 }
 
-double log_log_slope(const std::vector<double>& x, const std::vector<double>& y) {
-  if (x.size() != y.size() || x.size() < 2) throw std::invalid_argument("log_log_slope: need two or more points");
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  const double n = double(x.size());
-  for (size_t i = 0; i < x.size(); ++i) {
-    if (!(x[i] > 0) || !(y[i] > 0)) throw std::invalid_argument("log_log_slope: values must be positive");
-    const double lx = std::log(x[i]), ly = std::log(y[i]);
-    sx += lx;
-    sy += ly;
-    sxx += lx * lx;
-    sxy += lx * ly;
-  }
-  const double den = n * sxx - sx * sx;
-  if (!(std::abs(den) > 0)) throw std::invalid_argument("log_log_slope: all x are equal");
-  return (n * sxy - sx * sy) / den;
-}
-
 std::vector<ConvergenceSeries> franke_convergence(const ConvergenceOptions& options) {
-  if (options.resolutions.size() < 2) throw std::invalid_argument("convergence study: need two or more resolutions");
+  if (options.resolutions.size() < 2)
+    throw std::invalid_argument("convergence study: need two or more resolutions");
   std::vector<ConvergenceSeries> out;
   for (const std::string family : {"triangles", "quads", "hexagons"}) {
     ConvergenceSeries s;
@@ -141,7 +130,9 @@ std::vector<ConvergenceSeries> franke_convergence(const ConvergenceOptions& opti
     std::vector<double> h, err;
     for (int n : options.resolutions) {
       if (n < 1) throw std::invalid_argument("convergence study: resolutions must be >= 1");
-      const Mesh mesh = family == "triangles" ? triangle_grid(n, n) : family == "quads" ? quad_grid(n, n) : hex_grid(n, n);
+      const Mesh mesh = family == "triangles" ? triangle_grid(n, n)
+                        : family == "quads"   ? quad_grid(n, n)
+                                              : hex_grid(n, n);
       PoissonError e = franke_poisson(build_operators(mesh, options.laplacian, false), options.lumped_mass);
       e.solution.resize(0);
       e.exact.resize(0);
@@ -150,7 +141,7 @@ std::vector<ConvergenceSeries> franke_convergence(const ConvergenceOptions& opti
       s.resolutions.push_back(n);
       s.errors.push_back(std::move(e));
     }
-    s.slope = log_log_slope(h, err);
+    s.slope = loglog_slope(h, err);
     out.push_back(std::move(s));
   }
   return out;

@@ -7,10 +7,10 @@
 // with f* the exact solution sampled at the vertices; the mesh size h is the mean edge length.
 #pragma once
 
-#include "operators/laplacians.h"
-
 #include <string>
 #include <vector>
+
+#include "operators/laplacians.h"
 
 namespace polydec {
 
@@ -42,7 +42,7 @@ struct ConvergenceSeries {
   std::string family;  // "triangles", "quads", "hexagons"
   std::vector<int> resolutions;
   std::vector<PoissonError> errors;  // solution vectors dropped (sizes only)
-  double slope = 0;                  // least-squares slope of log(error) against log(h)
+  double slope = 0;                  // least-squares slope of log(error) against log(h) (apps/plot.h)
 };
 
 struct ConvergenceOptions {
@@ -54,8 +54,5 @@ struct ConvergenceOptions {
 // The study of Figure 9 on triangle_grid, quad_grid and hex_grid (dec/generators.h), all on
 // [0,1]^2 with the square as boundary.
 std::vector<ConvergenceSeries> franke_convergence(const ConvergenceOptions& options = {});
-
-// Least-squares slope of log(y) against log(x) (at least two points, all positive).
-double log_log_slope(const std::vector<double>& x, const std::vector<double>& y);
 
 }  // namespace polydec

@@ -18,8 +18,9 @@ CurvatureFlow::CurvatureFlow(const Mesh& mesh, const SmoothingOptions& options, 
     : mesh_(mesh), options_(options), choice_(choice), assembler_(std::make_shared<MassAssembler>()) {
   const OperatorSet ops = build_operators(mesh, choice, false);
   if (ops.domain.n_vertices() != mesh.n_vertices())
-    throw std::invalid_argument("curvature flow: Laplacian '" + ops.name +
-                                "' lives on a refined mesh; the flow needs operators on the input's vertices");
+    throw std::invalid_argument(
+        "curvature flow: Laplacian '" + ops.name +
+        "' lives on a refined mesh; the flow needs operators on the input's vertices");
   if (!options.lumped_mass && ops.M.size() == 0)
     throw std::invalid_argument("curvature flow: Laplacian '" + ops.name + "' defines no unlumped mass");
   if (!(options.time_step >= 0) || !std::isfinite(options.time_step))
@@ -49,7 +50,8 @@ void CurvatureFlow::assemble_mass() {
     parts.stiffness = false;
     parts.mass = !options_.lumped_mass;
     parts.lumped_mass = true;
-    Laplacian L = assemble_laplacian(mesh_, refine(mesh_, assembler_->refinement_options), parts, &assembler_->pattern);
+    Laplacian L =
+        assemble_laplacian(mesh_, refine(mesh_, assembler_->refinement_options), parts, &assembler_->pattern);
     M_lumped_ = std::move(L.M_lumped);
     M = std::move(L.M);
   } else {

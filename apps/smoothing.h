@@ -6,10 +6,10 @@
 // at the origin and scaled uniformly back to the input's surface area.
 #pragma once
 
+#include <memory>
+
 #include "operators/cholesky.h"
 #include "operators/laplacians.h"
-
-#include <memory>
 
 namespace polydec {
 

@@ -1,13 +1,14 @@
 // apps/spectrum.cpp — shift-invert Lanczos (Spectra) on -S x = lambda M x.
 #include "apps/spectrum.h"
 
-#include "operators/cholesky.h"
-
 #include <Spectra/MatOp/SparseSymMatProd.h>
 #include <Spectra/SymGEigsShiftSolver.h>
 #include <fmt/format.h>
+
 #include <memory>
 #include <stdexcept>
+
+#include "operators/cholesky.h"
 
 namespace polydec {
 
@@ -29,7 +30,8 @@ class CholeskyShiftInvert {
       chol_ = std::make_unique<SparseCholesky>(K, "-S - sigma M (spectrum shift-invert)");
   }
   void perform_op(const double* x_in, double* y_out) const {
-    Eigen::Map<Eigen::VectorXd>(y_out, rows()) = chol_->solve(Eigen::Map<const Eigen::VectorXd>(x_in, rows()).eval());
+    Eigen::Map<Eigen::VectorXd>(y_out, rows()) =
+        chol_->solve(Eigen::Map<const Eigen::VectorXd>(x_in, rows()).eval());
   }
 
  private:
@@ -84,14 +86,16 @@ Spectrum laplacian_spectrum(const OperatorSet& ops, const SpectrumOptions& optio
   CholeskyShiftInvert op(A, B);
   Spectra::SparseSymMatProd<double> Bop(B);
   const int ncv = std::min(n, std::max(2 * options.k + 1, options.k + 20));
-  Spectra::SymGEigsShiftSolver<CholeskyShiftInvert, Spectra::SparseSymMatProd<double>, Spectra::GEigsMode::ShiftInvert>
+  Spectra::SymGEigsShiftSolver<CholeskyShiftInvert, Spectra::SparseSymMatProd<double>,
+                               Spectra::GEigsMode::ShiftInvert>
       solver(op, Bop, options.k, ncv, result.shift);
   solver.init();
-  result.n_converged = int(solver.compute(Spectra::SortRule::LargestMagn, options.max_iterations, options.tolerance,
-                                          Spectra::SortRule::SmallestAlge));
+  result.n_converged = int(solver.compute(Spectra::SortRule::LargestMagn, options.max_iterations,
+                                          options.tolerance, Spectra::SortRule::SmallestAlge));
   if (solver.info() != Spectra::CompInfo::Successful)
-    throw SolverError(fmt::format("spectrum: Spectra did not converge ({} of {} eigenpairs after {} restarts)",
-                                  result.n_converged, options.k, options.max_iterations));
+    throw SolverError(
+        fmt::format("spectrum: Spectra did not converge ({} of {} eigenpairs after {} restarts)",
+                    result.n_converged, options.k, options.max_iterations));
   result.eigenvalues = solver.eigenvalues();
   const Eigen::MatrixXd U = solver.eigenvectors();
   result.eigenvectors = Eigen::MatrixXd::Zero(nv, options.k);

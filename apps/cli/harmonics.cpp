@@ -1,17 +1,19 @@
 // apps/cli/harmonics.cpp — `polydec harmonics MESH`: how far the spherical harmonics are from
 // being eigenvectors of the Laplacian (paper section 5.4, eq. 30, Table 3).
-#include "apps/cli/command.h"
 #include "apps/harmonics.h"
-#include "dec/generators.h"
-#include "dec/io.h"
 
 #include <fmt/format.h>
+
+#include "apps/cli/command.h"
+#include "apps/render.h"
+#include "dec/generators.h"
+#include "dec/io.h"
 
 namespace polydec::cli {
 namespace {
 
 struct Options {
-  std::string mesh, mass = "lumped", laplacian = "ours";
+  std::string mesh, png, mass = "lumped", laplacian = "ours";
   bool json = false, keep_positions = false;
 };
 
@@ -33,15 +35,30 @@ void run(const Options& o) {
                       {"band_error", e.band_error},
                       {"error_l1_8", e.sum(8)},
                       {"error_l1_9", e.sum(9)}};
+  if (!o.png.empty()) {
+    // Error density: each vertex's share of eq. (30) summed over l = 1..9, per unit area.
+    Eigen::VectorXd density = Eigen::VectorXd::Zero(e.vertex_error.size());
+    for (int v = 0; v < density.size(); ++v)
+      if (ops.M_lumped[v] > 0) density[v] = e.vertex_error[v] / ops.M_lumped[v];
+    RenderOptions ropt;
+    ropt.width = 640;
+    ropt.height = 480;
+    ropt.scalar_label = "err/area";
+    ropt.title = fmt::format("eq. (30) error per area, l = 1..9 ({}, {} mass)", ops.name, o.mass);
+    ropt.colormap = Colormap::turbo;
+    render_png(o.png, mesh, density.head(ops.n_input_vertices), ropt);
+    j["png"] = o.png;
+  }
   if (o.json) {
     print_json(j);
     return;
   }
-  fmt::print("{}: {} vertices, {} faces; Laplacian {}, {} mass{}\n", o.mesh, mesh.n_vertices(), mesh.n_faces(), ops.name,
-             o.mass, o.keep_positions ? "" : ", projected to the unit sphere");
+  fmt::print("{}: {} vertices, {} faces; Laplacian {}, {} mass{}\n", o.mesh, mesh.n_vertices(),
+             mesh.n_faces(), ops.name, o.mass, o.keep_positions ? "" : ", projected to the unit sphere");
   for (int l = 1; l <= 9; ++l) fmt::print("  band l = {}: {:.6g}\n", l, e.band_error[l - 1]);
   fmt::print("error, l = 1..8 (authors' program): {:.6g}\n", e.sum(8));
   fmt::print("error, l = 1..9 (paper's caption):  {:.6g}\n", e.sum(9));
+  if (!o.png.empty()) fmt::print("wrote {}\n", o.png);
 }
 
 const RegisterCommand reg(
@@ -50,9 +67,12 @@ const RegisterCommand reg(
       auto o = std::make_shared<Options>();
       app.add_option("mesh", o->mesh, "input mesh of a sphere (.obj, .off, .ply)")->required();
       app.add_option("--mass", o->mass, "lumped (default) or unlumped mass, in L = M^-1 S and in the norm");
-      app.add_option("--laplacian", o->laplacian, "Laplacian: " + fmt::format("{}", fmt::join(laplacian_names(), ", ")));
+      app.add_option("--laplacian", o->laplacian,
+                     "Laplacian: " + fmt::format("{}", fmt::join(laplacian_names(), ", ")));
       app.add_flag("--keep-positions", o->keep_positions,
                    "do not project the vertices to the unit sphere first (they should lie on it)");
+      app.add_option("--png", o->png,
+                     "picture of where the error sits (per-vertex share per unit area) (.png)");
       app.add_flag("--json", o->json, "print one JSON object instead of text");
       app.callback([o] { run(*o); });
     });

@@ -1,16 +1,17 @@
 // apps/cli/parametrize.cpp — `polydec parametrize MESH --out FILE.obj`: spectral free-boundary
 // conformal parametrization (paper section 5.3), written as an OBJ with vt lines.
+#include <fmt/format.h>
+
 #include "apps/cli/command.h"
 #include "apps/parametrization.h"
+#include "apps/render.h"
 #include "dec/io.h"
-
-#include <fmt/format.h>
 
 namespace polydec::cli {
 namespace {
 
 struct Options {
-  std::string mesh, out, laplacian = "ours";
+  std::string mesh, out, png, laplacian = "ours";
   bool json = false;
 };
 
@@ -33,6 +34,19 @@ void run(const Options& o) {
     write_obj_with_uv(o.out, mesh, uv);
     j["out"] = o.out;
   }
+  if (!o.png.empty()) {
+    // The mesh laid out in the plane, coloured by the per-vertex angle distortion.
+    Eigen::MatrixX3d flat = Eigen::MatrixX3d::Zero(mesh.n_vertices(), 3);
+    flat.leftCols(2) = uv;
+    RenderOptions ropt;
+    ropt.width = 640;
+    ropt.height = 480;
+    ropt.scalar_label = "rad";
+    ropt.title = fmt::format("conformal parametrization, angle distortion ({})", ops.name);
+    ropt.colormap = Colormap::turbo;
+    render_png(o.png, mesh.with_positions(flat), vertex_conformal_distortion(mesh, uv), ropt);
+    j["png"] = o.png;
+  }
   if (o.json) {
     print_json(j);
     return;
@@ -42,18 +56,20 @@ void run(const Options& o) {
   fmt::print("conformal distortion (area-weighted RMS corner-angle difference): {:.6g} rad\n", distortion);
   fmt::print("flipped fan triangles in uv: {}\n", flipped);
   if (!o.out.empty()) fmt::print("wrote {} (v + vt)\n", o.out);
+  if (!o.png.empty()) fmt::print("wrote {}\n", o.png);
 }
 
-const RegisterCommand reg("parametrize", "Spectral free-boundary conformal parametrization (paper section 5.3)",
-                          [](CLI::App& app) {
-                            auto o = std::make_shared<Options>();
-                            app.add_option("mesh", o->mesh, "input mesh with boundary (.obj, .off, .ply)")->required();
-                            app.add_option("--out", o->out, "output OBJ with vt texture coordinates");
-                            app.add_option("--laplacian", o->laplacian,
-                                           "Laplacian: " + fmt::format("{}", fmt::join(laplacian_names(), ", ")));
-                            app.add_flag("--json", o->json, "print one JSON object instead of text");
-                            app.callback([o] { run(*o); });
-                          });
+const RegisterCommand reg(
+    "parametrize", "Spectral free-boundary conformal parametrization (paper section 5.3)", [](CLI::App& app) {
+      auto o = std::make_shared<Options>();
+      app.add_option("mesh", o->mesh, "input mesh with boundary (.obj, .off, .ply)")->required();
+      app.add_option("--out", o->out, "output OBJ with vt texture coordinates");
+      app.add_option("--laplacian", o->laplacian,
+                     "Laplacian: " + fmt::format("{}", fmt::join(laplacian_names(), ", ")));
+      app.add_option("--png", o->png, "picture of the uv layout coloured by angle distortion (.png)");
+      app.add_flag("--json", o->json, "print one JSON object instead of text");
+      app.callback([o] { run(*o); });
+    });
 
 }  // namespace
 }  // namespace polydec::cli

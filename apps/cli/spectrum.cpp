@@ -1,19 +1,22 @@
 // apps/cli/spectrum.cpp — `polydec spectrum MESH --k K --out DIR`: the k smallest eigenpairs of
 // -S x = lambda M x (manifold harmonics) with Spectra's shift-invert solver.
-#include "apps/cli/command.h"
 #include "apps/spectrum.h"
-#include "dec/io.h"
+
+#include <fmt/format.h>
 
 #include <filesystem>
-#include <fmt/format.h>
 #include <fstream>
+
+#include "apps/cli/command.h"
+#include "apps/render.h"
+#include "dec/io.h"
 
 namespace polydec::cli {
 namespace {
 
 struct Options {
-  std::string mesh, out, mass = "lumped", laplacian = "ours";
-  int k = 10;
+  std::string mesh, out, png, mass = "lumped", laplacian = "ours";
+  int k = 10, png_index = 1;
   bool json = false;
 };
 
@@ -37,9 +40,10 @@ void run(const Options& o) {
   const Spectrum sp = laplacian_spectrum(ops, sopt);
   const int n_in = ops.n_input_vertices;
   std::vector<double> ev(sp.eigenvalues.data(), sp.eigenvalues.data() + sp.eigenvalues.size());
-  nlohmann::json j = {{"mesh", o.mesh},         {"laplacian", ops.name}, {"mass", o.mass},
-                      {"vertices", mesh.n_vertices()}, {"faces", mesh.n_faces()}, {"k", o.k},
-                      {"shift", sp.shift},      {"eigenvalues", ev}};
+  nlohmann::json j = {{"mesh", o.mesh},          {"laplacian", ops.name},
+                      {"mass", o.mass},          {"vertices", mesh.n_vertices()},
+                      {"faces", mesh.n_faces()}, {"k", o.k},
+                      {"shift", sp.shift},       {"eigenvalues", ev}};
   if (!o.out.empty()) {
     std::filesystem::create_directories(o.out);
     {
@@ -55,6 +59,20 @@ void run(const Options& o) {
     j["out"] = o.out;
     j["files"] = {"eigenvalues.txt", "eigenvectors.mtx", "eigenvectors.ply"};
   }
+  if (!o.png.empty()) {
+    if (o.png_index < 0 || o.png_index >= o.k) throw UsageError("--png-index must lie in [0, k)");
+    RenderOptions ropt;
+    ropt.width = 640;
+    ropt.height = 480;
+    ropt.isolines = 10;
+    ropt.colormap = Colormap::turbo;
+    ropt.scalar_label = fmt::format("u{}", o.png_index);
+    ropt.title = fmt::format("eigenfunction {}, lambda = {:.4g} ({}, {} mass)", o.png_index, ev[o.png_index], ops.name,
+                             o.mass);
+    ropt.smooth_shading = true;
+    render_png(o.png, mesh, sp.eigenvectors.col(o.png_index).head(n_in), ropt);
+    j["png"] = o.png;
+  }
   if (o.json) {
     print_json(j);
     return;
@@ -63,23 +81,28 @@ void run(const Options& o) {
              mesh.n_faces(), ops.name, o.mass, sp.shift);
   fmt::print("{} smallest eigenvalues of -S x = lambda M x:\n", o.k);
   for (int i = 0; i < o.k; ++i) fmt::print("  {:4d}  {:.10g}\n", i, ev[i]);
+  if (!o.png.empty()) fmt::print("wrote {}\n", o.png);
   if (!o.out.empty())
-    fmt::print("wrote eigenvalues.txt, eigenvectors.mtx (|V| x k) and eigenvectors.ply (u000..) to {}\n", o.out);
+    fmt::print("wrote eigenvalues.txt, eigenvectors.mtx (|V| x k) and eigenvectors.ply (u000..) to {}\n",
+               o.out);
 }
 
-const RegisterCommand reg("spectrum", "Smallest eigenpairs of the Laplacian, -S x = lambda M x (Spectra shift-invert)",
-                          [](CLI::App& app) {
-                            auto o = std::make_shared<Options>();
-                            app.add_option("mesh", o->mesh, "input mesh (.obj, .off, .ply)")->required();
-                            app.add_option("--k", o->k, "number of eigenpairs (default 10)");
-                            app.add_option("--out", o->out,
-                                           "output directory: eigenvalues.txt, eigenvectors.mtx, eigenvectors.ply");
-                            app.add_option("--mass", o->mass, "lumped (default) or unlumped mass");
-                            app.add_option("--laplacian", o->laplacian,
-                                           "Laplacian: " + fmt::format("{}", fmt::join(laplacian_names(), ", ")));
-                            app.add_flag("--json", o->json, "print one JSON object instead of text");
-                            app.callback([o] { run(*o); });
-                          });
+const RegisterCommand reg(
+    "spectrum", "Smallest eigenpairs of the Laplacian, -S x = lambda M x (Spectra shift-invert)",
+    [](CLI::App& app) {
+      auto o = std::make_shared<Options>();
+      app.add_option("mesh", o->mesh, "input mesh (.obj, .off, .ply)")->required();
+      app.add_option("--k", o->k, "number of eigenpairs (default 10)");
+      app.add_option("--out", o->out,
+                     "output directory: eigenvalues.txt, eigenvectors.mtx, eigenvectors.ply");
+      app.add_option("--mass", o->mass, "lumped (default) or unlumped mass");
+      app.add_option("--laplacian", o->laplacian,
+                     "Laplacian: " + fmt::format("{}", fmt::join(laplacian_names(), ", ")));
+      app.add_option("--png", o->png, "picture of one eigenfunction with isolines (.png)");
+      app.add_option("--png-index", o->png_index, "which eigenfunction to draw (default 1)");
+      app.add_flag("--json", o->json, "print one JSON object instead of text");
+      app.callback([o] { run(*o); });
+    });
 
 }  // namespace
 }  // namespace polydec::cli

@@ -1,11 +1,12 @@
 // tests/apps/test_curvature.cpp — mean curvature (eq. 29): the paper's Table 2 on the unit-sphere
 // meshes, scale covariance, orientation independence, vertex normals.
+#include <cmath>
+
 #include "apps/curvature.h"
 #include "dec/generators.h"
 #include "dec/io.h"
+#include "tests/apps/paper_spheres.h"
 #include "tests/support.h"
-
-#include <cmath>
 
 using namespace polydec;
 
@@ -83,21 +84,6 @@ TEST_CASE("curvature: a flat plane has zero mean curvature at interior vertices"
 
 namespace {
 
-// HEX SPHERE (dual of unit-sphere.off, projected) and FINE SPHERE (one Catmull-Clark step of it,
-// projected) with their operators, built once per test binary.
-struct SphereOps {
-  OperatorSet hex, fine;
-};
-const SphereOps& sphere_ops(const std::string& path) {
-  static const SphereOps ops = [&] {
-    const Mesh hex = project_to_unit_sphere(dual(read_mesh(path)));
-    const Mesh fine = project_to_unit_sphere(catmull_clark(hex));
-    return SphereOps{build_operators(hex, parse_laplacian("ours"), false),
-                     build_operators(fine, parse_laplacian("ours"), false)};
-  }();
-  return ops;
-}
-
 double rmse_with(const OperatorSet& ops, bool lumped) {
   CurvatureOptions o;
   o.lumped_mass = lumped;
@@ -108,11 +94,30 @@ double rmse_with(const OperatorSet& ops, bool lumped) {
 
 TEST_CASE("curvature: Table 2 RMSE on HEX and FINE SPHERE, lumped and unlumped", "[apps]") {
   POLYDEC_SHARED_MESH(path, "unit-sphere.off");
-  const SphereOps& s = sphere_ops(path);
-  CHECK(s.hex.domain.n_faces() == 16070);
-  CHECK(s.fine.domain.n_faces() == 96408);
-  CHECK(rmse_with(s.hex, true) == Approx(0.001598).epsilon(0.01));
-  CHECK(rmse_with(s.fine, true) == Approx(0.13336).epsilon(0.01));
-  CHECK(rmse_with(s.hex, false) == Approx(0.003915).epsilon(0.01));
-  CHECK(rmse_with(s.fine, false) == Approx(0.36685).epsilon(0.01));
+  const OperatorSet& hex = test::hex_sphere(path).ops;
+  const OperatorSet& fine = test::fine_sphere(path).ops;
+  CHECK(hex.domain.n_faces() == 16070);
+  CHECK(fine.domain.n_faces() == 96408);
+  CHECK(rmse_with(hex, true) == Approx(0.001598).epsilon(0.01));
+  CHECK(rmse_with(fine, true) == Approx(0.13336).epsilon(0.01));
+  CHECK(rmse_with(hex, false) == Approx(0.003915).epsilon(0.01));
+  CHECK(rmse_with(fine, false) == Approx(0.36685).epsilon(0.01));
+}
+
+TEST_CASE("curvature: a vertex in no face changes nothing and gets H = 0", "[apps]") {
+  POLYDEC_SHARED_MESH(path, "quad-sphere.off");
+  const Mesh sphere = unit_sphere_mesh(path);
+  PolygonSoup soup;
+  soup.positions.resize(sphere.n_vertices() + 1, 3);
+  soup.positions.topRows(sphere.n_vertices()) = sphere.positions();
+  soup.positions.row(sphere.n_vertices()) = Eigen::RowVector3d(3, 0, 0);
+  for (int f = 0; f < sphere.n_faces(); ++f) soup.add_face(sphere.face(f));
+  const Mesh extra(std::move(soup));
+  for (bool lumped : {true, false}) {
+    CurvatureOptions o;
+    o.lumped_mass = lumped;
+    const Eigen::VectorXd H = mean_curvature(sphere, o), He = mean_curvature(extra, o);
+    CHECK(He[sphere.n_vertices()] == 0.0);
+    CHECK((He.head(sphere.n_vertices()) - H).cwiseAbs().maxCoeff() <= 1e-12);
+  }
 }

@@ -1,12 +1,13 @@
 // tests/apps/test_harmonics.cpp — spherical harmonics (closed forms, orthonormality) and the
 // paper's Table 3 error of eq. (30) on the unit-sphere meshes.
+#include <cmath>
+#include <numbers>
+
 #include "apps/harmonics.h"
 #include "dec/generators.h"
 #include "dec/io.h"
+#include "tests/apps/paper_spheres.h"
 #include "tests/support.h"
-
-#include <cmath>
-#include <numbers>
 
 using namespace polydec;
 
@@ -75,14 +76,14 @@ TEST_CASE("harmonics: Table 3 error on REGULAR and NOISY SPHERE", "[apps]") {
   // The caption's l = 1..9 adds a ninth, positive band.
   CHECK(regular.sum(9) > regular.sum(8));
   CHECK(regular.band_error.size() == 9);
+  // The per-vertex shares add up to the total.
+  CHECK(regular.vertex_error.sum() == Approx(regular.sum(9)).epsilon(1e-10));
 }
 
 TEST_CASE("harmonics: Table 3 error on HEX and FINE SPHERE", "[apps]") {
   POLYDEC_SHARED_MESH(path, "unit-sphere.off");
-  const Mesh hex = project_to_unit_sphere(dual(read_mesh(path)));
-  const Mesh fine = project_to_unit_sphere(catmull_clark(hex));
   HarmonicsOptions o;
   o.max_band = 8;
-  CHECK(spherical_harmonics_error(hex, o).sum(8) == Approx(7.411e-7).epsilon(0.01));
-  CHECK(spherical_harmonics_error(fine, o).sum(8) == Approx(3.168e-4).epsilon(0.01));
+  CHECK(spherical_harmonics_error(test::hex_sphere(path).ops, o).sum(8) == Approx(7.411e-7).epsilon(0.01));
+  CHECK(spherical_harmonics_error(test::fine_sphere(path).ops, o).sum(8) == Approx(3.168e-4).epsilon(0.01));
 }

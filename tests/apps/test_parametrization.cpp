@@ -1,12 +1,12 @@
 // tests/apps/test_parametrization.cpp — spectral conformal parametrization: a planar disk maps
 // conformally onto itself, suzanne-half has low distortion and no flipped fan triangles.
+#include <filesystem>
+#include <fstream>
+
 #include "apps/parametrization.h"
 #include "dec/generators.h"
 #include "dec/io.h"
 #include "tests/support.h"
-
-#include <filesystem>
-#include <fstream>
 
 using namespace polydec;
 
@@ -17,6 +17,7 @@ TEST_CASE("parametrization: a planar mesh is mapped by a similarity (zero distor
     const ConformalParametrization p = spectral_conformal_parametrization(plane);
     CHECK(std::abs(p.eigenvalue) <= 1e-9);
     CHECK(conformal_distortion(plane, p.uv) <= 1e-7);
+    CHECK(vertex_conformal_distortion(plane, p.uv).maxCoeff() <= 1e-7);
     CHECK(count_flipped_fan_triangles(plane, refine(plane), p.uv) == 0);
     CHECK(p.uv.minCoeff() >= -1e-12);
     CHECK(p.uv.maxCoeff() == Approx(1.0));
@@ -35,7 +36,8 @@ TEST_CASE("parametrization: suzanne-half (Figure 6, Table 1)", "[apps]") {
   CHECK(d <= 0.125);
   CHECK(count_flipped_fan_triangles(mesh, refine(mesh), p.uv) == 0);
   // Distortion is invariant under scaling of the input (the parametrization is normalized).
-  const ConformalParametrization q = spectral_conformal_parametrization(mesh.with_positions(1e3 * mesh.positions()));
+  const ConformalParametrization q =
+      spectral_conformal_parametrization(mesh.with_positions(1e3 * mesh.positions()));
   CHECK(conformal_distortion(mesh, q.uv) == Approx(d).epsilon(1e-6));
 }
 

@@ -1,7 +1,7 @@
 // tests/apps/test_smoothing.cpp — conformalized mean curvature flow (eq. 28): the noisy sphere
 // becomes round, the area and the centroid are kept, the flow commutes with scaling.
-#include "apps/smoothing.h"
 #include "apps/curvature.h"
+#include "apps/smoothing.h"
 #include "dec/generators.h"
 #include "dec/io.h"
 #include "tests/support.h"
