@@ -68,10 +68,22 @@ Eigen::Vector3d view_facing_vertex(const Mesh& mesh, int v, const Eigen::Vector3
   if (v < 0 || v >= mesh.n_vertices()) throw std::out_of_range(fmt::format("view_facing_vertex: no vertex {}", v));
   const Eigen::Vector3d lo = mesh.positions().colwise().minCoeff(), hi = mesh.positions().colwise().maxCoeff();
   if ((hi - lo).minCoeff() <= 1e-3 * (hi - lo).maxCoeff() || up.norm() == 0) return Eigen::Vector3d::Zero();
+  const Eigen::Vector3d c = 0.5 * (lo + hi);
+  double volume = 0;  // six times the signed volume about c, by fans around each face's first corner
+  for (int f = 0; f < mesh.n_faces(); ++f) {
+    const auto fv = mesh.face(f);
+    for (size_t i = 1; i + 1 < fv.size(); ++i)
+      volume += (mesh.position(fv[0]) - c).dot((mesh.position(fv[i]) - c).cross(mesh.position(fv[i + 1]) - c));
+  }
+  Eigen::Vector3d n = Eigen::Vector3d::Zero();
+  for (int f : mesh.vertex_faces(v)) {
+    const auto fv = mesh.face(f);
+    for (size_t i = 0; i < fv.size(); ++i) n += mesh.position(fv[i]).cross(mesh.position(fv[(i + 1) % fv.size()]));
+  }
   const Eigen::Vector3d u = up.normalized();
-  Eigen::Vector3d d = 0.5 * (lo + hi) - mesh.position(v);
+  Eigen::Vector3d d = volume < 0 ? n : Eigen::Vector3d(-n);
   d -= d.dot(u) * u;
-  return d.norm() > 1e-6 * (hi - lo).norm() ? Eigen::Vector3d(d.normalized()) : Eigen::Vector3d::Zero();
+  return d.norm() > 1e-6 * n.norm() ? Eigen::Vector3d(d.normalized()) : Eigen::Vector3d::Zero();
 }
 
 std::vector<double> nice_ticks(double lo, double hi, int count) {

@@ -93,9 +93,10 @@ Image render(const Mesh& mesh, const Eigen::VectorXd& vertex_scalar, const Rende
 void render_png(const std::string& path, const Mesh& mesh, const Eigen::VectorXd& vertex_scalar,
                 const RenderOptions& options);
 
-// A view direction orthogonal to `up` from which vertex v is seen from its own side: the
-// direction from v to the bounding-box centre with its `up` component removed. Zero (the
-// default view) for a flat mesh or when v lies on the vertical line through the centre.
+// A view direction orthogonal to `up` that looks at vertex v head-on: minus its area-weighted
+// vertex normal (oriented outwards: flipped if the mesh's signed volume about its bounding-box
+// centre is negative), with the `up` component removed. Zero (the default view) for a flat
+// mesh or when that normal is vertical.
 Eigen::Vector3d view_facing_vertex(const Mesh& mesh, int v, const Eigen::Vector3d& up = Eigen::Vector3d::UnitY());
 
 // Triangles used to draw the polygon with corners `p` (k x 3): each row of the result holds

@@ -455,14 +455,22 @@ TEST_CASE("polydec geodesics --png and polydec render write pictures", "[render]
   CHECK(WEXITSTATUS(std::system((cli + " render " + mesh + " --png " + b + " --scalar w 2> /dev/null").c_str())) == 2);
 }
 
-TEST_CASE("view_facing_vertex looks at a vertex from its own side, horizontally", "[render]") {
+TEST_CASE("view_facing_vertex looks at a vertex head-on, horizontally", "[render]") {
   const Mesh sphere = uv_sphere(12, 24);
   for (int v : {3, 40, 100}) {
     const Eigen::Vector3d d = view_facing_vertex(sphere, v);
     if (std::abs(sphere.position(v).x()) + std::abs(sphere.position(v).z()) < 1e-9) continue;
     CHECK(std::abs(d.y()) < 1e-12);              // orthogonal to up
     CHECK(d.norm() == Approx(1));
-    CHECK(d.dot(sphere.position(v)) < 0);        // from the vertex towards the centre
+    CHECK(d.dot(sphere.position(v)) < 0);        // from outside towards the centre
+    // The same for the mesh with flipped orientation (inward normals).
+    PolygonSoup soup;
+    soup.positions = sphere.positions();
+    for (int f = 0; f < sphere.n_faces(); ++f) {
+      std::vector<int> r(sphere.face(f).rbegin(), sphere.face(f).rend());
+      soup.add_face(r);
+    }
+    CHECK((view_facing_vertex(Mesh(std::move(soup)), v) - d).norm() < 1e-12);
   }
   CHECK(view_facing_vertex(quad_grid(3, 3), 0).norm() == 0);  // flat: default view
   CHECK_THROWS_AS(view_facing_vertex(sphere, sphere.n_vertices()), std::out_of_range);
