@@ -11,24 +11,32 @@ namespace polydec {
 
 namespace {
 
-// Component id per vertex by flood fill over faces; -1 for unreferenced vertices.
-std::vector<int> vertex_components(const Mesh& mesh) {
-  std::vector<int> comp(mesh.n_vertices(), -1);
+// Component id per vertex by flood fill over the non-zero off-diagonal entries of S (symmetric);
+// -1 for vertices S does not couple to any other (unreferenced vertices, and vertices that only
+// zero-area faces hold: their fan triangles are degenerate and carry no stiffness). Faces alone
+// would not do: a zero-area face joins its vertices in the mesh but not in S.
+std::vector<int> vertex_components(const SparseMatrix& S) {
+  const int n = int(S.rows());
+  std::vector<int> comp(n, -1);
+  auto coupled = [&](int v) {
+    for (SparseMatrix::InnerIterator it(S, v); it; ++it)
+      if (it.row() != v && it.value() != 0) return true;
+    return false;
+  };
   std::vector<int> stack;
   int next = 0;
-  for (int s = 0; s < mesh.n_vertices(); ++s) {
-    if (comp[s] >= 0 || mesh.vertex_faces(s).empty()) continue;
+  for (int s = 0; s < n; ++s) {
+    if (comp[s] >= 0 || !coupled(s)) continue;
     comp[s] = next;
     stack.push_back(s);
     while (!stack.empty()) {
       const int v = stack.back();
       stack.pop_back();
-      for (int f : mesh.vertex_faces(v))
-        for (int u : mesh.face(f))
-          if (comp[u] < 0) {
-            comp[u] = next;
-            stack.push_back(u);
-          }
+      for (SparseMatrix::InnerIterator it(S, v); it; ++it)
+        if (it.value() != 0 && comp[it.row()] < 0) {
+          comp[it.row()] = next;
+          stack.push_back(int(it.row()));
+        }
     }
     ++next;
   }
@@ -62,9 +70,10 @@ HeatGeodesics::HeatGeodesics(OperatorSet operators, double mean_edge_length, con
   if (!options.lumped_mass && ops_.M.size() == 0)
     throw std::invalid_argument("heat geodesics: Laplacian '" + ops_.name + "' defines no unlumped mass");
   t_ = options.time_step_factor * mean_edge_length * mean_edge_length;
-  component_ = vertex_components(mesh);
+  component_ = vertex_components(ops_.S);
 
-  // Heat operator M - t S; unreferenced vertices (empty rows) are pinned to keep it definite.
+  // Heat operator M - t S; vertices without stiffness (unreferenced, or only in zero-area faces:
+  // zero rows) are pinned to keep it definite.
   pinned_.assign(mesh.n_vertices(), 0);
   for (int v = 0; v < mesh.n_vertices(); ++v)
     if (component_[v] < 0) pinned_[v] = 1;
@@ -81,7 +90,8 @@ HeatGeodesics::HeatGeodesics(OperatorSet operators, double mean_edge_length, con
 
   // Poisson operator -S with one vertex pinned per component (S has constants per component in
   // its null space; the right-hand side D g sums to zero on each, so pinning loses nothing).
-  std::vector<unsigned char> seen(std::max(0, *std::max_element(component_.begin(), component_.end()) + 1), 0);
+  std::vector<unsigned char> seen(
+      component_.empty() ? 0 : std::max(0, *std::max_element(component_.begin(), component_.end()) + 1), 0);
   for (int v = 0; v < mesh.n_vertices(); ++v)
     if (component_[v] >= 0 && !seen[component_[v]]) {
       seen[component_[v]] = 1;
@@ -100,7 +110,7 @@ Eigen::VectorXd HeatGeodesics::distance(std::span<const int> sources) const {
     if (s < 0 || s >= n_out)
       throw std::out_of_range(fmt::format("heat geodesics: source vertex {} out of range [0, {})", s, n_out));
     if (component_[s] < 0)
-      throw std::out_of_range(fmt::format("heat geodesics: source vertex {} belongs to no face", s));
+      throw std::out_of_range(fmt::format("heat geodesics: source vertex {} carries no stiffness (unreferenced, or only in zero-area faces)", s));
     delta[s] = 1.0;
     reached_component[component_[s]] = 1;
   }

@@ -7,8 +7,9 @@
 // OperatorSet that has G and D (operators/laplacians.h); sources and results are indexed by
 // the input mesh's vertices.
 // Distances are shifted so that their minimum over each connected component that contains a
-// source is 0; vertices that no source reaches (other components, unreferenced vertices) get
-// +infinity.
+// source is 0; vertices that no source reaches get +infinity: other components, unreferenced
+// vertices, and vertices held only by zero-area faces (components are those of S's non-zero
+// pattern, so a strip of zero-area faces separates, as it does for the heat flow).
 #pragma once
 
 #include "operators/cholesky.h"

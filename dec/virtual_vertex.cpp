@@ -10,9 +10,11 @@ namespace {
 
 // Relative eigenvalue cut-off for the rank decisions below. Eigenvalues of a 3x3 matrix of
 // squared lengths below kRankTolerance times the largest are treated as zero: a polygon whose
-// out-of-plane extent is below ~1e-7 of its size counts as planar, which matches where a
-// complete orthogonal decomposition of eq. (38) makes the same decision.
-constexpr double kRankTolerance = 1e-14;
+// out-of-plane extent is below ~1e-5 of its size counts as planar. The least-norm weights of
+// eq. (16) jump between the planar and the non-planar case (the virtual point does not), so the
+// decision must not be left to round-off: mesh files store coordinates with 6 to 9 digits, which
+// makes planar polygons (e.g. a UV sphere's trapezoids) non-planar at the 1e-6 level.
+constexpr double kRankTolerance = 1e-10;
 
 // Pseudo-inverse solve of a symmetric positive semi-definite 3x3 system.
 Eigen::Vector3d psd_solve(const Eigen::Matrix3d& A, const Eigen::Vector3d& b) {
@@ -61,9 +63,15 @@ Eigen::VectorXd squared_area_weights(const PolygonPositions& X) {
   const Eigen::Vector3d y = psd_solve(A, b);
 
   // Least-norm w with sum w = 1 and Y^T w = y. Because Y is centred, the row of ones is
-  // orthogonal to the columns of Y, so w = 1/n + Y (Y^T Y)^+ y.
-  const Eigen::Matrix3d C = Y.transpose() * Y;
-  return Eigen::VectorXd::Constant(n, 1.0 / n) + Y * psd_solve(C, y);
+  // orthogonal to the columns of Y, so w = 1/n + pinv(Y^T) y. The pseudo-inverse comes from the
+  // SVD of Y itself (not of Y^T Y, which would square the condition number of nearly planar
+  // polygons); singular values below sqrt(kRankTolerance) of the largest count as zero.
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(Eigen::MatrixXd(Y), Eigen::ComputeThinU | Eigen::ComputeThinV);
+  const Eigen::Vector3d sigma = svd.singularValues();
+  const double cut = std::sqrt(kRankTolerance) * sigma[0];
+  Eigen::Vector3d z = svd.matrixV().transpose() * y;
+  for (int i = 0; i < 3; ++i) z[i] = sigma[i] > cut ? z[i] / sigma[i] : 0.0;
+  return Eigen::VectorXd::Constant(n, 1.0 / n) + svd.matrixU() * z;
 }
 
 Eigen::VectorXd virtual_vertex_weights(const PolygonPositions& X, VirtualVertexRule rule) {

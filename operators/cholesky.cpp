@@ -14,8 +14,11 @@ namespace {
 void check(const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>& s, const std::string& name) {
   if (s.info() != Eigen::Success)
     throw SolverError("Cholesky factorization of " + name + " failed (matrix not positive definite?)");
+  // A singular positive semi-definite matrix leaves a rounding-level last pivot of either sign:
+  // pivots at most kSingularPivot times the largest count as zero.
+  constexpr double kSingularPivot = 1e-12;
   const Eigen::VectorXd d = s.vectorD();
-  if (d.size() > 0 && (!(d.minCoeff() > 0) || !d.allFinite()))
+  if (d.size() > 0 && (!d.allFinite() || !(d.minCoeff() > kSingularPivot * d.cwiseAbs().maxCoeff())))
     throw SolverError("Cholesky factorization of " + name + " failed: matrix is singular or not positive definite");
 }
 
