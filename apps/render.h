@@ -24,12 +24,12 @@
 // thinnest bounding-box axis.
 #pragma once
 
+#include <limits>
+#include <string>
+
 #include "apps/colormap.h"
 #include "apps/image.h"
 #include "dec/mesh.h"
-
-#include <limits>
-#include <string>
 
 namespace polydec {
 
@@ -39,9 +39,9 @@ struct RenderOptions {
   // Camera.
   Eigen::Vector3d view_direction = Eigen::Vector3d::Zero();  // zero: default (see above)
   Eigen::Vector3d up = Eigen::Vector3d::UnitY();
-  bool perspective = false;    // orthographic by default
-  double field_of_view = 30;   // degrees, perspective only
-  double margin = 0.04;        // free border around the mesh, fraction of the drawing area
+  bool perspective = false;   // orthographic by default
+  double field_of_view = 30;  // degrees, perspective only
+  double margin = 0.04;       // free border around the mesh, fraction of the drawing area
 
   // Surface colour: the scalar through `colormap` over [scalar_min, scalar_max] (NaN: the
   // range of the finite values), or `surface_color` without a scalar. Triangles touching a
@@ -97,7 +97,8 @@ void render_png(const std::string& path, const Mesh& mesh, const Eigen::VectorXd
 // vertex normal (oriented outwards: flipped if the mesh's signed volume about its bounding-box
 // centre is negative), with the `up` component removed. Zero (the default view) for a flat
 // mesh or when that normal is vertical.
-Eigen::Vector3d view_facing_vertex(const Mesh& mesh, int v, const Eigen::Vector3d& up = Eigen::Vector3d::UnitY());
+Eigen::Vector3d view_facing_vertex(const Mesh& mesh, int v,
+                                   const Eigen::Vector3d& up = Eigen::Vector3d::UnitY());
 
 // Triangles used to draw the polygon with corners `p` (k x 3): each row of the result holds
 // three indices into the corners, index k standing for the corners' centroid (see above).
