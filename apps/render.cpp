@@ -221,6 +221,8 @@ std::string format_number(double v) { return fmt::format("{:.4g}", v); }
 // the rest (the drawing area).
 struct Layout {
   int ts = 1, pad = 4;  // text scale, padding (pixels)
+  int title_ts = 1;     // title text scale: smaller when the title would not fit
+  std::string title;    // the title, shortened with ".." if it does not fit even at scale 1
   int title_h = 0;      // height of the title band
   bool bar = false;
   int bar_w = 0, band = 0;  // colour bar width, width of its band
@@ -233,6 +235,11 @@ Layout make_layout(const RenderOptions& o, bool has_scalar, double lo, double hi
   const int W = o.width, H = o.height;
   L.ts = std::max(1, int(std::lround(H / 300.0)));
   L.pad = 4 * L.ts;
+  L.title = o.title;
+  L.title_ts = L.ts;
+  while (L.title_ts > 1 && text_width(L.title, L.title_ts) > W - 2 * L.pad) --L.title_ts;
+  while (L.title.size() > 2 && text_width(L.title, L.title_ts) > W - 2 * L.pad)
+    L.title = L.title.substr(0, L.title.size() - 3) + "..";
   L.title_h = o.title.empty() ? 0 : text_height(L.ts) + 2 * L.pad;
   L.bar = has_scalar && o.colorbar;
   if (L.bar) {
@@ -369,7 +376,7 @@ Image render(const Mesh& mesh, const Eigen::VectorXd& scalar, const RenderOption
       const Eigen::Vector3d b = cam.project(mesh.position(mesh.halfedge_target(h)));
       sum += (a - b).head<2>().norm() / k;
     }
-    edge_alpha *= std::pow(std::min(1.0, sum / mesh.n_halfedges() / o.edge_fade_length), 2);
+    edge_alpha *= std::min(1.0, sum / mesh.n_halfedges() / o.edge_fade_length);
   }
 
   Image img(IW, IH, o.background);
@@ -477,8 +484,9 @@ Image render(const Mesh& mesh, const Eigen::VectorXd& scalar, const RenderOption
   Image out = img.downsample(k);
 
   if (L.bar) draw_colorbar(out, L, o, lo, hi, iso);
-  if (!o.title.empty())
-    draw_text(out, std::max(L.pad, (W - text_width(o.title, L.ts)) / 2), L.pad, o.title, o.text_color, L.ts);
+  if (!L.title.empty())
+    draw_text(out, std::max(L.pad, (W - text_width(L.title, L.title_ts)) / 2),
+              L.pad + (text_height(L.ts) - text_height(L.title_ts)) / 2, L.title, o.text_color, L.title_ts);
   return out;
 }
 

@@ -65,8 +65,8 @@ struct RenderOptions {
   double edge_width = 1.0;  // pixels
   Color edge_color{0.12, 0.12, 0.14};
   double edge_opacity = 0.6;
-  // On dense meshes edges fade: opacity times min(1, mean on-screen edge length / this)^2, so
-  // that polygons smaller than a few pixels do not turn the surface into a texture (0: never).
+  // On dense meshes edges fade: opacity times min(1, mean on-screen edge length / this), so
+  // that polygons of a few pixels do not turn the surface into a texture (0: never).
   double edge_fade_length = 10;  // pixels
 
   // Shading: intensity = ambient + (1 - ambient) |n . light| (two-sided).

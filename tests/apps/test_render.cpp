@@ -499,8 +499,8 @@ TEST_CASE("render: edges fade on dense meshes, stay on coarse ones", "[render]")
   // Coarse: full opacity on the edge pixels (grey surface towards the edge colour).
   const double full = o.edge_opacity * (o.surface_color - o.edge_color).maxCoeff();
   CHECK(edge_effect(quad_grid(4, 4)) == Approx(full).epsilon(1e-5));
-  // 160 px for 80 cells: 2 px per edge, opacity scaled by (2 / 10)^2.
-  CHECK(edge_effect(quad_grid(80, 80)) == Approx(0.04 * full).epsilon(0.05));
+  // 160 px for 80 cells: 2 px per edge, opacity scaled by 2 / 10.
+  CHECK(edge_effect(quad_grid(80, 80)) == Approx(0.2 * full).epsilon(0.05));
 }
 
 TEST_CASE("render: the picture does not depend on the mesh's scale or position", "[render]") {
@@ -514,7 +514,8 @@ TEST_CASE("render: the picture does not depend on the mesh's scale or position",
     const Eigen::MatrixX3d p = (mesh.positions() * scale).rowwise() + Eigen::RowVector3d(3, -2, 5) * scale;
     const Image img = render(mesh.with_positions(p), s, o);
     double worst = 0;
-    for (size_t i = 0; i < img.rgb.size(); ++i) worst = std::max(worst, double(std::abs(img.rgb[i] - ref.rgb[i])));
+    for (size_t i = 0; i < img.rgb.size(); ++i)
+      worst = std::max(worst, double(std::abs(img.rgb[i] - ref.rgb[i])));
     CHECK(worst < 1e-3);
   }
 }
@@ -550,7 +551,9 @@ TEST_CASE("render: perspective-correct interpolation puts isolines where the geo
       if (max_diff(img.pixel(x, y), c) < 0.02) r.push_back(y);
     return r;
   };
-  auto mean = [](const std::vector<double>& v) { return std::accumulate(v.begin(), v.end(), 0.0) / double(v.size()); };
+  auto mean = [](const std::vector<double>& v) {
+    return std::accumulate(v.begin(), v.end(), 0.0) / double(v.size());
+  };
   RenderOptions a = o;
   a.edges = false;
   a.isolines = 1;  // the level 0.5
@@ -576,4 +579,19 @@ TEST_CASE("render: perspective-correct interpolation puts isolines where the geo
   CHECK(compared > 20);
   CHECK(worst < 1.0);
   CHECK(spread > 4.0);  // the trapezoid's mid-height is elsewhere: the test can tell
+}
+
+TEST_CASE("render: a long title is made to fit", "[render]") {
+  RenderOptions o = exact_options(200);
+  o.title = std::string(100, 'M');  // 100 glyphs cannot fit 200 px even at scale 1
+  const Image img = render(quad_grid(2, 2), {}, o);
+  // Ink in the title band stays inside the image with the padding on both sides, and the
+  // title is drawn (shortened, ending in "..").
+  int first = img.width, last = -1;
+  for (int y = 0; y < 12; ++y)
+    for (int x = 0; x < img.width; ++x)
+      if (img.pixel(x, y).maxCoeff() < 0.5) first = std::min(first, x), last = std::max(last, x);
+  CHECK(first >= 4);
+  CHECK(last <= img.width - 5);
+  CHECK(last - first > 150);
 }
