@@ -299,6 +299,8 @@ Image render(const Mesh& mesh, const Eigen::VectorXd& scalar, const RenderOption
     throw std::invalid_argument("render: width and height must lie in [16, 16384]");
   if (o.supersample < 1 || o.supersample > 8)
     throw std::invalid_argument("render: supersample must lie in [1, 8]");
+  if (double(o.width) * o.height * o.supersample * o.supersample > 4e7)
+    throw std::invalid_argument("render: width * height * supersample^2 exceeds 4e7 samples (16 bytes each)");
   if (!(o.margin >= 0 && o.margin < 0.5)) throw std::invalid_argument("render: margin must lie in [0, 0.5)");
   if (o.perspective && !(o.field_of_view > 0 && o.field_of_view < 180))
     throw std::invalid_argument("render: field_of_view must lie in (0, 180) degrees");

@@ -8,7 +8,7 @@
 //   render_png("out.png", mesh, distance, opt);     // distance: |V| values
 //   render_png("mesh.png", mesh, {}, {});            // no scalar: grey shaded mesh with edges
 //
-// How a polygon is drawn: if every triangle of its fan around the vertex centroid turns the
+// How a polygon is drawn (a triangle as itself): if every triangle of its fan around the vertex centroid turns the
 // same way as the polygon (the polygon is star-shaped with respect to its centroid, in the
 // plane of its area vector), the fan is used, with the centroid's scalar the mean of the
 // polygon's values; otherwise (non-star-shaped polygons, e.g. tetris pieces) the polygon is
@@ -21,7 +21,7 @@
 // Camera: looks along `view_direction` with `up` pointing up on screen; the mesh's
 // referenced vertices are fitted into the drawing area leaving `margin`. The default view
 // direction (zero vector) looks along -z (y up), or straight at a flat mesh along its
-// thinnest bounding-box axis.
+// thinnest bounding-box axis (for a mesh flat in y: along -y with -z up).
 #pragma once
 
 #include <limits>
@@ -81,7 +81,9 @@ struct RenderOptions {
   Color background{1, 1, 1};
   Color text_color{0.1, 0.1, 0.1};
 
-  int supersample = 2;  // k x k samples per pixel for smooth silhouettes (1 = exact pixels)
+  // k x k samples per pixel for smooth silhouettes (1 = exact pixels); width * height * k^2
+  // must stay below 4e7 (16 bytes of memory each).
+  int supersample = 2;
 };
 
 // Renders the mesh. `vertex_scalar` has |V| values, or is empty for none. Throws

@@ -413,6 +413,8 @@ TEST_CASE("render: bad input is refused with a clear error", "[render]") {
   RenderOptions o;
   o.width = 0;
   CHECK_THROWS_AS(render(mesh, {}, o), std::invalid_argument);
+  o.width = o.height = 8000;  // 2.56e8 samples with the default supersampling
+  CHECK_THROWS_AS(render(mesh, {}, o), std::invalid_argument);
   try {
     render_png("/nonexistent-dir/x.png", mesh, {}, {});
     FAIL("no error");
