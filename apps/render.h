@@ -8,14 +8,13 @@
 //   render_png("out.png", mesh, distance, opt);     // distance: |V| values
 //   render_png("mesh.png", mesh, {}, {});            // no scalar: grey shaded mesh with edges
 //
-// How a polygon is drawn (a triangle as itself): if every triangle of its fan around the vertex centroid turns the
-// same way as the polygon (the polygon is star-shaped with respect to its centroid, in the
-// plane of its area vector), the fan is used, with the centroid's scalar the mean of the
-// polygon's values; otherwise (non-star-shaped polygons, e.g. tetris pieces) the polygon is
-// ear-clipped in that plane, and if even that fails (self-intersecting outline) the fan is
-// used anyway. Scalars are interpolated linearly on these triangles (perspective-correct).
-// Only the polygon's own edges are drawn, never the triangulation's. Shading uses the
-// polygon's area-vector normal (flat per polygon) or, with smooth_shading, area-weighted vertex
+// How a polygon is drawn (a triangle as itself): if every triangle of its fan around the vertex centroid
+// turns the same way as the polygon (the polygon is star-shaped with respect to its centroid, in the plane of
+// its area vector), the fan is used, with the centroid's scalar the mean of the polygon's values; otherwise
+// (non-star-shaped polygons, e.g. tetris pieces) the polygon is ear-clipped in that plane, and if even that
+// fails (self-intersecting outline) the fan is used anyway. Scalars are interpolated linearly on these
+// triangles (perspective-correct). Only the polygon's own edges are drawn, never the triangulation's. Shading
+// uses the polygon's area-vector normal (flat per polygon) or, with smooth_shading, area-weighted vertex
 // normals; the light is a headlight-like directional light fixed in the camera frame.
 //
 // Camera: looks along `view_direction` with `up` pointing up on screen; the mesh's
