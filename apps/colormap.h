@@ -7,10 +7,10 @@
 // published end colours.
 #pragma once
 
-#include "apps/image.h"
-
 #include <string>
 #include <vector>
+
+#include "apps/image.h"
 
 namespace polydec {
 

@@ -128,7 +128,8 @@ void draw_text(Image& img, int x, int y, const std::string& text, const Color& c
     const int gy = y + (is_descender(text[k]) ? 2 * scale : 0);
     for (int r = 0; r < kGlyphHeight; ++r)
       for (int c = 0; c < kGlyphWidth; ++c)
-        if (rows[r][c] == '#') img.fill_rect(gx + c * scale, gy + r * scale, gx + (c + 1) * scale, gy + (r + 1) * scale, color);
+        if (rows[r][c] == '#')
+          img.fill_rect(gx + c * scale, gy + r * scale, gx + (c + 1) * scale, gy + (r + 1) * scale, color);
   }
 }
 

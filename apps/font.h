@@ -4,10 +4,10 @@
 // descender letters g, p, q, y are drawn 2 units lower (their last two rows below the line).
 #pragma once
 
-#include "apps/image.h"
-
 #include <array>
 #include <string>
+
+#include "apps/image.h"
 
 namespace polydec {
 

@@ -2,13 +2,13 @@
 // stb_image_write implementation of the library.
 #include "apps/image.h"
 
-#include "dec/io.h"
-
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
+
+#include "dec/io.h"
 
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #include <stb_image_write.h>
@@ -95,7 +95,8 @@ void draw_disc(Image& img, const Eigen::Vector2d& m, double radius, const Color&
 
 std::vector<unsigned char> encode_png(const Image& img) {
   std::vector<unsigned char> px(img.rgb.size());
-  for (size_t i = 0; i < px.size(); ++i) px[i] = (unsigned char)std::lround(255.0 * std::clamp(img.rgb[i], 0.0f, 1.0f));
+  for (size_t i = 0; i < px.size(); ++i)
+    px[i] = (unsigned char)std::lround(255.0 * std::clamp(img.rgb[i], 0.0f, 1.0f));
   std::vector<unsigned char> out;
   auto sink = [](void* ctx, void* data, int size) {
     auto* v = static_cast<std::vector<unsigned char>*>(ctx);

@@ -1,15 +1,16 @@
 // apps/plot.cpp — plot layout shared by two canvases: SVG text and a raster Image.
 #include "apps/plot.h"
 
-#include "apps/font.h"
-#include "apps/render.h"
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fmt/format.h>
 #include <memory>
 #include <stdexcept>
+
+#include "apps/font.h"
+#include "apps/render.h"
 
 namespace polydec {
 
@@ -60,12 +61,23 @@ std::vector<Vec2> marker_outline(const Vec2& p, int shape, double r) {
     }
   };
   switch (shape % 6) {
-    case 1: ring(4, M_PI / 4, r * 1.15); break;
-    case 2: ring(3, M_PI / 2, r * 1.25); break;
-    case 3: ring(4, 0, r * 1.3); break;
-    case 4: ring(3, -M_PI / 2, r * 1.25); break;
-    case 5: ring(5, M_PI / 2, r * 1.2); break;
-    default: break;
+    case 1:
+      ring(4, M_PI / 4, r * 1.15);
+      break;
+    case 2:
+      ring(3, M_PI / 2, r * 1.25);
+      break;
+    case 3:
+      ring(4, 0, r * 1.3);
+      break;
+    case 4:
+      ring(3, -M_PI / 2, r * 1.25);
+      break;
+    case 5:
+      ring(5, M_PI / 2, r * 1.2);
+      break;
+    default:
+      break;
   }
   return q;
 }
@@ -74,11 +86,20 @@ std::string xml_escape(const std::string& s) {
   std::string o;
   for (char c : s) {
     switch (c) {
-      case '&': o += "&amp;"; break;
-      case '<': o += "&lt;"; break;
-      case '>': o += "&gt;"; break;
-      case '"': o += "&quot;"; break;
-      default: o += c;
+      case '&':
+        o += "&amp;";
+        break;
+      case '<':
+        o += "&lt;";
+        break;
+      case '>':
+        o += "&gt;";
+        break;
+      case '"':
+        o += "&quot;";
+        break;
+      default:
+        o += c;
     }
   }
   return o;
@@ -100,39 +121,52 @@ class SvgCanvas : public Canvas {
         w, h, font_);
   }
   void line(const Vec2& a, const Vec2& b, const Color& c, double w) override {
-    out_ += fmt::format("<line x1=\"{:.2f}\" y1=\"{:.2f}\" x2=\"{:.2f}\" y2=\"{:.2f}\" stroke=\"{}\" stroke-width=\"{:.3g}\"/>\n",
-                        a.x(), a.y(), b.x(), b.y(), hex(c), w);
+    out_ += fmt::format(
+        "<line x1=\"{:.2f}\" y1=\"{:.2f}\" x2=\"{:.2f}\" y2=\"{:.2f}\" stroke=\"{}\" "
+        "stroke-width=\"{:.3g}\"/>\n",
+        a.x(), a.y(), b.x(), b.y(), hex(c), w);
   }
   void polyline(const std::vector<Vec2>& p, const Color& c, double w) override {
-    out_ += "<polyline class=\"series\" fill=\"none\" stroke=\"" + hex(c) + fmt::format("\" stroke-width=\"{:.3g}\" points=\"", w);
-    for (size_t i = 0; i < p.size(); ++i) out_ += fmt::format("{}{:.2f},{:.2f}", i ? " " : "", p[i].x(), p[i].y());
+    out_ += "<polyline class=\"series\" fill=\"none\" stroke=\"" + hex(c) +
+            fmt::format("\" stroke-width=\"{:.3g}\" points=\"", w);
+    for (size_t i = 0; i < p.size(); ++i)
+      out_ += fmt::format("{}{:.2f},{:.2f}", i ? " " : "", p[i].x(), p[i].y());
     out_ += "\"/>\n";
   }
   void marker(const Vec2& p, int shape, double r, const Color& c) override {
     const std::vector<Vec2> q = marker_outline(p, shape, r);
     if (q.empty()) {
-      out_ += fmt::format("<circle class=\"marker\" cx=\"{:.2f}\" cy=\"{:.2f}\" r=\"{:.2f}\" fill=\"{}\"/>\n", p.x(), p.y(),
-                          r, hex(c));
+      out_ += fmt::format("<circle class=\"marker\" cx=\"{:.2f}\" cy=\"{:.2f}\" r=\"{:.2f}\" fill=\"{}\"/>\n",
+                          p.x(), p.y(), r, hex(c));
       return;
     }
     out_ += "<polygon class=\"marker\" fill=\"" + hex(c) + "\" points=\"";
-    for (size_t i = 0; i < q.size(); ++i) out_ += fmt::format("{}{:.2f},{:.2f}", i ? " " : "", q[i].x(), q[i].y());
+    for (size_t i = 0; i < q.size(); ++i)
+      out_ += fmt::format("{}{:.2f},{:.2f}", i ? " " : "", q[i].x(), q[i].y());
     out_ += "\"/>\n";
   }
   void rect(const Vec2& a, const Vec2& b, const Color& fill, const Color& stroke) override {
-    out_ += fmt::format("<rect x=\"{:.2f}\" y=\"{:.2f}\" width=\"{:.2f}\" height=\"{:.2f}\" fill=\"{}\" stroke=\"{}\"/>\n",
-                        a.x(), a.y(), b.x() - a.x(), b.y() - a.y(), hex(fill), hex(stroke));
+    out_ += fmt::format(
+        "<rect x=\"{:.2f}\" y=\"{:.2f}\" width=\"{:.2f}\" height=\"{:.2f}\" fill=\"{}\" stroke=\"{}\"/>\n",
+        a.x(), a.y(), b.x() - a.x(), b.y() - a.y(), hex(fill), hex(stroke));
   }
   void text(const Vec2& p, const std::string& s, int anchor, const Color& c) override {
     out_ += fmt::format("<text x=\"{:.2f}\" y=\"{:.2f}\" text-anchor=\"{}\" fill=\"{}\">{}</text>\n", p.x(),
-                        p.y() + 0.35 * font_, anchor < 0 ? "start" : anchor > 0 ? "end" : "middle", hex(c),
-                        xml_escape(s));
+                        p.y() + 0.35 * font_,
+                        anchor < 0   ? "start"
+                        : anchor > 0 ? "end"
+                                     : "middle",
+                        hex(c), xml_escape(s));
   }
   void power_of_ten(const Vec2& p, int k, int anchor, const Color& c) override {
     out_ += fmt::format(
-        "<text x=\"{:.2f}\" y=\"{:.2f}\" text-anchor=\"{}\" fill=\"{}\">10<tspan dy=\"{:.2f}\" font-size=\"{:.3g}\">{}</tspan></text>\n",
-        p.x(), p.y() + 0.35 * font_, anchor < 0 ? "start" : anchor > 0 ? "end" : "middle", hex(c), -0.45 * font_,
-        0.75 * font_, k);
+        "<text x=\"{:.2f}\" y=\"{:.2f}\" text-anchor=\"{}\" fill=\"{}\">10<tspan dy=\"{:.2f}\" "
+        "font-size=\"{:.3g}\">{}</tspan></text>\n",
+        p.x(), p.y() + 0.35 * font_,
+        anchor < 0   ? "start"
+        : anchor > 0 ? "end"
+                     : "middle",
+        hex(c), -0.45 * font_, 0.75 * font_, k);
   }
   double text_width(const std::string& s) const override { return 0.6 * font_ * double(s.size()); }
   double text_height() const override { return font_; }
@@ -173,7 +207,8 @@ class ImageCanvas : public Canvas {
       }
   }
   void rect(const Vec2& a, const Vec2& b, const Color& fill, const Color& stroke) override {
-    img_.fill_rect(int(std::lround(a.x())), int(std::lround(a.y())), int(std::lround(b.x())), int(std::lround(b.y())), fill);
+    img_.fill_rect(int(std::lround(a.x())), int(std::lround(a.y())), int(std::lround(b.x())),
+                   int(std::lround(b.y())), fill);
     line({a.x(), a.y()}, {b.x(), a.y()}, stroke, 1);
     line({b.x(), a.y()}, {b.x(), b.y()}, stroke, 1);
     line({b.x(), b.y()}, {a.x(), b.y()}, stroke, 1);
@@ -346,7 +381,8 @@ void check(const std::vector<PlotSeries>& series, const PlotOptions& o) {
     throw std::invalid_argument("plot: width and height must lie in [100, 16384]");
   for (const PlotSeries& s : series)
     if (s.x.size() != s.y.size())
-      throw std::invalid_argument(fmt::format("plot: series '{}' has {} x and {} y values", s.name, s.x.size(), s.y.size()));
+      throw std::invalid_argument(
+          fmt::format("plot: series '{}' has {} x and {} y values", s.name, s.x.size(), s.y.size()));
 }
 
 }  // namespace

@@ -12,10 +12,10 @@
 // with class="series", for tools and tests.
 #pragma once
 
-#include "apps/image.h"
-
 #include <string>
 #include <vector>
+
+#include "apps/image.h"
 
 namespace polydec {
 

@@ -1,12 +1,13 @@
 // apps/render.cpp — the software rasterizer behind render() (see render.h for the model).
 #include "apps/render.h"
 
-#include "apps/font.h"
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
-#include <fmt/format.h>
 #include <stdexcept>
+
+#include "apps/font.h"
 
 namespace polydec {
 
@@ -25,15 +26,17 @@ Eigen::MatrixX3i triangulate_polygon(const Eigen::MatrixX3d& p) {
   // Star-shaped with respect to the centroid: every fan triangle turns like the polygon.
   // The tolerance is relative to the polygon's area (|n| before normalization is twice it).
   bool star = true;
-  for (int i = 0; i < k && star; ++i)
-    star = (p.row(i) - c).cross(p.row((i + 1) % k) - c).dot(n) > 1e-9 * nn;
+  for (int i = 0; i < k && star; ++i) star = (p.row(i) - c).cross(p.row((i + 1) % k) - c).dot(n) > 1e-9 * nn;
   if (star) return fan;
   // Ear clipping in the plane orthogonal to n (the outline is counter-clockwise there).
-  const Eigen::Vector3d a = (std::abs(n.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY()).cross(n).normalized();
+  const Eigen::Vector3d a =
+      (std::abs(n.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY()).cross(n).normalized();
   const Eigen::Vector3d b = n.cross(a);
   std::vector<Eigen::Vector2d> q(k);
   for (int i = 0; i < k; ++i) q[i] = {p.row(i).dot(a), p.row(i).dot(b)};
-  auto cross = [](const Eigen::Vector2d& u, const Eigen::Vector2d& v) { return u.x() * v.y() - u.y() * v.x(); };
+  auto cross = [](const Eigen::Vector2d& u, const Eigen::Vector2d& v) {
+    return u.x() * v.y() - u.y() * v.x();
+  };
   const double eps = 1e-12 * nn;
   std::vector<int> ring(k);
   for (int i = 0; i < k; ++i) ring[i] = i;
@@ -65,13 +68,29 @@ Eigen::MatrixX3i triangulate_polygon(const Eigen::MatrixX3d& p) {
 }
 
 Eigen::Vector3d view_facing_vertex(const Mesh& mesh, int v, const Eigen::Vector3d& up) {
-  if (v < 0 || v >= mesh.n_vertices()) throw std::out_of_range(fmt::format("view_facing_vertex: no vertex {}", v));
-  const Eigen::Vector3d lo = mesh.positions().colwise().minCoeff(), hi = mesh.positions().colwise().maxCoeff();
+  if (v < 0 || v >= mesh.n_vertices())
+    throw std::out_of_range(fmt::format("view_facing_vertex: no vertex {}", v));
+  const Eigen::Vector3d lo = mesh.positions().colwise().minCoeff(),
+                        hi = mesh.positions().colwise().maxCoeff();
   if ((hi - lo).minCoeff() <= 1e-3 * (hi - lo).maxCoeff() || up.norm() == 0) return Eigen::Vector3d::Zero();
+  const Eigen::Vector3d c = 0.5 * (lo + hi);
+  double volume = 0;  // six times the signed volume about c, by fans around each face's first corner
+  for (int f = 0; f < mesh.n_faces(); ++f) {
+    const auto fv = mesh.face(f);
+    for (size_t i = 1; i + 1 < fv.size(); ++i)
+      volume +=
+          (mesh.position(fv[0]) - c).dot((mesh.position(fv[i]) - c).cross(mesh.position(fv[i + 1]) - c));
+  }
+  Eigen::Vector3d n = Eigen::Vector3d::Zero();
+  for (int f : mesh.vertex_faces(v)) {
+    const auto fv = mesh.face(f);
+    for (size_t i = 0; i < fv.size(); ++i)
+      n += mesh.position(fv[i]).cross(mesh.position(fv[(i + 1) % fv.size()]));
+  }
   const Eigen::Vector3d u = up.normalized();
-  Eigen::Vector3d d = 0.5 * (lo + hi) - mesh.position(v);
+  Eigen::Vector3d d = volume < 0 ? n : Eigen::Vector3d(-n);
   d -= d.dot(u) * u;
-  return d.norm() > 1e-6 * (hi - lo).norm() ? Eigen::Vector3d(d.normalized()) : Eigen::Vector3d::Zero();
+  return d.norm() > 1e-6 * n.norm() ? Eigen::Vector3d(d.normalized()) : Eigen::Vector3d::Zero();
 }
 
 std::vector<double> nice_ticks(double lo, double hi, int count) {
@@ -91,7 +110,7 @@ namespace {
 struct Camera {
   Eigen::Vector3d right, up, forward, centre;
   bool perspective = false;
-  double distance = 0;           // camera to centre, perspective
+  double distance = 0;                               // camera to centre, perspective
   double scale = 1, ox = 0, oy = 0, mx = 0, my = 0;  // screen fit
 
   // Point in camera frame -> (pixel x, pixel y, depth), depth growing away from the viewer.
@@ -119,8 +138,8 @@ struct Camera {
 
 // Camera looking at the referenced vertices, fitted into the pixel rectangle
 // [ax, ax + aw) x [ay, ay + ah).
-Camera make_camera(const Mesh& mesh, const std::vector<int>& used, const RenderOptions& o, double ax, double ay,
-                   double aw, double ah) {
+Camera make_camera(const Mesh& mesh, const std::vector<int>& used, const RenderOptions& o, double ax,
+                   double ay, double aw, double ah) {
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
   for (int v : used) {
     lo = lo.cwiseMin(mesh.position(v));
@@ -198,19 +217,97 @@ struct Isolevels {
 
 std::string format_number(double v) { return fmt::format("{:.4g}", v); }
 
+// Output-resolution layout: a title band on top, a colour-bar band on the right, the mesh in
+// the rest (the drawing area).
+struct Layout {
+  int ts = 1, pad = 4;  // text scale, padding (pixels)
+  int title_ts = 1;     // title text scale: smaller when the title would not fit
+  std::string title;    // the title, shortened with ".." if it does not fit even at scale 1
+  int title_h = 0;      // height of the title band
+  bool bar = false;
+  int bar_w = 0, band = 0;  // colour bar width, width of its band
+  int area_w = 1, area_h = 1;
+  std::vector<double> ticks;
+};
+
+Layout make_layout(const RenderOptions& o, bool has_scalar, double lo, double hi) {
+  Layout L;
+  const int W = o.width, H = o.height;
+  L.ts = std::max(1, int(std::lround(H / 300.0)));
+  L.pad = 4 * L.ts;
+  L.title = o.title;
+  L.title_ts = L.ts;
+  while (L.title_ts > 1 && text_width(L.title, L.title_ts) > W - 2 * L.pad) --L.title_ts;
+  while (L.title.size() > 2 && text_width(L.title, L.title_ts) > W - 2 * L.pad)
+    L.title = L.title.substr(0, L.title.size() - 3) + "..";
+  L.title_h = o.title.empty() ? 0 : text_height(L.ts) + 2 * L.pad;
+  L.bar = has_scalar && o.colorbar;
+  if (L.bar) {
+    L.ticks = nice_ticks(lo, hi, 5);
+    int label_w = std::max(text_width(format_number(lo), L.ts), text_width(format_number(hi), L.ts));
+    for (double t : L.ticks) label_w = std::max(label_w, text_width(format_number(t), L.ts));
+    L.bar_w = std::max(10, H / 30);
+    L.band = std::min(W / 2, L.pad + L.bar_w + 2 * L.pad + label_w + 2 * L.pad);
+  }
+  L.area_w = std::max(1, W - L.band);
+  L.area_h = std::max(1, H - L.title_h);
+  return L;
+}
+
+// The colour bar: the map from lo (bottom) to hi (top), isoline levels as thin lines, the end
+// values and round values in between as labels, the scalar's name on top.
+void draw_colorbar(Image& out, const Layout& L, const RenderOptions& o, double lo, double hi,
+                   const Isolevels& iso) {
+  const int W = o.width, H = o.height, ts = L.ts, pad = L.pad;
+  const int bx0 = W - L.band + pad, bx1 = bx0 + L.bar_w;
+  const int by0 = L.title_h + std::max(text_height(ts) + 3 * pad, L.area_h / 10), by1 = H - L.area_h / 10;
+  if (by1 - by0 <= 4) return;
+  const auto y_of = [&](double v) { return by1 - (hi > lo ? (v - lo) / (hi - lo) : 0.5) * (by1 - by0); };
+  for (int y = by0; y < by1; ++y) {
+    const double t = (by1 - (y + 0.5)) / double(by1 - by0);
+    out.fill_rect(bx0, y, bx1, y + 1, colormap(o.colormap, t));
+  }
+  if (iso.on)
+    for (double l = iso.origin + std::ceil((lo - iso.origin) / iso.spacing) * iso.spacing; l <= hi;
+         l += iso.spacing)
+      if (iso.distance(l) < 1e-9 * iso.spacing)
+        draw_line(out, {double(bx0), y_of(l)}, {double(bx1), y_of(l)}, o.isoline_color, 1.0);
+  const Color frame = o.text_color;
+  draw_line(out, {bx0 - 0.5, by0 - 0.5}, {bx1 + 0.5, by0 - 0.5}, frame, 1);
+  draw_line(out, {bx0 - 0.5, by1 + 0.5}, {bx1 + 0.5, by1 + 0.5}, frame, 1);
+  draw_line(out, {bx0 - 0.5, by0 - 0.5}, {bx0 - 0.5, by1 + 0.5}, frame, 1);
+  draw_line(out, {bx1 + 0.5, by0 - 0.5}, {bx1 + 0.5, by1 + 0.5}, frame, 1);
+  const int th = text_height(ts);
+  auto label = [&](double v, double y) {
+    draw_line(out, {double(bx1), y}, {double(bx1 + pad), y}, frame, 1);
+    draw_text(out, bx1 + 2 * pad, int(std::lround(y - 0.5 * th)), format_number(v), o.text_color, ts);
+  };
+  label(lo, by1);
+  if (hi > lo) label(hi, by0);
+  for (double t : L.ticks) {
+    const double y = y_of(t);
+    if (std::abs(y - by0) > 1.5 * th && std::abs(y - by1) > 1.5 * th) label(t, y);
+  }
+  if (!o.scalar_label.empty())
+    draw_text(out, std::max(0, bx0 - pad), by0 - th - 2 * pad, o.scalar_label, o.text_color, ts);
+}
+
 }  // namespace
 
 Image render(const Mesh& mesh, const Eigen::VectorXd& scalar, const RenderOptions& o) {
   if (o.width < 16 || o.height < 16 || o.width > 16384 || o.height > 16384)
     throw std::invalid_argument("render: width and height must lie in [16, 16384]");
-  if (o.supersample < 1 || o.supersample > 8) throw std::invalid_argument("render: supersample must lie in [1, 8]");
+  if (o.supersample < 1 || o.supersample > 8)
+    throw std::invalid_argument("render: supersample must lie in [1, 8]");
+  if (double(o.width) * o.height * o.supersample * o.supersample > 4e7)
+    throw std::invalid_argument("render: width * height * supersample^2 exceeds 4e7 samples (16 bytes each)");
   if (!(o.margin >= 0 && o.margin < 0.5)) throw std::invalid_argument("render: margin must lie in [0, 0.5)");
   if (o.perspective && !(o.field_of_view > 0 && o.field_of_view < 180))
     throw std::invalid_argument("render: field_of_view must lie in (0, 180) degrees");
   const bool has_scalar = scalar.size() > 0;
   if (has_scalar && scalar.size() != mesh.n_vertices())
-    throw std::invalid_argument(fmt::format("render: scalar has {} values, the mesh {} vertices", scalar.size(),
-                                            mesh.n_vertices()));
+    throw std::invalid_argument(
+        fmt::format("render: scalar has {} values, the mesh {} vertices", scalar.size(), mesh.n_vertices()));
   if (!(o.isoline_spacing >= 0) || o.isolines < 0)
     throw std::invalid_argument("render: isoline count and spacing must not be negative");
 
@@ -237,22 +334,8 @@ Image render(const Mesh& mesh, const Eigen::VectorXd& scalar, const RenderOption
     iso.origin = o.isoline_spacing > 0 ? 0.0 : lo;
   }
 
-  // Layout at output resolution: title band on top, colour bar band on the right.
   const int W = o.width, H = o.height;
-  const int ts = std::max(1, int(std::lround(H / 300.0)));  // text scale
-  const int pad = 4 * ts;
-  const int title_h = o.title.empty() ? 0 : text_height(ts) + 2 * pad;
-  const bool bar = has_scalar && o.colorbar;
-  std::vector<double> ticks;
-  int bar_w = 0, band = 0, label_w = 0;
-  if (bar) {
-    ticks = nice_ticks(lo, hi, 5);
-    label_w = std::max(text_width(format_number(lo), ts), text_width(format_number(hi), ts));
-    for (double t : ticks) label_w = std::max(label_w, text_width(format_number(t), ts));
-    bar_w = std::max(10, H / 30);
-    band = std::min(W / 2, pad + bar_w + 2 * pad + label_w + 2 * pad);
-  }
-  const int area_w = std::max(1, W - band), area_h = std::max(1, H - title_h);
+  const Layout L = make_layout(o, has_scalar, lo, hi);
 
   // Camera and per-vertex projection at the supersampled resolution.
   const int k = o.supersample;
@@ -260,8 +343,10 @@ Image render(const Mesh& mesh, const Eigen::VectorXd& scalar, const RenderOption
   std::vector<int> used;
   for (int v = 0; v < mesh.n_vertices(); ++v)
     if (!mesh.vertex_faces(v).empty()) used.push_back(v);
-  const Camera cam = make_camera(mesh, used, o, 0, double(title_h) * k, double(area_w) * k, double(area_h) * k);
-  const Eigen::Vector3d light = o.light_direction.norm() > 0 ? o.light_direction.normalized() : Eigen::Vector3d::UnitZ();
+  const Camera cam =
+      make_camera(mesh, used, o, 0, double(L.title_h) * k, double(L.area_w) * k, double(L.area_h) * k);
+  const Eigen::Vector3d light =
+      o.light_direction.norm() > 0 ? o.light_direction.normalized() : Eigen::Vector3d::UnitZ();
   auto to_camera = [&](const Eigen::Vector3d& n) {
     return Eigen::Vector3d(cam.right.dot(n), cam.up.dot(n), -cam.forward.dot(n));
   };
@@ -293,7 +378,7 @@ Image render(const Mesh& mesh, const Eigen::VectorXd& scalar, const RenderOption
       const Eigen::Vector3d b = cam.project(mesh.position(mesh.halfedge_target(h)));
       sum += (a - b).head<2>().norm() / k;
     }
-    edge_alpha *= std::pow(std::min(1.0, sum / mesh.n_halfedges() / o.edge_fade_length), 2);
+    edge_alpha *= std::min(1.0, sum / mesh.n_halfedges() / o.edge_fade_length);
   }
 
   Image img(IW, IH, o.background);
@@ -315,7 +400,8 @@ Image render(const Mesh& mesh, const Eigen::VectorXd& scalar, const RenderOption
     double smean = 0;
     const Eigen::Vector3d fn = to_camera(face_n[f]);
     for (int i = 0; i <= m; ++i) {
-      const Eigen::Vector3d p = i < m ? Eigen::Vector3d(P.row(i).transpose()) : Eigen::Vector3d(P.colwise().mean().transpose());
+      const Eigen::Vector3d p =
+          i < m ? Eigen::Vector3d(P.row(i).transpose()) : Eigen::Vector3d(P.colwise().mean().transpose());
       const Eigen::Vector3d s = cam.project(p);
       Corner& c = corners[i];
       c.x = s.x();
@@ -399,46 +485,15 @@ Image render(const Mesh& mesh, const Eigen::VectorXd& scalar, const RenderOption
 
   Image out = img.downsample(k);
 
-  // Colour bar: the map from lo (bottom) to hi (top), isoline levels as thin lines, labels.
-  if (bar) {
-    const int bx0 = W - band + pad, bx1 = bx0 + bar_w;
-    const int by0 = title_h + std::max(text_height(ts) + 3 * pad, area_h / 10), by1 = H - area_h / 10;
-    if (by1 - by0 > 4) {
-      const auto y_of = [&](double v) { return by1 - (hi > lo ? (v - lo) / (hi - lo) : 0.5) * (by1 - by0); };
-      for (int y = by0; y < by1; ++y) {
-        const double t = (by1 - (y + 0.5)) / double(by1 - by0);
-        out.fill_rect(bx0, y, bx1, y + 1, colormap(o.colormap, t));
-      }
-      if (iso.on)
-        for (double l = iso.origin + std::ceil((lo - iso.origin) / iso.spacing) * iso.spacing; l <= hi; l += iso.spacing)
-          if (iso.distance(l) < 1e-9 * iso.spacing)
-            draw_line(out, {double(bx0), y_of(l)}, {double(bx1), y_of(l)}, o.isoline_color, 1.0);
-      const Color frame = o.text_color;
-      draw_line(out, {bx0 - 0.5, by0 - 0.5}, {bx1 + 0.5, by0 - 0.5}, frame, 1);
-      draw_line(out, {bx0 - 0.5, by1 + 0.5}, {bx1 + 0.5, by1 + 0.5}, frame, 1);
-      draw_line(out, {bx0 - 0.5, by0 - 0.5}, {bx0 - 0.5, by1 + 0.5}, frame, 1);
-      draw_line(out, {bx1 + 0.5, by0 - 0.5}, {bx1 + 0.5, by1 + 0.5}, frame, 1);
-      const int th = text_height(ts);
-      auto label = [&](double v, double y) {
-        draw_line(out, {double(bx1), y}, {double(bx1 + pad), y}, frame, 1);
-        draw_text(out, bx1 + 2 * pad, int(std::lround(y - 0.5 * th)), format_number(v), o.text_color, ts);
-      };
-      label(lo, by1);
-      if (hi > lo) label(hi, by0);
-      for (double t : ticks) {
-        const double y = y_of(t);
-        if (std::abs(y - by0) > 1.5 * th && std::abs(y - by1) > 1.5 * th) label(t, y);
-      }
-      if (!o.scalar_label.empty())
-        draw_text(out, std::max(0, bx0 - pad), by0 - th - 2 * pad, o.scalar_label, o.text_color, ts);
-    }
-  }
-  if (!o.title.empty())
-    draw_text(out, std::max(pad, (W - text_width(o.title, ts)) / 2), pad, o.title, o.text_color, ts);
+  if (L.bar) draw_colorbar(out, L, o, lo, hi, iso);
+  if (!L.title.empty())
+    draw_text(out, std::max(L.pad, (W - text_width(L.title, L.title_ts)) / 2),
+              L.pad + (text_height(L.ts) - text_height(L.title_ts)) / 2, L.title, o.text_color, L.title_ts);
   return out;
 }
 
-void render_png(const std::string& path, const Mesh& mesh, const Eigen::VectorXd& scalar, const RenderOptions& o) {
+void render_png(const std::string& path, const Mesh& mesh, const Eigen::VectorXd& scalar,
+                const RenderOptions& o) {
   write_png(path, render(mesh, scalar, o));
 }
 

@@ -8,28 +8,27 @@
 //   render_png("out.png", mesh, distance, opt);     // distance: |V| values
 //   render_png("mesh.png", mesh, {}, {});            // no scalar: grey shaded mesh with edges
 //
-// How a polygon is drawn: if every triangle of its fan around the vertex centroid turns the
-// same way as the polygon (the polygon is star-shaped with respect to its centroid, in the
-// plane of its area vector), the fan is used, with the centroid's scalar the mean of the
-// polygon's values; otherwise (non-star-shaped polygons, e.g. tetris pieces) the polygon is
-// ear-clipped in that plane, and if even that fails (self-intersecting outline) the fan is
-// used anyway. Scalars are interpolated linearly on these triangles (perspective-correct).
-// Only the polygon's own edges are drawn, never the triangulation's. Shading uses the
-// polygon's area-vector normal (flat per polygon) or, with smooth_shading, area-weighted vertex
+// How a polygon is drawn (a triangle as itself): if every triangle of its fan around the vertex centroid
+// turns the same way as the polygon (the polygon is star-shaped with respect to its centroid, in the plane of
+// its area vector), the fan is used, with the centroid's scalar the mean of the polygon's values; otherwise
+// (non-star-shaped polygons, e.g. tetris pieces) the polygon is ear-clipped in that plane, and if even that
+// fails (self-intersecting outline) the fan is used anyway. Scalars are interpolated linearly on these
+// triangles (perspective-correct). Only the polygon's own edges are drawn, never the triangulation's. Shading
+// uses the polygon's area-vector normal (flat per polygon) or, with smooth_shading, area-weighted vertex
 // normals; the light is a headlight-like directional light fixed in the camera frame.
 //
 // Camera: looks along `view_direction` with `up` pointing up on screen; the mesh's
 // referenced vertices are fitted into the drawing area leaving `margin`. The default view
 // direction (zero vector) looks along -z (y up), or straight at a flat mesh along its
-// thinnest bounding-box axis.
+// thinnest bounding-box axis (for a mesh flat in y: along -y with -z up).
 #pragma once
+
+#include <limits>
+#include <string>
 
 #include "apps/colormap.h"
 #include "apps/image.h"
 #include "dec/mesh.h"
-
-#include <limits>
-#include <string>
 
 namespace polydec {
 
@@ -39,9 +38,9 @@ struct RenderOptions {
   // Camera.
   Eigen::Vector3d view_direction = Eigen::Vector3d::Zero();  // zero: default (see above)
   Eigen::Vector3d up = Eigen::Vector3d::UnitY();
-  bool perspective = false;    // orthographic by default
-  double field_of_view = 30;   // degrees, perspective only
-  double margin = 0.04;        // free border around the mesh, fraction of the drawing area
+  bool perspective = false;   // orthographic by default
+  double field_of_view = 30;  // degrees, perspective only
+  double margin = 0.04;       // free border around the mesh, fraction of the drawing area
 
   // Surface colour: the scalar through `colormap` over [scalar_min, scalar_max] (NaN: the
   // range of the finite values), or `surface_color` without a scalar. Triangles touching a
@@ -65,8 +64,8 @@ struct RenderOptions {
   double edge_width = 1.0;  // pixels
   Color edge_color{0.12, 0.12, 0.14};
   double edge_opacity = 0.6;
-  // On dense meshes edges fade: opacity times min(1, mean on-screen edge length / this)^2, so
-  // that polygons smaller than a few pixels do not turn the surface into a texture (0: never).
+  // On dense meshes edges fade: opacity times min(1, mean on-screen edge length / this), so
+  // that polygons of a few pixels do not turn the surface into a texture (0: never).
   double edge_fade_length = 10;  // pixels
 
   // Shading: intensity = ambient + (1 - ambient) |n . light| (two-sided).
@@ -81,7 +80,9 @@ struct RenderOptions {
   Color background{1, 1, 1};
   Color text_color{0.1, 0.1, 0.1};
 
-  int supersample = 2;  // k x k samples per pixel for smooth silhouettes (1 = exact pixels)
+  // k x k samples per pixel for smooth silhouettes (1 = exact pixels); width * height * k^2
+  // must stay below 4e7 (16 bytes of memory each).
+  int supersample = 2;
 };
 
 // Renders the mesh. `vertex_scalar` has |V| values, or is empty for none. Throws
@@ -93,10 +94,12 @@ Image render(const Mesh& mesh, const Eigen::VectorXd& vertex_scalar, const Rende
 void render_png(const std::string& path, const Mesh& mesh, const Eigen::VectorXd& vertex_scalar,
                 const RenderOptions& options);
 
-// A view direction orthogonal to `up` from which vertex v is seen from its own side: the
-// direction from v to the bounding-box centre with its `up` component removed. Zero (the
-// default view) for a flat mesh or when v lies on the vertical line through the centre.
-Eigen::Vector3d view_facing_vertex(const Mesh& mesh, int v, const Eigen::Vector3d& up = Eigen::Vector3d::UnitY());
+// A view direction orthogonal to `up` that looks at vertex v head-on: minus its area-weighted
+// vertex normal (oriented outwards: flipped if the mesh's signed volume about its bounding-box
+// centre is negative), with the `up` component removed. Zero (the default view) for a flat
+// mesh or when that normal is vertical.
+Eigen::Vector3d view_facing_vertex(const Mesh& mesh, int v,
+                                   const Eigen::Vector3d& up = Eigen::Vector3d::UnitY());
 
 // Triangles used to draw the polygon with corners `p` (k x 3): each row of the result holds
 // three indices into the corners, index k standing for the corners' centroid (see above).

@@ -1,12 +1,13 @@
 // apps/cli/render.cpp — `polydec render MESH --png FILE [...]`: a picture of a mesh, plain or
 // with a scalar field (a coordinate, or the heat-method distance from a vertex) colour-mapped,
 // with isolines, polygon edges and a colour bar (apps/render.h).
-#include "apps/cli/command.h"
-#include "apps/geodesics.h"
 #include "apps/render.h"
-#include "dec/io.h"
 
 #include <fmt/format.h>
+
+#include "apps/cli/command.h"
+#include "apps/geodesics.h"
+#include "dec/io.h"
 
 namespace polydec::cli {
 namespace {
@@ -58,26 +59,29 @@ void run(const Options& o) {
     fmt::print("wrote {}\n", o.png);
 }
 
-const RegisterCommand reg("render", "Picture of a mesh (PNG), optionally with a colour-mapped scalar field", [](CLI::App& app) {
-  auto o = std::make_shared<Options>();
-  app.add_option("mesh", o->mesh, "input mesh (.obj, .off, .ply)")->required();
-  app.add_option("--png", o->png, "output picture (.png)")->required();
-  app.add_option("--scalar", o->scalar, "colour by a coordinate: x, y, z, or none (default)");
-  app.add_option("--distance-from", o->source, "colour by the heat-method geodesic distance from this vertex");
-  app.add_option("--colormap", o->colormap, "viridis (default) or turbo");
-  app.add_option("--isolines", o->isolines, "number of isolines (default 15 for distances, else 0)");
-  app.add_option("--isoline-spacing", o->spacing, "isolines at multiples of this value instead");
-  app.add_option("--view", o->view, "view direction X Y Z (default: -z, or straight at a flat mesh)")->expected(3);
-  app.add_option("--up", o->up, "screen-up direction X Y Z (default 0 1 0)")->expected(3);
-  app.add_flag("--perspective", o->perspective, "perspective instead of orthographic projection");
-  app.add_flag("--smooth", o->smooth, "smooth shading (vertex normals) instead of flat polygons");
-  app.add_flag("--no-edges", o->no_edges, "do not draw the polygon edges");
-  app.add_option("--title", o->title, "title printed on top");
-  app.add_option("--width", o->width, "image width in pixels (default 800)");
-  app.add_option("--height", o->height, "image height in pixels (default 600)");
-  app.add_flag("--json", o->json, "print one JSON object instead of text");
-  app.callback([o] { run(*o); });
-});
+const RegisterCommand reg(
+    "render", "Picture of a mesh (PNG), optionally with a colour-mapped scalar field", [](CLI::App& app) {
+      auto o = std::make_shared<Options>();
+      app.add_option("mesh", o->mesh, "input mesh (.obj, .off, .ply)")->required();
+      app.add_option("--png", o->png, "output picture (.png)")->required();
+      app.add_option("--scalar", o->scalar, "colour by a coordinate: x, y, z, or none (default)");
+      app.add_option("--distance-from", o->source,
+                     "colour by the heat-method geodesic distance from this vertex");
+      app.add_option("--colormap", o->colormap, "viridis (default) or turbo");
+      app.add_option("--isolines", o->isolines, "number of isolines (default 15 for distances, else 0)");
+      app.add_option("--isoline-spacing", o->spacing, "isolines at multiples of this value instead");
+      app.add_option("--view", o->view, "view direction X Y Z (default: -z, or straight at a flat mesh)")
+          ->expected(3);
+      app.add_option("--up", o->up, "screen-up direction X Y Z (default 0 1 0)")->expected(3);
+      app.add_flag("--perspective", o->perspective, "perspective instead of orthographic projection");
+      app.add_flag("--smooth", o->smooth, "smooth shading (vertex normals) instead of flat polygons");
+      app.add_flag("--no-edges", o->no_edges, "do not draw the polygon edges");
+      app.add_option("--title", o->title, "title printed on top");
+      app.add_option("--width", o->width, "image width in pixels (default 800)");
+      app.add_option("--height", o->height, "image height in pixels (default 600)");
+      app.add_flag("--json", o->json, "print one JSON object instead of text");
+      app.callback([o] { run(*o); });
+    });
 
 }  // namespace
 }  // namespace polydec::cli

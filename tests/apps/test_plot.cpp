@@ -1,13 +1,13 @@
 // tests/apps/test_plot.cpp — convergence plots: fitted slopes, SVG structure (markers, series
 // lines, decade ticks, well-formed nesting, escaping), the raster version and file output.
-#include "apps/plot.h"
-#include "dec/io.h"
-
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+
+#include "apps/plot.h"
+#include "dec/io.h"
 
 using namespace polydec;
 
@@ -55,7 +55,8 @@ std::string check_xml(const std::string& s) {
 
 // Three series like a convergence study: errors C h^k for k = 2, 2, 1 and h = 2^-j.
 std::vector<PlotSeries> study() {
-  std::vector<PlotSeries> s = {{"triangles", {}, {}}, {"quads & hexagons", {}, {}}, {"first <order>", {}, {}}};
+  std::vector<PlotSeries> s = {
+      {"triangles", {}, {}}, {"quads & hexagons", {}, {}}, {"first <order>", {}, {}}};
   for (int j = 2; j <= 6; ++j) {
     const double h = std::pow(0.5, j);
     s[0].x.push_back(h);
@@ -134,7 +135,8 @@ TEST_CASE("plot_image draws the series in their colours", "[render]") {
   int found = 0;
   for (const std::string col : {"#1f61b3", "#e66b14", "#2e943d"}) {
     REQUIRE(svg.find(col) != std::string::npos);  // the same palette in both outputs
-    const Color c(std::stoi(col.substr(1, 2), nullptr, 16) / 255.0, std::stoi(col.substr(3, 2), nullptr, 16) / 255.0,
+    const Color c(std::stoi(col.substr(1, 2), nullptr, 16) / 255.0,
+                  std::stoi(col.substr(3, 2), nullptr, 16) / 255.0,
                   std::stoi(col.substr(5, 2), nullptr, 16) / 255.0);
     int n = 0;
     for (int y = 0; y < img.height; ++y)
@@ -147,7 +149,8 @@ TEST_CASE("plot_image draws the series in their colours", "[render]") {
 
 TEST_CASE("write_plot writes SVG or PNG by extension", "[render]") {
   const auto dir = std::filesystem::temp_directory_path();
-  const std::string svg = (dir / "polydec_test_plot.svg").string(), png = (dir / "polydec_test_plot.png").string();
+  const std::string svg = (dir / "polydec_test_plot.svg").string(),
+                    png = (dir / "polydec_test_plot.png").string();
   write_plot(svg, study(), {});
   write_plot(png, study(), {});
   std::ifstream in(svg);

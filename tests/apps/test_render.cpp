@@ -1,17 +1,18 @@
 // tests/apps/test_render.cpp — the software renderer: colour maps against published values,
 // polygon triangulation, known scenes checked pixel by pixel (colour-mapped ramp, edges,
 // isolines, depth order, perspective), coverage of real meshes, PNG round trip, errors.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <filesystem>
+#include <numeric>
+#include <set>
+
 #include "apps/colormap.h"
 #include "apps/font.h"
 #include "apps/render.h"
 #include "dec/generators.h"
 #include "dec/io.h"
 #include "tests/support.h"
-
-#include <catch2/catch.hpp>
-#include <cmath>
-#include <filesystem>
-#include <set>
 
 #define STB_IMAGE_IMPLEMENTATION
 #include <stb_image.h>
@@ -90,9 +91,10 @@ TEST_CASE("colour maps agree with independent published polynomial fits", "[rend
   // Polynomial fits published by their authors (viridis: J. Liard 2016, degree 5; turbo:
   // R. Du, Google 2019, degree 5). They deviate from the true maps by up to 0.022 (viridis) and
   // 0.08 (turbo) on [0.05, 0.95]; a mis-transcribed table row or swapped channel would not.
-  const double V[3][6] = {{0.280268003, -0.143510503, 2.225793877, -14.815088879, 25.212752309, -11.772589584},
-                          {-0.002117546, 1.617109353, -1.909305070, 2.701152864, -1.685288385, 0.178738871},
-                          {0.300805501, 2.614650302, -12.019139090, 28.933559110, -33.491294770, 13.762053843}};
+  const double V[3][6] = {
+      {0.280268003, -0.143510503, 2.225793877, -14.815088879, 25.212752309, -11.772589584},
+      {-0.002117546, 1.617109353, -1.909305070, 2.701152864, -1.685288385, 0.178738871},
+      {0.300805501, 2.614650302, -12.019139090, 28.933559110, -33.491294770, 13.762053843}};
   const double T[3][6] = {{0.13572138, 4.61539260, -42.66032258, 132.13108234, -152.94239396, 59.28637943},
                           {0.09140261, 2.19418839, 4.84296658, -14.18503333, 4.27729857, 2.82956604},
                           {0.10667330, 12.64194608, -60.58204836, 110.36276771, -89.90310912, 27.34824973}};
@@ -177,7 +179,8 @@ TEST_CASE("render: a colour-mapped ramp on a square facing the camera", "[render
   REQUIRE(img.height == 200);
   auto ramp = [](int i) { return (i + 0.5 - 20) / 160; };
   // Interior: the colour map at the interpolated value (light along the view: intensity 1).
-  for (int i : {30, 64, 100, 143, 170}) CHECK(max_diff(img.pixel(i, 100), colormap(o.colormap, ramp(i))) < 1e-6);
+  for (int i : {30, 64, 100, 143, 170})
+    CHECK(max_diff(img.pixel(i, 100), colormap(o.colormap, ramp(i))) < 1e-6);
   CHECK(max_diff(img.pixel(100, 100), colormap(Colormap::viridis, 0.503125)) < 1e-6);
   // Background outside.
   for (auto [x, y] : Pixels{{5, 5}, {195, 100}, {100, 195}, {19, 100}, {100, 180}})
@@ -343,7 +346,8 @@ TEST_CASE("render: colour bar and labels", "[render]") {
 }
 
 TEST_CASE("font: every glyph is 5x7, distinct, and drawn as designed", "[render]") {
-  const std::string chars = "0123456789ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz.,-+:()/=_%!?*[]<>'|^ ";
+  const std::string chars =
+      "0123456789ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz.,-+:()/=_%!?*[]<>'|^ ";
   std::set<std::string> seen;
   for (char c : chars) {
     REQUIRE(has_glyph(c));
@@ -409,6 +413,8 @@ TEST_CASE("render: bad input is refused with a clear error", "[render]") {
   RenderOptions o;
   o.width = 0;
   CHECK_THROWS_AS(render(mesh, {}, o), std::invalid_argument);
+  o.width = o.height = 8000;  // 2.56e8 samples with the default supersampling
+  CHECK_THROWS_AS(render(mesh, {}, o), std::invalid_argument);
   try {
     render_png("/nonexistent-dir/x.png", mesh, {}, {});
     FAIL("no error");
@@ -425,10 +431,14 @@ TEST_CASE("render: bad input is refused with a clear error", "[render]") {
 TEST_CASE("polydec geodesics --png and polydec render write pictures", "[render]") {
   POLYDEC_SHARED_MESH(mesh, "quad-sphere.off");
   const auto dir = std::filesystem::temp_directory_path();
-  const std::string a = (dir / "polydec_test_geodesics.png").string(), b = (dir / "polydec_test_render_cli.png").string();
+  const std::string a = (dir / "polydec_test_geodesics.png").string(),
+                    b = (dir / "polydec_test_render_cli.png").string();
   const std::string cli = POLYDEC_CLI_PATH;
-  REQUIRE(std::system((cli + " geodesics " + mesh + " --source 0 --png " + a + " --json > /dev/null").c_str()) == 0);
-  REQUIRE(std::system((cli + " render " + mesh + " --png " + b + " --scalar z --width 320 --height 240 > /dev/null").c_str()) == 0);
+  REQUIRE(std::system(
+              (cli + " geodesics " + mesh + " --source 0 --png " + a + " --json > /dev/null").c_str()) == 0);
+  REQUIRE(std::system(
+              (cli + " render " + mesh + " --png " + b + " --scalar z --width 320 --height 240 > /dev/null")
+                  .c_str()) == 0);
   int w = 0, h = 0, n = 0;
   unsigned char* data = stbi_load(a.c_str(), &w, &h, &n, 3);
   REQUIRE(data != nullptr);
@@ -452,17 +462,26 @@ TEST_CASE("polydec geodesics --png and polydec render write pictures", "[render]
   std::filesystem::remove(a);
   std::filesystem::remove(b);
   // Usage errors exit with code 2.
-  CHECK(WEXITSTATUS(std::system((cli + " render " + mesh + " --png " + b + " --scalar w 2> /dev/null").c_str())) == 2);
+  CHECK(WEXITSTATUS(std::system(
+            (cli + " render " + mesh + " --png " + b + " --scalar w 2> /dev/null").c_str())) == 2);
 }
 
-TEST_CASE("view_facing_vertex looks at a vertex from its own side, horizontally", "[render]") {
+TEST_CASE("view_facing_vertex looks at a vertex head-on, horizontally", "[render]") {
   const Mesh sphere = uv_sphere(12, 24);
   for (int v : {3, 40, 100}) {
     const Eigen::Vector3d d = view_facing_vertex(sphere, v);
     if (std::abs(sphere.position(v).x()) + std::abs(sphere.position(v).z()) < 1e-9) continue;
-    CHECK(std::abs(d.y()) < 1e-12);              // orthogonal to up
+    CHECK(std::abs(d.y()) < 1e-12);  // orthogonal to up
     CHECK(d.norm() == Approx(1));
-    CHECK(d.dot(sphere.position(v)) < 0);        // from the vertex towards the centre
+    CHECK(d.dot(sphere.position(v)) < 0);  // from outside towards the centre
+    // The same for the mesh with flipped orientation (inward normals).
+    PolygonSoup soup;
+    soup.positions = sphere.positions();
+    for (int f = 0; f < sphere.n_faces(); ++f) {
+      std::vector<int> r(sphere.face(f).rbegin(), sphere.face(f).rend());
+      soup.add_face(r);
+    }
+    CHECK((view_facing_vertex(Mesh(std::move(soup)), v) - d).norm() < 1e-12);
   }
   CHECK(view_facing_vertex(quad_grid(3, 3), 0).norm() == 0);  // flat: default view
   CHECK_THROWS_AS(view_facing_vertex(sphere, sphere.n_vertices()), std::out_of_range);
@@ -482,6 +501,99 @@ TEST_CASE("render: edges fade on dense meshes, stay on coarse ones", "[render]")
   // Coarse: full opacity on the edge pixels (grey surface towards the edge colour).
   const double full = o.edge_opacity * (o.surface_color - o.edge_color).maxCoeff();
   CHECK(edge_effect(quad_grid(4, 4)) == Approx(full).epsilon(1e-5));
-  // 160 px for 80 cells: 2 px per edge, opacity scaled by (2 / 10)^2.
-  CHECK(edge_effect(quad_grid(80, 80)) == Approx(0.04 * full).epsilon(0.05));
+  // 160 px for 80 cells: 2 px per edge, opacity scaled by 2 / 10.
+  CHECK(edge_effect(quad_grid(80, 80)) == Approx(0.2 * full).epsilon(0.05));
+}
+
+TEST_CASE("render: the picture does not depend on the mesh's scale or position", "[render]") {
+  const Mesh mesh = hex_grid(5, 4);
+  const Eigen::VectorXd s = mesh.positions().col(0).array().square() + mesh.positions().col(1).array();
+  RenderOptions o = exact_options(160);
+  o.isolines = 5;
+  o.view_direction = {0.3, -0.4, -1};
+  const Image ref = render(mesh, s, o);
+  for (double scale : {1e-8, 1e8}) {
+    const Eigen::MatrixX3d p = (mesh.positions() * scale).rowwise() + Eigen::RowVector3d(3, -2, 5) * scale;
+    const Image img = render(mesh.with_positions(p), s, o);
+    double worst = 0;
+    for (size_t i = 0; i < img.rgb.size(); ++i)
+      worst = std::max(worst, double(std::abs(img.rgb[i] - ref.rgb[i])));
+    CHECK(worst < 1e-3);
+  }
+}
+
+TEST_CASE("render: perspective-correct interpolation puts isolines where the geometry is", "[render]") {
+  // A square tilted away from the camera (far edge 2 units deeper), scalar = y. Seen in
+  // perspective, the isoline s = 0.5 must lie on the projection of the 3D line y = 0.5, which
+  // the same square split into two quads along y = 0.5 shows as a polygon edge. Affine
+  // interpolation in screen space would put it at the trapezoid's mid-height instead.
+  auto tilted = [](bool split) {
+    PolygonSoup soup;
+    soup.positions.resize(6, 3);
+    soup.positions << 0, 0, 0, 1, 0, 0, 1, 0.5, -1, 0, 0.5, -1, 1, 1, -2, 0, 1, -2;
+    if (split) {
+      soup.add_face(std::vector<int>{0, 1, 2, 3});
+      soup.add_face(std::vector<int>{3, 2, 4, 5});
+    } else {
+      soup.add_face(std::vector<int>{0, 1, 4, 5});
+    }
+    return Mesh(std::move(soup));
+  };
+  RenderOptions o = exact_options(300);
+  o.perspective = true;
+  o.field_of_view = 60;
+  o.edge_width = 3;  // silhouette edges are drawn inside only: some pixel centre within 1 px
+  o.isoline_width = 2;
+  o.edge_opacity = o.isoline_opacity = 1;
+  o.edge_color = {1, 0, 0};
+  o.isoline_color = {0, 0, 1};
+  auto rows = [](const Image& img, int x, const Color& c) {
+    std::vector<int> r;
+    for (int y = 0; y < img.height; ++y)
+      if (max_diff(img.pixel(x, y), c) < 0.02) r.push_back(y);
+    return r;
+  };
+  auto mean = [](const std::vector<double>& v) {
+    return std::accumulate(v.begin(), v.end(), 0.0) / double(v.size());
+  };
+  RenderOptions a = o;
+  a.edges = false;
+  a.isolines = 1;  // the level 0.5
+  const Mesh one = tilted(false), two = tilted(true);
+  const Image iso_img = render(one, one.positions().col(1), a);
+  const Image edge_img = render(two, {}, o);
+  // Column by column (the polygon is drawn as a fan: away from the centre column the
+  // isoline crosses fan triangles whose screen-affine interpolation would be off).
+  int compared = 0;
+  double worst = 0, spread = INFINITY;
+  for (int x = 40; x < 260; x += 4) {
+    const std::vector<int> iso = rows(iso_img, x, a.isoline_color), edge = rows(edge_img, x, o.edge_color);
+    if (iso.empty() || edge.size() < 3) continue;
+    std::vector<double> middle;  // between the far (top) and the near (bottom) silhouette edge
+    for (int y : edge)
+      if (y > edge.front() + 3 && y < edge.back() - 3) middle.push_back(y);
+    if (middle.empty()) continue;
+    const double edge_row = mean(middle);
+    worst = std::max(worst, std::abs(mean(std::vector<double>(iso.begin(), iso.end())) - edge_row));
+    spread = std::min(spread, std::abs(0.5 * (edge.front() + edge.back()) - edge_row));
+    ++compared;
+  }
+  CHECK(compared > 20);
+  CHECK(worst < 1.0);
+  CHECK(spread > 4.0);  // the trapezoid's mid-height is elsewhere: the test can tell
+}
+
+TEST_CASE("render: a long title is made to fit", "[render]") {
+  RenderOptions o = exact_options(200);
+  o.title = std::string(100, 'M');  // 100 glyphs cannot fit 200 px even at scale 1
+  const Image img = render(quad_grid(2, 2), {}, o);
+  // Ink in the title band stays inside the image with the padding on both sides, and the
+  // title is drawn (shortened, ending in "..").
+  int first = img.width, last = -1;
+  for (int y = 0; y < 12; ++y)
+    for (int x = 0; x < img.width; ++x)
+      if (img.pixel(x, y).maxCoeff() < 0.5) first = std::min(first, x), last = std::max(last, x);
+  CHECK(first >= 4);
+  CHECK(last <= img.width - 5);
+  CHECK(last - first > 150);
 }
