@@ -14,16 +14,63 @@ namespace {
 // complete orthogonal decomposition of eq. (38) makes the same decision.
 constexpr double kRankTolerance = 1e-14;
 
-// Pseudo-inverse solve of a symmetric positive semi-definite 3x3 system.
-Eigen::Vector3d psd_solve(const Eigen::Matrix3d& A, const Eigen::Vector3d& b) {
+// Pseudo-inverse solve of a symmetric positive semi-definite 3x3 system (eigenvalues below
+// kRankTolerance times the largest are dropped).
+void eigen_psd_solve(const Eigen::Matrix3d& A, const Eigen::Vector3d& b, double* x_out) {
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(A);
   const Eigen::Vector3d lambda = es.eigenvalues();
   const double cut = kRankTolerance * lambda.cwiseAbs().maxCoeff();
   Eigen::Vector3d x = Eigen::Vector3d::Zero();
   for (int i = 0; i < 3; ++i)
     if (lambda[i] > cut && lambda[i] > 0) x += es.eigenvectors().col(i) * (es.eigenvectors().col(i).dot(b) / lambda[i]);
-  return x;
+  for (int i = 0; i < 3; ++i) x_out[i] = x[i];
 }
+
+// The LDL^T route is taken when the smallest eigenvalue provably exceeds kDirectTolerance
+// times the largest (lambda_min >= 4 det / tr^2, lambda_max <= tr): then no eigenvalue is
+// dropped by the eigen route, both solve the same regular system and agree to round-off
+// (relative difference at most ~ machine epsilon / kDirectTolerance).
+constexpr double kDirectTolerance = 1e-8;
+
+// Symmetric 3x3 matrix (upper triangle) with a pseudo-inverse solve: LDL^T when well
+// conditioned, the eigen decomposition otherwise (planar polygons: rank 2).
+struct Sym3 {
+  double a00 = 0, a01 = 0, a02 = 0, a11 = 0, a12 = 0, a22 = 0;
+  void add_outer(const double* v, double s) {
+    a00 += s * v[0] * v[0];
+    a01 += s * v[0] * v[1];
+    a02 += s * v[0] * v[2];
+    a11 += s * v[1] * v[1];
+    a12 += s * v[1] * v[2];
+    a22 += s * v[2] * v[2];
+  }
+  void add_diagonal(double s) {
+    a00 += s;
+    a11 += s;
+    a22 += s;
+  }
+  void psd_solve(const double* b, double* x) const {
+    const double tr = a00 + a11 + a22;
+    if (a00 > 0) {
+      const double l10 = a01 / a00, l20 = a02 / a00;
+      const double d1 = a11 - l10 * a01;
+      if (d1 > 0) {
+        const double l21 = (a12 - l20 * a01) / d1;
+        const double d2 = a22 - l20 * a02 - l21 * l21 * d1;
+        if (d2 > 0 && 4 * a00 * d1 * d2 > kDirectTolerance * tr * tr * tr) {
+          const double y0 = b[0], y1 = b[1] - l10 * y0, y2 = b[2] - l20 * y0 - l21 * y1;
+          x[2] = y2 / d2;
+          x[1] = y1 / d1 - l21 * x[2];
+          x[0] = y0 / a00 - l10 * x[1] - l20 * x[2];
+          return;
+        }
+      }
+    }
+    Eigen::Matrix3d M;
+    M << a00, a01, a02, a01, a11, a12, a02, a12, a22;
+    eigen_psd_solve(M, Eigen::Vector3d(b[0], b[1], b[2]), x);
+  }
+};
 
 }  // namespace
 
@@ -45,25 +92,43 @@ Eigen::VectorXd centroid_weights(int n) { return Eigen::VectorXd::Constant(n, 1.
 
 Eigen::VectorXd squared_area_weights(const PolygonPositions& X) {
   const int n = int(X.rows());
-  const Eigen::RowVector3d c = X.colwise().mean();
-  const PolygonPositions Y = X.rowwise() - c;  // centred positions
+  Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> x = X;
+  Eigen::VectorXd w(n), work(3 * n);
+  squared_area_weights(x.data(), n, w.data(), work.data());
+  return w;
+}
+
+void squared_area_weights(const double* x, int n, double* w, double* work) {
+  double c[3] = {0, 0, 0};
+  for (int k = 0; k < n; ++k)
+    for (int d = 0; d < 3; ++d) c[d] += x[3 * k + d];
+  for (int d = 0; d < 3; ++d) c[d] /= n;
+  double* Y = work;  // centred positions, n x 3 row-major
+  for (int k = 0; k < n; ++k)
+    for (int d = 0; d < 3; ++d) Y[3 * k + d] = x[3 * k + d] - c[d];
 
   // Minimizer over R^3 of E(y) = 1/2 sum_k |e_k x (y - y_k)|^2: A y = b with
   // A = sum_k (|e_k|^2 I - e_k e_k^T), b = sum_k (|e_k|^2 I - e_k e_k^T) y_k.
-  Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
-  Eigen::Vector3d b = Eigen::Vector3d::Zero();
+  // C = Y^T Y accumulated in the same pass.
+  Sym3 A, C;
+  double b[3] = {0, 0, 0};
   for (int k = 0; k < n; ++k) {
-    const Eigen::Vector3d e = (Y.row((k + 1) % n) - Y.row(k)).transpose();
-    const Eigen::Matrix3d B = e.squaredNorm() * Eigen::Matrix3d::Identity() - e * e.transpose();
-    A += B;
-    b += B * Y.row(k).transpose();
+    const double* p = Y + 3 * k;
+    const double* q = Y + 3 * (k + 1 == n ? 0 : k + 1);
+    const double e[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+    const double ee = e[0] * e[0] + e[1] * e[1] + e[2] * e[2];
+    const double ep = e[0] * p[0] + e[1] * p[1] + e[2] * p[2];
+    A.add_outer(e, -1.0);
+    A.add_diagonal(ee);
+    for (int d = 0; d < 3; ++d) b[d] += ee * p[d] - ep * e[d];
+    C.add_outer(p, 1.0);
   }
-  const Eigen::Vector3d y = psd_solve(A, b);
-
+  double y[3], z[3];
+  A.psd_solve(b, y);
   // Least-norm w with sum w = 1 and Y^T w = y. Because Y is centred, the row of ones is
   // orthogonal to the columns of Y, so w = 1/n + Y (Y^T Y)^+ y.
-  const Eigen::Matrix3d C = Y.transpose() * Y;
-  return Eigen::VectorXd::Constant(n, 1.0 / n) + Y * psd_solve(C, y);
+  C.psd_solve(y, z);
+  for (int k = 0; k < n; ++k) w[k] = 1.0 / n + (Y[3 * k] * z[0] + Y[3 * k + 1] * z[1] + Y[3 * k + 2] * z[2]);
 }
 
 Eigen::VectorXd virtual_vertex_weights(const PolygonPositions& X, VirtualVertexRule rule) {

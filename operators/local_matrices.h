@@ -21,4 +21,26 @@ Eigen::Vector3d triangle_half_cotangents(const Eigen::Vector3d& p0, const Eigen:
 void polygon_matrices(const PolygonPositions& X, const Eigen::VectorXd& w, const Eigen::Vector3d& xf,
                       const FanTriangle* fan, Eigen::MatrixXd* S, Eigen::MatrixXd* M);
 
+// The same matrices in compact, rank-structured form, without allocating. With P_f = [I; w^T]
+// and a fan matrix A^f = [T a; a^T alpha] (T cyclic tridiagonal over the corners),
+// P_f^T A^f P_f = T + t w^T + w t^T with t = a + alpha w / 2. Writes 3n doubles per requested
+// matrix: T's diagonal d[0..n), T's cyclic off-diagonal o[k] = T(k, k+1 mod n), then t.
+// x holds the n corners row by row; S or M may be null.
+void polygon_matrices_compact(const double* x, int n, const double* w, const double* xf, const FanTriangle* fan,
+                              double* S, double* M);
+
+// Column b of the local matrix from its compact form c (3n doubles) and the weights w:
+// out[a] = t_a w_b + w_a t_b, plus d_b on the diagonal and o on the two cyclic neighbours.
+// Every assembly path uses this one expression, so results are bitwise reproducible.
+inline void expand_local_column(int n, int b, const double* w, const double* c, double* out) {
+  const double* d = c;
+  const double* o = c + n;
+  const double* t = c + 2 * n;
+  for (int a = 0; a < n; ++a) out[a] = t[a] * w[b] + w[a] * t[b];
+  const int next = b + 1 == n ? 0 : b + 1, prev = b == 0 ? n - 1 : b - 1;
+  out[b] += d[b];
+  out[next] += o[b];
+  out[prev] += o[prev];
+}
+
 }  // namespace polydec
