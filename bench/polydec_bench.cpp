@@ -21,6 +21,7 @@
 #include <fmt/format.h>
 #include <fstream>
 #include <functional>
+#include <ctime>
 #include <malloc.h>
 #include <set>
 #include <sstream>
@@ -36,7 +37,21 @@ using Clock = std::chrono::steady_clock;
 
 double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
+// CPU time of the calling thread: single-threaded comparisons are not distorted by other
+// processes on the shared machine (wall time is used for the thread-scaling rows only).
+double thread_cpu_ms() {
+  timespec ts;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
 double time_ms(const std::function<void()>& f) {
+  const double t0 = thread_cpu_ms();
+  f();
+  return thread_cpu_ms() - t0;
+}
+
+double wall_ms(const std::function<void()>& f) {
   const auto t0 = Clock::now();
   f();
   return ms_since(t0);
@@ -51,11 +66,12 @@ double median(std::vector<double> v) {
 double best(const std::vector<double>& v) { return *std::min_element(v.begin(), v.end()); }
 
 // Runs the two timed functions alternately `reps` times; returns the median of each.
-std::pair<double, double> interleaved(int reps, const std::function<void()>& base, const std::function<void()>& ours) {
+std::pair<double, double> interleaved(int reps, const std::function<void()>& base, const std::function<void()>& ours,
+                                      bool wall = false) {
   std::vector<double> tb, to;
   for (int i = 0; i < reps; ++i) {
-    tb.push_back(time_ms(base));
-    to.push_back(time_ms(ours));
+    tb.push_back(wall ? wall_ms(base) : time_ms(base));
+    to.push_back(wall ? wall_ms(ours) : time_ms(ours));
   }
   return {median(tb), median(to)};
 }
@@ -111,20 +127,29 @@ void bench_assembly(const std::string& name, const Mesh& mesh, int reps) {
   add({"assembly, pattern kept", name, "plain build() (S+M)", "refine + values", plain2, kept, 0, 0, ""});
 }
 
+// The machine's load average (other processes compete for the cores in wall-time rows).
+std::string load_note() {
+  std::ifstream in("/proc/loadavg");
+  double l1 = 0;
+  in >> l1;
+  return fmt::format(" (load average {:.1f})", l1);
+}
+
 void bench_threads(const std::string& name, const Mesh& mesh, int reps) {
   const int T = std::max(2, int(std::thread::hardware_concurrency()));
   const Refinement r = refine(mesh);
   const FacePattern fp = face_pattern(mesh);
   Laplacian L1, LT;
   const auto [one, many] = interleaved(reps, [&] { reassemble_laplacian(mesh, r, fp, {}, L1, {1}); },
-                                       [&] { reassemble_laplacian(mesh, r, fp, {}, LT, {T}); });
+                                       [&] { reassemble_laplacian(mesh, r, fp, {}, LT, {T}); }, true);
   const bool same = same_bits(L1.S, LT.S) && same_bits(L1.M, LT.M) &&
                     std::memcmp(L1.M_lumped.data(), LT.M_lumped.data(), sizeof(double) * L1.M_lumped.size()) == 0;
   add({fmt::format("values S+M+lumped, {} threads", T), name, "same, 1 thread", fmt::format("{} threads", T), one, many,
-       0, 1.7, same ? "bitwise identical to 1 thread" : "RESULTS DIFFER"});
-  const auto [full1, fullT] = interleaved(reps, [&] { L1 = assemble_all(mesh, 1); }, [&] { LT = assemble_all(mesh, T); });
+       0, 1.7, std::string(same ? "bitwise identical to 1 thread" : "RESULTS DIFFER") + "; wall time" + load_note()});
+  const auto [full1, fullT] =
+      interleaved(reps, [&] { L1 = assemble_all(mesh, 1); }, [&] { LT = assemble_all(mesh, T); }, true);
   add({fmt::format("full assembly, {} threads", T), name, "same, 1 thread", "refine serial, values threaded", full1,
-       fullT, 0, 0, ""});
+       fullT, 0, 0, "wall time" + load_note()});
 }
 
 void bench_reassembly(const std::string& name, const Mesh& mesh, int reps) {
@@ -208,11 +233,11 @@ void bench_cholesky(const std::string& name, const Laplacian& L, int reps) {
   Eigen::SimplicialLLT<SparseMatrix> llt;
   llt.analyzePattern(A);
   std::vector<double> t_llt;
-  for (int i = 0; i < reps; ++i) t_llt.push_back(time_ms([&] { llt.factorize(A); }));
+  for (int i = 0; i < reps; ++i) t_llt.push_back(wall_ms([&] { llt.factorize(A); }));
   Eigen::SimplicialLDLT<SparseMatrix> ldlt;
   ldlt.analyzePattern(A);
   std::vector<double> t_ldlt;
-  for (int i = 0; i < reps; ++i) t_ldlt.push_back(time_ms([&] { ldlt.factorize(A); }));
+  for (int i = 0; i < reps; ++i) t_ldlt.push_back(wall_ms([&] { ldlt.factorize(A); }));
   add({"numeric Cholesky, Eigen LDLT", name, "Eigen SimplicialLLT", "Eigen SimplicialLDLT (fallback)", best(t_llt),
        best(t_ldlt), 0, 0, "best of " + std::to_string(reps)});
   if (!SparseCholesky::cholmod_available()) {
@@ -221,11 +246,11 @@ void bench_cholesky(const std::string& name, const Laplacian& L, int reps) {
   }
   for (auto ord : {CholeskyOrdering::Amd, CholeskyOrdering::Metis, CholeskyOrdering::NestedDissection}) {
     std::unique_ptr<SparseCholesky> chol;
-    const double first = time_ms([&] { chol = std::make_unique<SparseCholesky>(A, "M - 0.1 S", CholeskyOptions{CholeskyBackend::Cholmod, ord}); });
+    const double first = wall_ms([&] { chol = std::make_unique<SparseCholesky>(A, "M - 0.1 S", CholeskyOptions{CholeskyBackend::Cholmod, ord}); });
     std::vector<double> t;
-    for (int i = 0; i < reps; ++i) t.push_back(time_ms([&] { chol->refactor(A); }));
+    for (int i = 0; i < reps; ++i) t.push_back(wall_ms([&] { chol->refactor(A); }));
     // Interleave one more LLT run so that both sides see the same machine state.
-    t_llt.push_back(time_ms([&] { llt.factorize(A); }));
+    t_llt.push_back(wall_ms([&] { llt.factorize(A); }));
     add({"numeric Cholesky, CHOLMOD " + chol->ordering(), name, "Eigen SimplicialLLT", "CHOLMOD supernodal refactor",
          best(t_llt), best(t), 0, ord == CholeskyOrdering::Amd ? 2.0 : 0.0,
          fmt::format("nnz(L) {:.2f}M; analysis + first factorization {:.0f} ms", chol->factor_nonzeros() / 1e6, first)});
@@ -234,11 +259,11 @@ void bench_cholesky(const std::string& name, const Laplacian& L, int reps) {
 
 void bench_geodesics(const std::string& name, const Mesh& mesh, int n_sources) {
   std::unique_ptr<HeatGeodesics> heat;
-  const double pre = time_ms([&] { heat = std::make_unique<HeatGeodesics>(mesh); });
+  const double pre = wall_ms([&] { heat = std::make_unique<HeatGeodesics>(mesh); });
   std::vector<double> t;
   for (int i = 0; i < n_sources; ++i) {
     const int s = int((long(i) * 7919 * 104729) % mesh.n_vertices());
-    t.push_back(time_ms([&] { heat->distance(s); }));
+    t.push_back(wall_ms([&] { heat->distance(s); }));
   }
   Row r{"heat geodesics per source", name, "precomputation", "one source", pre, median(t), 0, 0,
         fmt::format("{:.1f} ms per source (median of {}); ratio = precomputation / per source", median(t), n_sources)};
@@ -255,15 +280,25 @@ std::string status(const Row& r) {
 
 int main(int argc, char** argv) {
   int big = 500, reps = 5;
-  bool with_big = true;
+  bool with_big = true, quick = false;  // --quick: assembly rows on HEX and FINE only
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--memory-child" && i + 1 < argc) return memory_child(std::stoi(argv[i + 1]));
+    if (a == "--profile") {  // one assembly of FINE SPHERE, for valgrind --tool=callgrind
+      const Mesh hex = project_to_unit_sphere(dual(read_mesh(shared("unit-sphere.off"))));
+      const Mesh fine = project_to_unit_sphere(catmull_clark(hex));
+      const auto input = plain_reference::make_input(fine.positions(), fine.face_offsets(), fine.face_indices());
+      SparseMatrix Sp, Mp;
+      if (i + 1 < argc && std::string(argv[i + 1]) == "plain") plain_reference::build(*input, Sp, Mp);
+      const Laplacian L = assemble_all(fine, 1);
+      return L.S.nonZeros() + Sp.nonZeros() > 0 ? 0 : 1;
+    }
     if (a == "--big" && i + 1 < argc) big = std::stoi(argv[++i]);
     else if (a == "--no-big") with_big = false;
+    else if (a == "--quick") quick = true;
     else if (a == "--reps" && i + 1 < argc) reps = std::stoi(argv[++i]);
     else {
-      std::fprintf(stderr, "usage: polydec_bench [--big N] [--no-big] [--reps K]\n");
+      std::fprintf(stderr, "usage: polydec_bench [--big N] [--no-big] [--quick] [--reps K]\n");
       return 2;
     }
   }
@@ -277,6 +312,13 @@ int main(int argc, char** argv) {
     bunny = read_mesh(shared("bunny-hexa.off"));
   } catch (const std::exception& e) {
     bunny_error = e.what();
+  }
+  if (quick) {
+    with_big = false;
+    bench_assembly("HEX SPHERE", hex, reps);
+    bench_assembly("FINE SPHERE", fine, reps);
+    bench_reassembly("FINE SPHERE", fine, reps);
+    return 0;
   }
   Mesh quad_big;
   if (with_big) quad_big = cube_sphere(big);

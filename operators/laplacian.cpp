@@ -7,12 +7,14 @@
 // its contributions in the same order as on one thread, and results are bitwise identical.
 #include "operators/laplacian.h"
 
+#include "dec/huge_pages.h"
 #include "operators/local_matrices.h"
 
 #include <algorithm>
 #include <barrier>
 #include <stdexcept>
 #include <thread>
+#include <type_traits>
 #include <utility>
 
 namespace polydec {
@@ -28,33 +30,48 @@ FacePattern face_pattern(const Mesh& mesh) {
     const long n = offsets[f + 1] - offsets[f];
     fp.local_offsets[f + 1] = fp.local_offsets[f] + n * n;
   }
+  fp.slots.reserve(fp.local_offsets[nf]);
+  advise_huge_pages(fp.slots.data(), sizeof(int) * fp.local_offsets[nf]);
   fp.slots.resize(fp.local_offsets[nf]);
-  // Column v: the rows of all corners of the faces around v, each with the local slot (a, b)
-  // it comes from (b = v's corner). Sorted by row, duplicates merged into one pattern entry.
-  std::vector<int> outer(nv + 1, 0), inner;
-  inner.reserve(fp.local_offsets[nf]);  // upper bound; untouched pages cost no memory
-  std::vector<std::pair<int, long>> column;
+  // Column v: the distinct rows of all corners of the faces around v, sorted; then every local
+  // slot (a, b) with b = v's corner gets the position of row face[a] in that column.
+  // Rows go straight into the pattern's storage, allocated for the upper bound sum n^2 (pages
+  // never touched cost no memory) and shrunk to the exact count at the end.
+  fp.pattern.resize(nv, nv);
+  fp.pattern.resizeNonZeros(fp.local_offsets[nf]);
+  int* inner = fp.pattern.innerIndexPtr();
+  advise_huge_pages(inner, sizeof(int) * fp.local_offsets[nf]);
+  advise_huge_pages(fp.pattern.valuePtr(), sizeof(double) * fp.local_offsets[nf]);
+  int* outer = fp.pattern.outerIndexPtr();
+  outer[0] = 0;
+  int nnz = 0;
+  std::vector<int> rows, pos(nv, -1);
   for (int v = 0; v < nv; ++v) {
-    column.clear();
+    rows.clear();
+    for (int f : mesh.vertex_faces(v))
+      for (int h = offsets[f]; h < offsets[f + 1]; ++h)
+        if (pos[indices[h]] < 0) {
+          pos[indices[h]] = 0;
+          rows.push_back(indices[h]);
+        }
+    for (size_t i = 1; i < rows.size(); ++i)  // insertion sort: columns hold about ten rows
+      for (size_t j = i; j > 0 && rows[j] < rows[j - 1]; --j) std::swap(rows[j], rows[j - 1]);
+    const int base = nnz;
+    for (size_t i = 0; i < rows.size(); ++i) {
+      pos[rows[i]] = int(i);
+      inner[nnz++] = rows[i];
+    }
     for (int f : mesh.vertex_faces(v)) {
       const int h0 = offsets[f], n = offsets[f + 1] - h0;
       int b = 0;
       while (indices[h0 + b] != v) ++b;
-      const long base = fp.local_offsets[f] + b;
-      for (int a = 0; a < n; ++a) column.emplace_back(indices[h0 + a], base + long(a) * n);
+      int* slot = fp.slots.data() + fp.local_offsets[f] + b;
+      for (int a = 0; a < n; ++a) slot[a * n] = base + pos[indices[h0 + a]];
     }
-    std::sort(column.begin(), column.end());
-    for (size_t i = 0; i < column.size(); ++i) {
-      if (i == 0 || column[i].first != column[i - 1].first) inner.push_back(column[i].first);
-      fp.slots[column[i].second] = int(inner.size()) - 1;
-    }
-    outer[v + 1] = int(inner.size());
+    for (int u : rows) pos[u] = -1;
+    outer[v + 1] = nnz;
   }
-  const long nnz = long(inner.size());
-  fp.pattern.resize(nv, nv);
-  fp.pattern.resizeNonZeros(nnz);
-  std::copy(outer.begin(), outer.end(), fp.pattern.outerIndexPtr());
-  std::copy(inner.begin(), inner.end(), fp.pattern.innerIndexPtr());
+  fp.pattern.resizeNonZeros(nnz);  // shrinks the size, keeps the storage
   std::fill(fp.pattern.valuePtr(), fp.pattern.valuePtr() + nnz, 0.0);
   return fp;
 }
@@ -64,6 +81,19 @@ namespace {
 // Faces per block in the threaded path: about this many halfedges (the block's compact local
 // matrices, 6 doubles per halfedge, stay in the second-level cache).
 constexpr int kBlockHalfedges = 8192;
+
+// Calls f with std::integral_constant<int, n> for the common face sizes, else with 0 (any
+// size), so that the per-face loops are unrolled for triangles, quads, pentagons and hexagons.
+template <class F>
+inline void with_size(int n, F&& f) {
+  switch (n) {
+    case 3: f(std::integral_constant<int, 3>{}); break;
+    case 4: f(std::integral_constant<int, 4>{}); break;
+    case 5: f(std::integral_constant<int, 5>{}); break;
+    case 6: f(std::integral_constant<int, 6>{}); break;
+    default: f(std::integral_constant<int, 0>{}); break;
+  }
+}
 
 struct Assembler {
   const Mesh& mesh;
@@ -75,9 +105,11 @@ struct Assembler {
   const int* offsets = mesh.face_offsets().data();
   const int* indices = mesh.face_indices().data();
 
-  // Compact local matrices of face f into cs, cm (3n doubles each; either may be null).
+  // Compact local matrices of face f (N corners, 0: any) into cs, cm (3n doubles each; either
+  // may be null).
+  template <int N>
   void compact(int f, double* x, double* cs, double* cm) const {
-    const int h0 = offsets[f], n = offsets[f + 1] - h0;
+    const int h0 = offsets[f], n = N > 0 ? N : offsets[f + 1] - h0;
     const Eigen::MatrixX3d& P = mesh.positions();
     for (int k = 0; k < n; ++k) {
       const int v = indices[h0 + k];
@@ -86,23 +118,27 @@ struct Assembler {
       x[3 * k + 2] = P(v, 2);
     }
     const double xf[3] = {r.virtual_points(f, 0), r.virtual_points(f, 1), r.virtual_points(f, 2)};
-    polygon_matrices_compact(x, n, r.weights.data() + h0, xf, r.fan.data() + h0, cs, cm);
+    detail::polygon_compact<N>(x, n, r.weights.data() + h0, xf, r.fan.data() + h0, cs, cm);
   }
 
-  // Adds face f's columns whose vertex lies in [lo, hi) to the value arrays.
+  // Adds face f's columns (all, or with Filter those whose vertex lies in [lo, hi)) to the
+  // value arrays.
+  template <int N, bool Filter>
   void scatter(int f, const double* cs, const double* cm, int lo, int hi, double* col) const {
-    const int h0 = offsets[f], n = offsets[f + 1] - h0;
+    const int h0 = offsets[f], n = N > 0 ? N : offsets[f + 1] - h0;
     const double* w = r.weights.data() + h0;
     const int* slot = fp.slots.data() + fp.local_offsets[f];
     for (int b = 0; b < n; ++b) {
-      const int v = indices[h0 + b];
-      if (v < lo || v >= hi) continue;
+      if (Filter) {
+        const int v = indices[h0 + b];
+        if (v < lo || v >= hi) continue;
+      }
       if (sv) {
-        expand_local_column(n, b, w, cs, col);
+        detail::expand_column<N>(n, b, w, cs, col);
         for (int a = 0; a < n; ++a) sv[slot[a * n + b]] += col[a];
       }
       if (mv) {
-        expand_local_column(n, b, w, cm, col);
+        detail::expand_column<N>(n, b, w, cm, col);
         for (int a = 0; a < n; ++a) mv[slot[a * n + b]] += col[a];
       }
     }
@@ -125,10 +161,13 @@ struct Assembler {
     double* cs = x + 3 * nmax;
     double* cm = cs + 3 * nmax;
     double* col = cm + 3 * nmax;
-    for (int f = 0; f < mesh.n_faces(); ++f) {
-      compact(f, x, sv ? cs : nullptr, mv ? cm : nullptr);
-      scatter(f, cs, cm, 0, nv, col);
-    }
+    double* want_s = sv ? cs : nullptr;
+    double* want_m = mv ? cm : nullptr;
+    for (int f = 0; f < mesh.n_faces(); ++f)
+      with_size(offsets[f + 1] - offsets[f], [&](auto N) {
+        compact<decltype(N)::value>(f, x, want_s, want_m);
+        scatter<decltype(N)::value, false>(f, cs, cm, 0, nv, col);
+      });
     if (lumped) lump(*lumped, 0, nv);
   }
 
@@ -166,7 +205,8 @@ struct Assembler {
           const int fe = int(std::lower_bound(offsets + f0, offsets + f1 + 1, hb + int(long(hn) * (t + 1) / T)) - offsets);
           for (int f = fa; f < fe; ++f) {
             const long h = offsets[f] - hb;
-            compact(f, x, sv ? st + 6 * h : nullptr, mv ? st + 6 * h + 3 * (offsets[f + 1] - offsets[f]) : nullptr);
+            const int n = offsets[f + 1] - offsets[f];
+            with_size(n, [&](auto N) { compact<decltype(N)::value>(f, x, sv ? st + 6 * h : nullptr, mv ? st + 6 * h + 3 * n : nullptr); });
           }
         }
         if (s > 0) {
@@ -174,7 +214,10 @@ struct Assembler {
           const int f0 = block[s - 1], f1 = block[s], hb = offsets[f0];
           for (int f = f0; f < f1; ++f) {
             const long h = offsets[f] - hb;
-            scatter(f, st + 6 * h, st + 6 * h + 3 * (offsets[f + 1] - offsets[f]), col_lo[t], col_lo[t + 1], col);
+            const int n = offsets[f + 1] - offsets[f];
+            with_size(n, [&](auto N) {
+              scatter<decltype(N)::value, true>(f, st + 6 * h, st + 6 * h + 3 * n, col_lo[t], col_lo[t + 1], col);
+            });
           }
         }
         sync.arrive_and_wait();
@@ -205,10 +248,15 @@ void assemble_into(const Mesh& mesh, const Refinement& refinement, const FacePat
     throw std::invalid_argument("assemble_laplacian: the face pattern does not belong to this mesh");
   const long nnz = structure.nonZeros();
   auto prepare = [&](SparseMatrix& A) {
-    if (A.rows() != structure.rows() || A.nonZeros() != nnz || !A.isCompressed())
-      A = structure;
-    else
-      std::fill(A.valuePtr(), A.valuePtr() + nnz, 0.0);
+    if (A.rows() != structure.rows() || A.nonZeros() != nnz || !A.isCompressed()) {
+      A.resize(structure.rows(), structure.cols());
+      A.resizeNonZeros(nnz);
+      advise_huge_pages(A.innerIndexPtr(), sizeof(int) * nnz);
+      advise_huge_pages(A.valuePtr(), sizeof(double) * nnz);
+      std::copy(structure.outerIndexPtr(), structure.outerIndexPtr() + structure.outerSize() + 1, A.outerIndexPtr());
+      std::copy(structure.innerIndexPtr(), structure.innerIndexPtr() + nnz, A.innerIndexPtr());
+    }
+    std::fill(A.valuePtr(), A.valuePtr() + nnz, 0.0);
   };
   L.quality = refinement.quality;
   if (parts.stiffness) prepare(L.S);
@@ -218,10 +266,15 @@ void assemble_into(const Mesh& mesh, const Refinement& refinement, const FacePat
     prepare(L.M);
     mv = L.M.valuePtr();
   } else if (parts.lumped_mass) {
+    mass_only.reserve(nnz);
+    advise_huge_pages(mass_only.data(), sizeof(double) * nnz);
     mass_only.assign(nnz, 0.0);
     mv = mass_only.data();
   }
-  if (parts.lumped_mass) L.M_lumped.resize(mesh.n_vertices());
+  if (parts.lumped_mass) {
+    L.M_lumped.resize(mesh.n_vertices());
+    advise_huge_pages(L.M_lumped.data(), sizeof(double) * mesh.n_vertices());
+  }
   const Assembler as{mesh, refinement, fp, structure.outerIndexPtr(), parts.stiffness ? L.S.valuePtr() : nullptr, mv};
   Eigen::VectorXd* lumped = parts.lumped_mass ? &L.M_lumped : nullptr;
   const int T = thread_count(options, mesh);

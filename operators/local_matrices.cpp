@@ -16,47 +16,11 @@ Eigen::Vector3d triangle_half_cotangents(const Eigen::Vector3d& p0, const Eigen:
 
 void polygon_matrices_compact(const double* x, int n, const double* w, const double* xf, const FanTriangle* fan,
                               double* S, double* M) {
-  double sigma = 0.0, mu = 0.0;
-  if (S)
-    for (int k = 0; k < 3 * n; ++k) S[k] = 0.0;
-  if (M)
-    for (int k = 0; k < 3 * n; ++k) M[k] = 0.0;
-  for (int k = 0; k < n; ++k) {
-    const int l = k + 1 == n ? 0 : k + 1;
-    const double* p = x + 3 * k;
-    const double* q = x + 3 * l;
-    // Fan triangle (x_k, x_l, x_f): a = x_k - x_f, b = x_l - x_f, u = x_l - x_k.
-    const double a[3] = {p[0] - xf[0], p[1] - xf[1], p[2] - xf[2]};
-    const double b[3] = {q[0] - xf[0], q[1] - xf[1], q[2] - xf[2]};
-    const double cr[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-    const double twice_area = std::sqrt(cr[0] * cr[0] + cr[1] * cr[1] + cr[2] * cr[2]);
-    if (S && fan[k] != FanTriangle::Degenerate) {
-      const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-      const double h = 0.5 / twice_area;  // half cotangent = <edges leaving the corner> / (2 |cross|)
-      const double ck = -(u[0] * a[0] + u[1] * a[1] + u[2] * a[2]) * h;  // at x_k, opposite edge (l, f)
-      const double cl = (u[0] * b[0] + u[1] * b[1] + u[2] * b[2]) * h;   // at x_l, opposite edge (k, f)
-      const double cf = (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) * h;   // at x_f, opposite edge (k, l)
-      S[n + k] = cf;
-      S[k] -= cf + cl;
-      S[l] -= cf + ck;
-      S[2 * n + l] += ck;
-      S[2 * n + k] += cl;
-      sigma -= ck + cl;
-    }
-    if (M) {
-      const double a12 = twice_area / 24.0;  // area / 12
-      M[k] += 2 * a12;
-      M[l] += 2 * a12;
-      M[n + k] = a12;
-      M[2 * n + k] += a12;
-      M[2 * n + l] += a12;
-      mu += 2 * a12;
-    }
-  }
-  for (int k = 0; k < n; ++k) {
-    if (S) S[2 * n + k] += 0.5 * sigma * w[k];
-    if (M) M[2 * n + k] += 0.5 * mu * w[k];
-  }
+  detail::polygon_compact<0>(x, n, w, xf, fan, S, M);
+}
+
+void expand_local_column(int n, int b, const double* w, const double* c, double* out) {
+  detail::expand_column<0>(n, b, w, c, out);
 }
 
 void polygon_matrices(const PolygonPositions& X, const Eigen::VectorXd& w, const Eigen::Vector3d& xf,
