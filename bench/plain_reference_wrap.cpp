@@ -21,8 +21,8 @@ std::shared_ptr<const Input> make_input(const Eigen::MatrixX3d& positions, const
 
 void build(const Input& input, Eigen::SparseMatrix<double>& S, Eigen::SparseMatrix<double>& M) {
   Ops o = ::build(input.mesh);
-  S = std::move(o.S);
-  M = std::move(o.M);
+  S.swap(o.S);  // Eigen 3.4's SparseMatrix has no move assignment: swap, not copy
+  M.swap(o.M);
 }
 
 }  // namespace plain_reference

@@ -4,7 +4,7 @@
 // a first assembly, single-threaded assembly, Eigen's SimplicialLLT, or our own
 // precomputation. Prints a Markdown table on stdout.
 //
-//   polydec_bench [--big N] [--no-big] [--reps K]
+//   polydec_bench [--big N] [--no-big] [--quick] [--reps K] [--blas-threads N] [--big-geodesics]
 //   polydec_bench --memory-child N      (internal: peak memory of one assembly, fresh process)
 #include "apps/geodesics.h"
 #include "bench/plain_reference.h"
@@ -19,6 +19,8 @@
 #include <cstdio>
 #include <cstring>
 #include <fmt/format.h>
+#include <dlfcn.h>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <ctime>
@@ -49,6 +51,14 @@ double time_ms(const std::function<void()>& f) {
   const double t0 = thread_cpu_ms();
   f();
   return thread_cpu_ms() - t0;
+}
+
+double process_cpu_ms(const std::function<void()>& f) {
+  timespec a, b;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &a);
+  f();
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &b);
+  return (b.tv_sec - a.tv_sec) * 1e3 + (b.tv_nsec - a.tv_nsec) * 1e-6;
 }
 
 double wall_ms(const std::function<void()>& f) {
@@ -104,6 +114,14 @@ double relative_difference(const SparseMatrix& A, const SparseMatrix& B) {
   return (A - B).norm() / std::max(A.norm(), B.norm());
 }
 
+// dst takes src's storage (Eigen 3.4's SparseMatrix has no move assignment: `dst = f()` would
+// deep-copy S and M inside the timed region).
+void take(Laplacian& dst, Laplacian&& src) {
+  dst.S.swap(src.S);
+  dst.M.swap(src.M);
+  dst.M_lumped.swap(src.M_lumped);
+}
+
 // Full assembly from a loaded mesh: virtual vertices, pattern, S, M, lumped M.
 Laplacian assemble_all(const Mesh& mesh, int threads) {
   const Refinement r = refine(mesh);
@@ -115,7 +133,7 @@ void bench_assembly(const std::string& name, const Mesh& mesh, int reps) {
   SparseMatrix Sp, Mp;
   Laplacian L;
   const auto [plain_ms, ours_ms] = interleaved(reps, [&] { plain_reference::build(*input, Sp, Mp); },
-                                               [&] { L = assemble_all(mesh, 1); });
+                                               [&] { take(L, assemble_all(mesh, 1)); });
   const std::string check = fmt::format("|S - S_plain| / |S| = {:.1e}, |M - M_plain| / |M| = {:.1e}",
                                         relative_difference(L.S, Sp), relative_difference(L.M, Mp));
   add({"assembly S+M+lumped, 1 thread", name, "plain build() (S+M)", "refine + pattern + values", plain_ms, ours_ms, 0,
@@ -142,12 +160,23 @@ void bench_threads(const std::string& name, const Mesh& mesh, int reps) {
   Laplacian L1, LT;
   const auto [one, many] = interleaved(reps, [&] { reassemble_laplacian(mesh, r, fp, {}, L1, {1}); },
                                        [&] { reassemble_laplacian(mesh, r, fp, {}, LT, {T}); }, true);
+  // Process CPU time of both: with the cores to itself, T threads would take about
+  // (CPU time with T threads) / T of wall time; the ratio below is the parallel overhead.
+  std::vector<double> c1, cT;
+  for (int i = 0; i < reps; ++i) {
+    c1.push_back(process_cpu_ms([&] { reassemble_laplacian(mesh, r, fp, {}, L1, {1}); }));
+    cT.push_back(process_cpu_ms([&] { reassemble_laplacian(mesh, r, fp, {}, LT, {T}); }));
+  }
+  const double overhead = median(cT) / median(c1);
   const bool same = same_bits(L1.S, LT.S) && same_bits(L1.M, LT.M) &&
                     std::memcmp(L1.M_lumped.data(), LT.M_lumped.data(), sizeof(double) * L1.M_lumped.size()) == 0;
   add({fmt::format("values S+M+lumped, {} threads", T), name, "same, 1 thread", fmt::format("{} threads", T), one, many,
-       0, 1.7, std::string(same ? "bitwise identical to 1 thread" : "RESULTS DIFFER") + "; wall time" + load_note()});
+       0, 1.7,
+       std::string(same ? "bitwise identical to 1 thread" : "RESULTS DIFFER") + "; wall time" + load_note() +
+           fmt::format("; CPU time {} threads / 1 thread = {:.2f}, so {:.2f}x on {} idle cores", T, overhead,
+                       T / overhead, T)});
   const auto [full1, fullT] =
-      interleaved(reps, [&] { L1 = assemble_all(mesh, 1); }, [&] { LT = assemble_all(mesh, T); }, true);
+      interleaved(reps, [&] { take(L1, assemble_all(mesh, 1)); }, [&] { take(LT, assemble_all(mesh, T)); }, true);
   add({fmt::format("full assembly, {} threads", T), name, "same, 1 thread", "refine serial, values threaded", full1,
        fullT, 0, 0, "wall time" + load_note()});
 }
@@ -161,7 +190,7 @@ void bench_reassembly(const std::string& name, const Mesh& mesh, int reps) {
   const FacePattern fp = face_pattern(mesh);
   Laplacian first, again = assemble_laplacian(mesh, refine(mesh), only_M, &fp);
   const auto [first_ms, re_ms] = interleaved(
-      reps, [&] { first = assemble_laplacian(moved, refine(moved), only_M); },
+      reps, [&] { take(first, assemble_laplacian(moved, refine(moved), only_M)); },
       [&] { reassemble_laplacian(moved, refine(moved), fp, only_M, again); });
   add({"re-assembly of M, moved vertices", name, "first assembly of M", "pattern and storage kept", first_ms, re_ms, 0, 2,
        same_bits(first.M, again.M) ? "bitwise equal to first assembly" : "RESULTS DIFFER"});
@@ -213,6 +242,17 @@ void bench_memory(const std::string& self, int n) {
   add(r);
 }
 
+// Sets OpenBLAS's thread count when OpenBLAS is the BLAS mapped at run time (looked up with
+// dlsym, so the benchmark does not link OpenBLAS itself); returns the count in effect or -1.
+int set_blas_threads(int n) {
+  using Set = void (*)(int);
+  using Get = int (*)();
+  auto set = reinterpret_cast<Set>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
+  auto get = reinterpret_cast<Get>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
+  if (set && n > 0) set(n);
+  return get ? get() : -1;
+}
+
 std::string blas_libraries() {
   std::ifstream in("/proc/self/maps");
   std::string line;
@@ -233,40 +273,40 @@ void bench_cholesky(const std::string& name, const Laplacian& L, int reps) {
   Eigen::SimplicialLLT<SparseMatrix> llt;
   llt.analyzePattern(A);
   std::vector<double> t_llt;
-  for (int i = 0; i < reps; ++i) t_llt.push_back(wall_ms([&] { llt.factorize(A); }));
+  for (int i = 0; i < reps; ++i) t_llt.push_back(time_ms([&] { llt.factorize(A); }));
   Eigen::SimplicialLDLT<SparseMatrix> ldlt;
   ldlt.analyzePattern(A);
   std::vector<double> t_ldlt;
-  for (int i = 0; i < reps; ++i) t_ldlt.push_back(wall_ms([&] { ldlt.factorize(A); }));
+  for (int i = 0; i < reps; ++i) t_ldlt.push_back(time_ms([&] { ldlt.factorize(A); }));
   add({"numeric Cholesky, Eigen LDLT", name, "Eigen SimplicialLLT", "Eigen SimplicialLDLT (fallback)", best(t_llt),
-       best(t_ldlt), 0, 0, "best of " + std::to_string(reps)});
+       best(t_ldlt), 0, 0, "best of " + std::to_string(reps) + ", thread CPU time (1 BLAS thread)"});
   if (!SparseCholesky::cholmod_available()) {
     add({"numeric Cholesky, CHOLMOD", name, "", "", 0, 0, 0, 2, "CHOLMOD not compiled in"});
     return;
   }
   for (auto ord : {CholeskyOrdering::Amd, CholeskyOrdering::Metis, CholeskyOrdering::NestedDissection}) {
     std::unique_ptr<SparseCholesky> chol;
-    const double first = wall_ms([&] { chol = std::make_unique<SparseCholesky>(A, "M - 0.1 S", CholeskyOptions{CholeskyBackend::Cholmod, ord}); });
+    const double first = time_ms([&] { chol = std::make_unique<SparseCholesky>(A, "M - 0.1 S", CholeskyOptions{CholeskyBackend::Cholmod, ord}); });
     std::vector<double> t;
-    for (int i = 0; i < reps; ++i) t.push_back(wall_ms([&] { chol->refactor(A); }));
+    for (int i = 0; i < reps; ++i) t.push_back(time_ms([&] { chol->refactor(A); }));
     // Interleave one more LLT run so that both sides see the same machine state.
-    t_llt.push_back(wall_ms([&] { llt.factorize(A); }));
+    t_llt.push_back(time_ms([&] { llt.factorize(A); }));
     add({"numeric Cholesky, CHOLMOD " + chol->ordering(), name, "Eigen SimplicialLLT", "CHOLMOD supernodal refactor",
          best(t_llt), best(t), 0, ord == CholeskyOrdering::Amd ? 2.0 : 0.0,
-         fmt::format("nnz(L) {:.2f}M; analysis + first factorization {:.0f} ms", chol->factor_nonzeros() / 1e6, first)});
+         fmt::format("nnz(L) {:.2f}M; analysis + first factorization {:.0f} ms; thread CPU time", chol->factor_nonzeros() / 1e6, first)});
   }
 }
 
 void bench_geodesics(const std::string& name, const Mesh& mesh, int n_sources) {
   std::unique_ptr<HeatGeodesics> heat;
-  const double pre = wall_ms([&] { heat = std::make_unique<HeatGeodesics>(mesh); });
+  const double pre = time_ms([&] { heat = std::make_unique<HeatGeodesics>(mesh); });
   std::vector<double> t;
   for (int i = 0; i < n_sources; ++i) {
     const int s = int((long(i) * 7919 * 104729) % mesh.n_vertices());
-    t.push_back(wall_ms([&] { heat->distance(s); }));
+    t.push_back(time_ms([&] { heat->distance(s); }));
   }
   Row r{"heat geodesics per source", name, "precomputation", "one source", pre, median(t), 0, 0,
-        fmt::format("{:.1f} ms per source (median of {}); ratio = precomputation / per source", median(t), n_sources)};
+        fmt::format("{:.1f} ms per source (median of {}); ratio = precomputation / per source; thread CPU time", median(t), n_sources)};
   add(r);
 }
 
@@ -279,8 +319,8 @@ std::string status(const Row& r) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  int big = 500, reps = 5;
-  bool with_big = true, quick = false;  // --quick: assembly rows on HEX and FINE only
+  int big = 500, reps = 5, blas_threads = 1;
+  bool with_big = true, quick = false, big_geodesics = false;  // --quick: assembly rows on HEX and FINE only
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--memory-child" && i + 1 < argc) return memory_child(std::stoi(argv[i + 1]));
@@ -296,13 +336,18 @@ int main(int argc, char** argv) {
     if (a == "--big" && i + 1 < argc) big = std::stoi(argv[++i]);
     else if (a == "--no-big") with_big = false;
     else if (a == "--quick") quick = true;
+    else if (a == "--big-geodesics") big_geodesics = true;
+    else if (a == "--blas-threads" && i + 1 < argc) blas_threads = std::stoi(argv[++i]);
     else if (a == "--reps" && i + 1 < argc) reps = std::stoi(argv[++i]);
     else {
-      std::fprintf(stderr, "usage: polydec_bench [--big N] [--no-big] [--quick] [--reps K]\n");
+      std::fprintf(stderr, "usage: polydec_bench [--big N] [--no-big] [--quick] [--reps K] [--blas-threads N] [--big-geodesics]\n");
       return 2;
     }
   }
   const auto t_start = Clock::now();
+  // One BLAS thread by default: Eigen's factorization it is compared with is single-threaded,
+  // and on a shared 2-core machine OpenBLAS's spinning worker threads lose to other processes.
+  const int blas_in_effect = set_blas_threads(blas_threads);
   std::fprintf(stderr, "loading and generating meshes...\n");
   const Mesh hex = project_to_unit_sphere(dual(read_mesh(shared("unit-sphere.off"))));
   const Mesh fine = project_to_unit_sphere(catmull_clark(hex));
@@ -318,6 +363,7 @@ int main(int argc, char** argv) {
     bench_assembly("HEX SPHERE", hex, reps);
     bench_assembly("FINE SPHERE", fine, reps);
     bench_reassembly("FINE SPHERE", fine, reps);
+    bench_threads("FINE SPHERE", fine, reps);
     return 0;
   }
   Mesh quad_big;
@@ -343,7 +389,7 @@ int main(int argc, char** argv) {
 
   if (with_big) {
     std::fprintf(stderr, "memory...\n");
-    bench_memory("/proc/self/exe", big);
+    bench_memory(std::filesystem::read_symlink("/proc/self/exe").string(), big);
   }
 
   std::fprintf(stderr, "Cholesky...\n");
@@ -352,7 +398,11 @@ int main(int argc, char** argv) {
 
   std::fprintf(stderr, "heat geodesics...\n");
   bench_geodesics("FINE SPHERE", fine, 9);
-  if (with_big) bench_geodesics(big_name, quad_big, 5);
+  if (with_big && big_geodesics)
+    bench_geodesics(big_name, quad_big, 5);
+  else if (with_big)
+    add({"heat geodesics per source", big_name, "", "", 0, 0, 0, 0,
+         "skipped by default (--big-geodesics): its precomputation alone exceeds the 5-minute budget on the shared machine"});
 
   add({"FEEC star1 vs S", "FINE SPHERE", "", "", 0, 0, 0, 0, "skipped: FEEC not on main at the time of this run"});
   add({"spectrum, 50 eigenpairs", "FINE SPHERE", "", "", 0, 0, 0, 0, "skipped: apps (spectrum) not on main at the time of this run"});
@@ -372,8 +422,8 @@ int main(int argc, char** argv) {
   std::printf("\nmeshes: HEX SPHERE %d faces, FINE SPHERE %d faces%s%s\n", hex.n_faces(), fine.n_faces(),
               bunny_error.empty() ? fmt::format(", bunny-hexa {} faces", bunny.n_faces()).c_str() : "",
               with_big ? fmt::format(", {} = cube_sphere({}) {} faces", big_name, big, quad_big.n_faces()).c_str() : "");
-  std::printf("hardware threads: %u; BLAS/LAPACK mapped: %s\n", std::thread::hardware_concurrency(),
-              blas_libraries().c_str());
+  std::printf("hardware threads: %u; BLAS/LAPACK mapped: %s; OpenBLAS threads: %d\n",
+              std::thread::hardware_concurrency(), blas_libraries().c_str(), blas_in_effect);
   std::printf("total benchmark time: %.0f s\n", ms_since(t_start) / 1000);
   return 0;
 }

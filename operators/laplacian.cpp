@@ -299,13 +299,14 @@ Laplacian assemble_laplacian(const Mesh& mesh, const Refinement& refinement, Lap
     return L;
   }
   FacePattern own = face_pattern(mesh);
-  // The pattern's storage becomes S's (or M's) instead of being copied.
+  // The pattern's storage becomes S's (or M's) instead of being copied (swap: Eigen 3.4's
+  // SparseMatrix has no move assignment, std::move would copy).
   SparseMatrix* host = parts.stiffness ? &L.S : parts.mass ? &L.M : nullptr;
   if (!host) {
     assemble_into(mesh, refinement, own, own.pattern, parts, L, options);
     return L;
   }
-  *host = std::move(own.pattern);
+  host->swap(own.pattern);
   assemble_into(mesh, refinement, own, *host, parts, L, options);
   return L;
 }

@@ -3,6 +3,7 @@
 // cotangent route P^T S_tri P (an independent construction), the allocation-free weights equal
 // to the least-norm solution of eq. (38), and the CHOLMOD and Eigen Cholesky backends agreeing.
 #include "dec/generators.h"
+#include "dec/io.h"
 #include "dec/prolongation.h"
 #include "dec/refinement.h"
 #include "operators/cholesky.h"
@@ -13,6 +14,8 @@
 #include <Eigen/Dense>
 #include <cmath>
 #include <cstring>
+#include <cstdio>
+#include <nlohmann/json.hpp>
 #include <random>
 
 using namespace polydec;
@@ -176,4 +179,21 @@ TEST_CASE("CHOLMOD and Eigen Cholesky backends agree; refactorization reuses the
   }
   CHECK_THROWS_AS(SparseCholesky(L.S, "S", {CholeskyBackend::Cholmod}), SolverError);
   CHECK_THROWS_WITH(SparseCholesky(L.S, "stiffness S", {CholeskyBackend::Cholmod}), Catch::Contains("stiffness S"));
+}
+
+TEST_CASE("polydec operators --repeat --threads --json times the assembly without writing files", "[perf]") {
+  POLYDEC_SHARED_MESH(path, "quad-sphere.off");
+  const std::string cmd = std::string(POLYDEC_CLI_PATH) + " operators " + path + " --repeat 3 --threads 2 --json";
+  FILE* p = popen(cmd.c_str(), "r");
+  REQUIRE(p);
+  std::string out;
+  char buf[4096];
+  while (size_t k = fread(buf, 1, sizeof buf, p)) out.append(buf, k);
+  REQUIRE(pclose(p) == 0);
+  const auto j = nlohmann::json::parse(out);
+  CHECK(j.at("threads").get<int>() == 2);
+  CHECK(j.at("repeat").get<int>() == 3);
+  CHECK(j.at("median_ms").get<double>() > 0);
+  CHECK(j.at("faces").get<int>() == 512);
+  CHECK(j.at("S_nonzeros").get<long>() == assemble_laplacian(read_mesh(path), refine(read_mesh(path))).S.nonZeros());
 }
