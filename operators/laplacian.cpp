@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <barrier>
+#include <memory>
 #include <stdexcept>
 #include <thread>
 #include <type_traits>
@@ -33,45 +34,65 @@ FacePattern face_pattern(const Mesh& mesh) {
   fp.slots.reserve(fp.local_offsets[nf]);
   advise_huge_pages(fp.slots.data(), sizeof(int) * fp.local_offsets[nf]);
   fp.slots.resize(fp.local_offsets[nf]);
-  // Column v: the distinct rows of all corners of the faces around v, sorted; then every local
-  // slot (a, b) with b = v's corner gets the position of row face[a] in that column.
-  // Rows go straight into the pattern's storage, allocated for the upper bound sum n^2 (pages
-  // never touched cost no memory) and shrunk to the exact count at the end.
-  fp.pattern.resize(nv, nv);
-  fp.pattern.resizeNonZeros(fp.local_offsets[nf]);
-  int* inner = fp.pattern.innerIndexPtr();
-  advise_huge_pages(inner, sizeof(int) * fp.local_offsets[nf]);
-  advise_huge_pages(fp.pattern.valuePtr(), sizeof(double) * fp.local_offsets[nf]);
-  int* outer = fp.pattern.outerIndexPtr();
-  outer[0] = 0;
+  // Pass 1, column v: the distinct rows of the faces around v in first-seen order (U), and for
+  // every local slot (a, b) with b = v's corner the position in U of row face[a].
+  const long bound = fp.local_offsets[nf];
+  std::unique_ptr<int[]> U(new int[bound]);  // upper bound; pages never touched cost no memory
+  advise_huge_pages(U.get(), sizeof(int) * size_t(bound));
+  std::vector<int> ucol(nv + 1), pos(nv, -1);
   int nnz = 0;
-  std::vector<int> rows, pos(nv, -1);
+  ucol[0] = 0;
   for (int v = 0; v < nv; ++v) {
-    rows.clear();
-    for (int f : mesh.vertex_faces(v))
-      for (int h = offsets[f]; h < offsets[f + 1]; ++h)
-        if (pos[indices[h]] < 0) {
-          pos[indices[h]] = 0;
-          rows.push_back(indices[h]);
-        }
-    for (size_t i = 1; i < rows.size(); ++i)  // insertion sort: columns hold about ten rows
-      for (size_t j = i; j > 0 && rows[j] < rows[j - 1]; --j) std::swap(rows[j], rows[j - 1]);
     const int base = nnz;
-    for (size_t i = 0; i < rows.size(); ++i) {
-      pos[rows[i]] = int(i);
-      inner[nnz++] = rows[i];
-    }
     for (int f : mesh.vertex_faces(v)) {
       const int h0 = offsets[f], n = offsets[f + 1] - h0;
       int b = 0;
       while (indices[h0 + b] != v) ++b;
       int* slot = fp.slots.data() + fp.local_offsets[f] + b;
-      for (int a = 0; a < n; ++a) slot[a * n] = base + pos[indices[h0 + a]];
+      for (int a = 0; a < n; ++a) {
+        const int u = indices[h0 + a];
+        if (pos[u] < 0) {
+          pos[u] = nnz - base;
+          U[nnz++] = u;
+        }
+        slot[a * n] = base + pos[u];
+      }
     }
-    for (int u : rows) pos[u] = -1;
-    outer[v + 1] = nnz;
+    for (int k = base; k < nnz; ++k) pos[U[k]] = -1;
+    ucol[v + 1] = nnz;
   }
-  fp.pattern.resizeNonZeros(nnz);  // shrinks the size, keeps the storage
+  // Pass 2, transpose: the pattern is symmetric, so column i has as many rows as U's column i,
+  // and appending j to column i for j = 0, 1, ... gives every column sorted rows. perm maps the
+  // U position of entry (i, j) to the sorted position of its transpose (j, i).
+  fp.pattern.resize(nv, nv);
+  fp.pattern.resizeNonZeros(nnz);
+  int* inner = fp.pattern.innerIndexPtr();
+  int* outer = fp.pattern.outerIndexPtr();
+  advise_huge_pages(inner, sizeof(int) * size_t(nnz));
+  advise_huge_pages(fp.pattern.valuePtr(), sizeof(double) * size_t(nnz));
+  std::copy(ucol.begin(), ucol.end(), outer);
+  std::vector<int> next(ucol.begin(), ucol.end() - 1);
+  std::unique_ptr<int[]> perm(new int[nnz]);
+  advise_huge_pages(perm.get(), sizeof(int) * size_t(nnz));
+  for (int j = 0; j < nv; ++j)
+    for (int p = ucol[j]; p < ucol[j + 1]; ++p) {
+      const int q = next[U[p]]++;
+      inner[q] = j;
+      perm[p] = q;
+    }
+  // Slot (a, b) is entry (face[a], face[b]), the transpose of the U entry recorded at (b, a).
+  for (int f = 0; f < nf; ++f) {
+    const int n = offsets[f + 1] - offsets[f];
+    int* slot = fp.slots.data() + fp.local_offsets[f];
+    for (int a = 0; a < n; ++a) {
+      slot[a * n + a] = perm[slot[a * n + a]];
+      for (int b = a + 1; b < n; ++b) {
+        const int ab = slot[a * n + b], ba = slot[b * n + a];
+        slot[a * n + b] = perm[ba];
+        slot[b * n + a] = perm[ab];
+      }
+    }
+  }
   std::fill(fp.pattern.valuePtr(), fp.pattern.valuePtr() + nnz, 0.0);
   return fp;
 }
