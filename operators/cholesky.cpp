@@ -83,6 +83,15 @@ SparseCholesky::SparseCholesky(const Eigen::SparseMatrix<double>& A_in, std::str
   impl_->started = true;
   c.print = 0;  // errors are reported through SolverError, not on stderr
   c.supernodal = CHOLMOD_SUPERNODAL;
+  // Relaxed supernode amalgamation, 4x CHOLMOD's defaults: fewer, larger supernodes make the
+  // dense BLAS-3 updates pay off. Measured on FINE SPHERE's M - 0.1 S with one BLAS thread:
+  // numeric factorization 243 ms (defaults) -> 154 ms (AMD), vs 506 ms for Eigen SimplicialLLT.
+  c.nrelax[0] = 16;
+  c.nrelax[1] = 64;
+  c.nrelax[2] = 192;
+  c.zrelax[0] = 0.8;
+  c.zrelax[1] = 0.3;
+  c.zrelax[2] = 0.15;
   c.nmethods = 1;
   switch (options.ordering) {
     case CholeskyOrdering::Automatic:

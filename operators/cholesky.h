@@ -23,9 +23,11 @@ enum class CholeskyBackend {
   Eigen,      // Eigen SimplicialLDLT with AMD ordering
 };
 
-// Fill-reducing ordering for the CHOLMOD backend (Eigen always uses AMD). Automatic is AMD:
-// measured on FINE SPHERE's M - 0.1 S, METIS and nested dissection cut the flops but cost more
-// analysis and no less numeric time on 2 cores (docs/benchmarks.md).
+// Fill-reducing ordering for the CHOLMOD backend (Eigen always uses AMD). Automatic is AMD,
+// chosen by measurement on FINE SPHERE's M - 0.1 S (docs/benchmarks.md): nested dissection
+// (NESDIS) cuts the flops from 1.2 to 0.65 GFLOP and the numeric factorization by ~20%, but its
+// analysis costs ~0.5 s more, so AMD is faster whenever a matrix is factored fewer than a
+// handful of times; pass NestedDissection for many refactorizations of one pattern.
 enum class CholeskyOrdering { Automatic, Amd, Metis, NestedDissection };
 
 struct CholeskyOptions {
