@@ -11,24 +11,32 @@ namespace polydec {
 
 namespace {
 
-// Component id per vertex by flood fill over faces; -1 for unreferenced vertices.
-std::vector<int> vertex_components(const Mesh& mesh) {
-  std::vector<int> comp(mesh.n_vertices(), -1);
+// Component id per vertex by flood fill over the non-zero off-diagonal entries of S (symmetric);
+// -1 for vertices S does not couple to any other (unreferenced vertices, and vertices that only
+// zero-area faces hold: their fan triangles are degenerate and carry no stiffness). Faces alone
+// would not do: a zero-area face joins its vertices in the mesh but not in S.
+std::vector<int> vertex_components(const SparseMatrix& S) {
+  const int n = int(S.rows());
+  std::vector<int> comp(n, -1);
+  auto coupled = [&](int v) {
+    for (SparseMatrix::InnerIterator it(S, v); it; ++it)
+      if (it.row() != v && it.value() != 0) return true;
+    return false;
+  };
   std::vector<int> stack;
   int next = 0;
-  for (int s = 0; s < mesh.n_vertices(); ++s) {
-    if (comp[s] >= 0 || mesh.vertex_faces(s).empty()) continue;
+  for (int s = 0; s < n; ++s) {
+    if (comp[s] >= 0 || !coupled(s)) continue;
     comp[s] = next;
     stack.push_back(s);
     while (!stack.empty()) {
       const int v = stack.back();
       stack.pop_back();
-      for (int f : mesh.vertex_faces(v))
-        for (int u : mesh.face(f))
-          if (comp[u] < 0) {
-            comp[u] = next;
-            stack.push_back(u);
-          }
+      for (SparseMatrix::InnerIterator it(S, v); it; ++it)
+        if (it.value() != 0 && comp[it.row()] < 0) {
+          comp[it.row()] = next;
+          stack.push_back(int(it.row()));
+        }
     }
     ++next;
   }
@@ -62,9 +70,10 @@ HeatGeodesics::HeatGeodesics(OperatorSet operators, double mean_edge_length, con
   if (!options.lumped_mass && ops_.M.size() == 0)
     throw std::invalid_argument("heat geodesics: Laplacian '" + ops_.name + "' defines no unlumped mass");
   t_ = options.time_step_factor * mean_edge_length * mean_edge_length;
-  component_ = vertex_components(mesh);
+  component_ = vertex_components(ops_.S);
 
-  // Heat operator M - t S; unreferenced vertices (empty rows) are pinned to keep it definite.
+  // Heat operator M - t S; vertices without stiffness (unreferenced, or only in zero-area faces:
+  // zero rows) are pinned to keep it definite.
   pinned_.assign(mesh.n_vertices(), 0);
   for (int v = 0; v < mesh.n_vertices(); ++v)
     if (component_[v] < 0) pinned_[v] = 1;
@@ -81,7 +90,8 @@ HeatGeodesics::HeatGeodesics(OperatorSet operators, double mean_edge_length, con
 
   // Poisson operator -S with one vertex pinned per component (S has constants per component in
   // its null space; the right-hand side D g sums to zero on each, so pinning loses nothing).
-  std::vector<unsigned char> seen(std::max(0, *std::max_element(component_.begin(), component_.end()) + 1), 0);
+  std::vector<unsigned char> seen(
+      component_.empty() ? 0 : std::max(0, *std::max_element(component_.begin(), component_.end()) + 1), 0);
   for (int v = 0; v < mesh.n_vertices(); ++v)
     if (component_[v] >= 0 && !seen[component_[v]]) {
       seen[component_[v]] = 1;
@@ -100,27 +110,32 @@ Eigen::VectorXd HeatGeodesics::distance(std::span<const int> sources) const {
     if (s < 0 || s >= n_out)
       throw std::out_of_range(fmt::format("heat geodesics: source vertex {} out of range [0, {})", s, n_out));
     if (component_[s] < 0)
-      throw std::out_of_range(fmt::format("heat geodesics: source vertex {} belongs to no face", s));
+      throw std::out_of_range(fmt::format("heat geodesics: source vertex {} carries no stiffness (unreferenced, or only in zero-area faces)", s));
     delta[s] = 1.0;
     reached_component[component_[s]] = 1;
   }
   // (31): (M - t S) u = M delta
-  Eigen::VectorXd rhs =
-      options_.lumped_mass ? Eigen::VectorXd(ops_.M_lumped.cwiseProduct(delta)) : Eigen::VectorXd(ops_.M * delta);
+  Eigen::VectorXd rhs = !options_.mass_weighted_source ? delta
+                        : options_.lumped_mass        ? Eigen::VectorXd(ops_.M_lumped.cwiseProduct(delta))
+                                                      : Eigen::VectorXd(ops_.M * delta);
   for (int v = 0; v < nv; ++v)
     if (component_[v] < 0) rhs[v] = 0;
   const Eigen::VectorXd u = heat_->solve(rhs);
 
-  // (32): g = -grad u / |grad u| per fan triangle; zero where the gradient vanishes.
+  // (32): g = -grad u / |grad u| per element (fan triangle; or the blocks the operator set names);
+  // zero where the gradient vanishes.
   Eigen::VectorXd g = ops_.G * u;
-  for (int h = 0; h < g.size() / 3; ++h) {
-    auto gh = g.segment<3>(3 * h);
+  const int n_blocks = ops_.G_blocks.empty() ? int(g.size() / 3) : int(ops_.G_blocks.size()) - 1;
+  for (int h = 0; h < n_blocks; ++h) {
+    const int b0 = ops_.G_blocks.empty() ? 3 * h : ops_.G_blocks[h];
+    const int b1 = ops_.G_blocks.empty() ? 3 * h + 3 : ops_.G_blocks[h + 1];
+    auto gh = g.segment(b0, b1 - b0);
     const double m = gh.cwiseAbs().maxCoeff();  // rescale first: far from the source |grad u| underflows when squared
     if (!(m > 0) || !std::isfinite(m)) {
       gh.setZero();
       continue;
     }
-    const Eigen::Vector3d s = gh / m;
+    const Eigen::VectorXd s = gh / m;
     gh = -s / s.norm();
   }
   // (33): S d = D g, solved as (-S) d = -D g with pinned vertices.

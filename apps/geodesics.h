@@ -7,8 +7,9 @@
 // OperatorSet that has G and D (operators/laplacians.h); sources and results are indexed by
 // the input mesh's vertices.
 // Distances are shifted so that their minimum over each connected component that contains a
-// source is 0; vertices that no source reaches (other components, unreferenced vertices) get
-// +infinity.
+// source is 0; vertices that no source reaches get +infinity: other components, unreferenced
+// vertices, and vertices held only by zero-area faces (components are those of S's non-zero
+// pattern, so a strip of zero-area faces separates, as it does for the heat flow).
 #pragma once
 
 #include "operators/cholesky.h"
@@ -21,6 +22,10 @@ namespace polydec {
 struct HeatGeodesicsOptions {
   double time_step_factor = 1.0;  // t = factor * mean_edge_length^2
   bool lumped_mass = true;        // lumped (default, as in the paper's tables) or Galerkin mass in eq. (31)
+  // Right-hand side of eq. (31): M delta (the paper's equation) or delta alone (what the authors'
+  // program solves; identical up to a factor with lumped mass, different with Galerkin mass: their
+  // Table 6 "un-lumped" column is reproduced only with delta).
+  bool mass_weighted_source = true;
 };
 
 class HeatGeodesics {

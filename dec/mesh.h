@@ -3,7 +3,7 @@
 // adjacency). Immutable after validation.
 #pragma once
 
-#include <Eigen/Core>
+#include <Eigen/Dense>
 #include <memory>
 #include <span>
 #include <stdexcept>

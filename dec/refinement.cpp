@@ -32,10 +32,14 @@ void refine_face(const Mesh& mesh, int f, Refinement& r, double* x, double* Y, d
     }
   for (int d = 0; d < 3; ++d) c[d] /= n;
   double* w = r.weights.data() + h0;
-  if (r.options.rule == VirtualVertexRule::SquaredArea)
+  if (r.options.rule == VirtualVertexRule::SquaredArea) {
     squared_area_weights(x, n, w, work);
-  else
+  } else if (r.options.rule == VirtualVertexRule::Centroid) {
     for (int k = 0; k < n; ++k) w[k] = 1.0 / n;
+  } else {  // the other rules (dec/virtual_vertex.h) through their general routes
+    const Eigen::VectorXd wr = virtual_vertex_weights(face_positions(mesh, f), r.options.rule);
+    for (int k = 0; k < n; ++k) w[k] = wr[k];
+  }
   // x_f = c + sum_k w_k (x_k - c): centred, so that far from the origin no digits are lost.
   double s[3] = {0, 0, 0};
   for (int k = 0; k < n; ++k)

@@ -18,7 +18,7 @@ struct RefinementOptions {
   // tolerance times the square of its longest edge (i.e. its height is below tolerance times
   // its length). Degenerate fan triangles get zero stiffness and zero gradient: relative to
   // the triangle's own size, so independent of the mesh's scale and position.
-  double degenerate_tolerance = 1e-10;
+  double degenerate_tolerance = 1e-8;
 };
 
 // Fan-triangle quality, per halfedge.

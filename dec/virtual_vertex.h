@@ -1,5 +1,7 @@
 // dec/virtual_vertex.h — per-polygon virtual-vertex weights (paper section 4.2, eq. 10, 15-16,
-// Appendix A). Pure functions of the polygon's positions: unit-testable on a single polygon.
+// Appendix A; the variants of section 5.7; the trace minimizer of Bunge et al., "Polygon
+// Laplacian Made Robust", EG 2024). Pure functions of the polygon's positions: unit-testable on
+// a single polygon.
 #pragma once
 
 #include <Eigen/Core>
@@ -14,9 +16,13 @@ using PolygonPositions = Eigen::Matrix<double, Eigen::Dynamic, 3>;
 enum class VirtualVertexRule {
   SquaredArea,  // minimizer of the sum of squared fan-triangle areas, least-norm affine weights (eq. 16)
   Centroid,     // uniform weights 1/n
+  AbsArea,   // minimizer of the sum of absolute fan-triangle areas (section 4.2), least-norm affine weights
+  Convex,    // squared-area minimizer over convex weights (w >= 0, sum 1; section 4.2)
+  TraceMin,  // minimizer of the fan's stiffness trace, harmonic weights (Bunge et al. 2024)
 };
 
-// Parses "squared-area" / "centroid"; throws std::invalid_argument otherwise.
+// Parses "squared-area" (or "affine"), "centroid", "abs-area", "convex", "trace-min"; throws
+// std::invalid_argument otherwise.
 VirtualVertexRule parse_virtual_vertex_rule(const std::string& name);
 std::string to_string(VirtualVertexRule rule);
 
@@ -32,6 +38,37 @@ void squared_area_weights(const double* x, int n, double* w, double* work);
 
 // Uniform weights 1/n.
 Eigen::VectorXd centroid_weights(int n);
+
+// Least-norm affine weights of the point minimizing the sum of absolute fan areas
+// sum_i area(x_i, x_{i+1}, x) (areas measured in 3D). The objective is convex but not strictly:
+// for a convex planar polygon every interior point is a minimizer. Iteratively reweighted least
+// squares (each step minimizes sum_i |c_i(x)|^2 / |c_i(x_k)| with c_i the twice-area vector, a
+// majorizer of the objective, so the objective never increases) starting at the centroid, stopped
+// as soon as a step gains less than 1e-12 of the objective: where the centroid already minimizes
+// (convex polygons) it is kept. Fan areas are floored at 1e-14 (polygon diameter)^2.
+Eigen::VectorXd abs_area_weights(const PolygonPositions& X);
+
+// Convex weights (w >= 0, sum w = 1) minimizing the sum of squared fan areas of x = X^T w, with
+// ties (the objective has rank <= 3 in w) broken towards the least-norm w by a Tikhonov term
+// 1e-9 * mean(diag H) * |w|^2 on the n x n Hessian H. Solved exactly by a primal active-set
+// method on the simplex (finite; at most 10 n iterations). Equals squared_area_weights() when
+// those are non-negative, up to the Tikhonov term.
+Eigen::VectorXd convex_weights(const PolygonPositions& X);
+
+// The virtual vertex of Bunge et al. 2024: in the plane orthogonal to the polygon's vector area,
+// the point p minimizing the trace of the refined fan stiffness, sum_i cot-sum of fan triangle i
+// = sum_i (|x_i - p|^2 + |x_{i+1} - p|^2 + |x_{i+1} - x_i|^2) / (4 area_i(p)), a convex barrier
+// function on the polygon's kernel, by damped Newton from the squared-area point (or from the
+// kernel's centroid when that point is outside the kernel). Weights are the harmonic (cotangent)
+// weights of p in its fan, which reproduce p for planar polygons. Falls back to
+// squared_area_weights() when the projected polygon has no kernel (not star-shaped) or when the
+// fallback's coarsened stiffness has the smaller trace.
+Eigen::VectorXd trace_min_weights(const PolygonPositions& X);
+
+// Trace of the positive semi-definite coarsened fan stiffness -P_f^T S^f P_f of polygon X with
+// virtual-vertex weights w (eq. 12), fan triangles (x_i, x_{i+1}, x_f) with x_f = X^T w; +infinity
+// when a fan triangle has zero area.
+double coarse_stiffness_trace(const PolygonPositions& X, const Eigen::VectorXd& w);
 
 // Dispatch on the rule.
 Eigen::VectorXd virtual_vertex_weights(const PolygonPositions& X, VirtualVertexRule rule);

@@ -17,8 +17,11 @@ using SpMat = Eigen::SparseMatrix<double>;
 void check_eigen(const Eigen::SimplicialLDLT<SpMat>& s, const std::string& name) {
   if (s.info() != Eigen::Success)
     throw SolverError("Cholesky factorization of " + name + " failed (matrix not positive definite?)");
+  // A singular positive semi-definite matrix leaves a rounding-level last pivot of either sign:
+  // pivots at most kSingularPivot times the largest count as zero.
+  constexpr double kSingularPivot = 1e-12;
   const Eigen::VectorXd d = s.vectorD();
-  if (d.size() > 0 && (!(d.minCoeff() > 0) || !d.allFinite()))
+  if (d.size() > 0 && (!d.allFinite() || !(d.minCoeff() > kSingularPivot * d.cwiseAbs().maxCoeff())))
     throw SolverError("Cholesky factorization of " + name + " failed: matrix is singular or not positive definite");
 }
 
@@ -136,9 +139,12 @@ void SparseCholesky::refactor(const Eigen::SparseMatrix<double>& A_in) {
     throw SolverError("Cholesky factorization of " + name_ + " failed: matrix is not positive definite" +
                       (c.status == CHOLMOD_NOT_POSDEF ? " (breakdown at column " + std::to_string(impl_->L->minor) + ")"
                                                       : std::string()));
-  // Non-finite entries do not always stop CHOLMOD: check the factor's diagonal range.
+  // Non-finite entries and singular matrices (a rounding-level last pivot) do not always stop
+  // CHOLMOD: check the range of the pivots L_ii^2 as the Eigen backend does (rcond is
+  // (min L_ii / max L_ii)^2 for an LL^T factor).
+  constexpr double kSingularPivot = 1e-12;
   const double rc = cholmod_rcond(impl_->L, &c);
-  if (!(rc > 0) || !std::isfinite(rc))
+  if (!(rc > kSingularPivot) || !std::isfinite(rc))
     throw SolverError("Cholesky factorization of " + name_ + " failed: matrix is singular or not finite");
 #endif
 }

@@ -26,7 +26,9 @@ Eigen::VectorXd fan_areas(const Mesh& mesh, const Refinement& refinement) {
       continue;
     }
     const Eigen::Vector3d xf = refinement.virtual_points.row(mesh.halfedge_face(h)).transpose();
-    a[h] = 0.5 * (mesh.position(mesh.halfedge_source(h)) - xf).cross(mesh.position(mesh.halfedge_target(h)) - xf).norm();
+    a[h] = 0.5 * (mesh.position(mesh.halfedge_source(h)) - xf)
+                     .cross(mesh.position(mesh.halfedge_target(h)) - xf)
+                     .norm();
   }
   return a;
 }
@@ -46,7 +48,8 @@ SparseMatrix gradient(const Mesh& mesh, const Refinement& refinement) {
       hat_gradients(mesh.position(i), mesh.position(j), xf, g);
       // Coarse vertex c contributes [c == i] g0 + [c == j] g1 + w_c g2.
       for (int m = 0; m < n; ++m) {
-        const Eigen::Vector3d gm = refinement.weights[h0 + m] * g[2] + (m == k ? g[0] : Eigen::Vector3d::Zero()) +
+        const Eigen::Vector3d gm = refinement.weights[h0 + m] * g[2] +
+                                   (m == k ? g[0] : Eigen::Vector3d::Zero()) +
                                    (m == (k + 1) % n ? g[1] : Eigen::Vector3d::Zero());
         for (int c = 0; c < 3; ++c) t.emplace_back(3 * h + c, face[m], gm[c]);
       }

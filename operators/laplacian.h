@@ -8,10 +8,10 @@
 // lumped mass). Degenerate fan triangles (see RefinementOptions) add no stiffness.
 #pragma once
 
+#include <Eigen/Sparse>
+
 #include "dec/mesh.h"
 #include "dec/refinement.h"
-
-#include <Eigen/Sparse>
 
 namespace polydec {
 
@@ -21,9 +21,10 @@ using SparseMatrix = Eigen::SparseMatrix<double>;
 // every face the slots of its n x n local matrix in the value array. Build once per
 // connectivity, reuse for any number of (re-)assemblies on moved vertices.
 struct FacePattern {
-  SparseMatrix pattern;             // |V| x |V|, values zero
-  std::vector<long> local_offsets;  // |F| + 1: face f's slots are slots[local_offsets[f] ..], n*n, row-major (a, b)
-  std::vector<int> slots;           // index into pattern.valuePtr()
+  SparseMatrix pattern;  // |V| x |V|, values zero
+  std::vector<long>
+      local_offsets;       // |F| + 1: face f's slots are slots[local_offsets[f] ..], n*n, row-major (a, b)
+  std::vector<int> slots;  // index into pattern.valuePtr()
 };
 FacePattern face_pattern(const Mesh& mesh);
 

@@ -1,18 +1,58 @@
 // operators/laplacians.cpp — the named Laplacian registry.
 #include "operators/laplacians.h"
 
-#include "operators/gradient.h"
-
 #include <fmt/format.h>
+
 #include <stdexcept>
 
+#include "operators/aw11.h"
+#include "operators/cotan.h"
+#include "operators/degoes20.h"
+#include "operators/gradient.h"
+#include "operators/intrinsic_delaunay.h"
+#include "operators/triangulation.h"
+
 namespace polydec {
+
+namespace {
+
+struct MethodInfo {
+  const char* name;
+  bool needs_parameter;
+};
+
+const MethodInfo kMethods[] = {
+    {"ours", false},
+    {"centroid", false},
+    {"abs-area", false},
+    {"convex", false},
+    {"trace-min", false},
+    {"triangulated-minarea", false},
+    {"triangulated-maxminangle", false},
+    {"refined", false},
+    {"intrinsic-delaunay", false},
+    {"aw11", true},
+    {"degoes20", true},
+};
+
+const MethodInfo* find_method(const std::string& name) {
+  for (const auto& m : kMethods)
+    if (name == m.name) return &m;
+  return nullptr;
+}
+
+}  // namespace
 
 std::string LaplacianChoice::canonical_name() const {
   return has_parameter ? fmt::format("{}:{:g}", method, parameter) : method;
 }
 
-std::vector<std::string> laplacian_names() { return {"ours", "centroid"}; }
+std::vector<std::string> laplacian_names() {
+  std::vector<std::string> names;
+  for (const auto& m : kMethods)
+    names.push_back(m.needs_parameter ? std::string(m.name) + ":LAMBDA" : m.name);
+  return names;
+}
 
 LaplacianChoice parse_laplacian(const std::string& spec) {
   LaplacianChoice c;
@@ -26,12 +66,21 @@ LaplacianChoice parse_laplacian(const std::string& spec) {
     } catch (const std::exception&) {
       throw std::invalid_argument("bad parameter in Laplacian '" + spec + "'");
     }
-    if (!std::isfinite(c.parameter)) throw std::invalid_argument("non-finite parameter in Laplacian '" + spec + "'");
+    if (!std::isfinite(c.parameter))
+      throw std::invalid_argument("non-finite parameter in Laplacian '" + spec + "'");
     c.has_parameter = true;
   }
-  const auto names = laplacian_names();
-  if (std::find(names.begin(), names.end(), c.method) == names.end())
-    throw std::invalid_argument(fmt::format("unknown Laplacian '{}' (known: {})", c.method, fmt::join(names, ", ")));
+  const MethodInfo* m = find_method(c.method);
+  if (!m)
+    throw std::invalid_argument(
+        fmt::format("unknown Laplacian '{}' (known: {})", c.method, fmt::join(laplacian_names(), ", ")));
+  if (m->needs_parameter && !c.has_parameter)
+    throw std::invalid_argument(
+        fmt::format("Laplacian '{}' needs a parameter, e.g. '{}:0.5'", c.method, c.method));
+  if (!m->needs_parameter && c.has_parameter)
+    throw std::invalid_argument(fmt::format("Laplacian '{}' takes no parameter", c.method));
+  if (m->needs_parameter && c.parameter < 0)
+    throw std::invalid_argument(fmt::format("Laplacian '{}': parameter must be >= 0", spec));
   return c;
 }
 
@@ -56,17 +105,101 @@ OperatorSet virtual_vertex_operators(const Mesh& mesh, VirtualVertexRule rule, b
   return ops;
 }
 
+void take(OperatorSet& ops, TriangleOperators&& T) {
+  ops.S = std::move(T.S);
+  ops.M = std::move(T.M);
+  ops.M_lumped = std::move(T.M_lumped);
+  ops.G = std::move(T.G);
+  ops.D = std::move(T.D);
+  ops.n_degenerate_triangles = T.n_degenerate;
+}
+
+// Triangles of `tri` (the triangulation of `mesh`, in face order) oriented against the
+// vector-area normal of the polygon they come from.
+int count_folded(const Mesh& mesh, const std::vector<Eigen::Vector3i>& tri) {
+  int folded = 0, t = 0;
+  for (int f = 0; f < mesh.n_faces(); ++f) {
+    const PolygonPositions X = face_positions(mesh, f);
+    const int n = int(X.rows());
+    const Eigen::RowVector3d c = X.colwise().mean();
+    Eigen::RowVector3d normal = Eigen::RowVector3d::Zero();
+    for (int k = 0; k < n; ++k) normal += (X.row(k) - c).cross(X.row((k + 1) % n) - c);
+    for (int k = 0; k < n - 2; ++k, ++t) {
+      const Eigen::Vector3d a = mesh.position(tri[t][0]), b = mesh.position(tri[t][1]),
+                            d = mesh.position(tri[t][2]);
+      if ((b - a).cross(d - a).dot(normal.transpose()) < 0) ++folded;
+    }
+  }
+  return folded;
+}
+
+OperatorSet triangulated_operators(const Mesh& mesh, TriangulationRule rule, bool with_gradient) {
+  OperatorSet ops;
+  ops.domain = mesh;  // same vertices; the triangles need not form a valid mesh (fold-overs)
+  ops.n_input_vertices = mesh.n_vertices();
+  const auto tris = triangulate(mesh, rule);
+  take(ops, cotan_operators(mesh.positions(), tris, with_gradient));
+  ops.mean_edge_length = mean_edge_length(mesh.positions(), tris);
+  ops.n_folded_triangles = count_folded(mesh, tris);
+  return ops;
+}
+
+OperatorSet refined_operators(const Mesh& mesh, bool with_gradient) {
+  OperatorSet ops;
+  const Refinement r = refine(mesh);
+  ops.domain = refined_mesh(mesh, r);
+  ops.n_input_vertices = mesh.n_vertices();
+  ops.quality = r.quality;
+  take(ops, cotan_operators(ops.domain, with_gradient));
+  ops.mean_edge_length = ops.domain.mean_edge_length();
+  return ops;
+}
+
+OperatorSet intrinsic_delaunay_operators(const Mesh& mesh, bool with_gradient) {
+  OperatorSet ops;
+  ops.domain = mesh;
+  ops.n_input_vertices = mesh.n_vertices();
+  const auto tris = triangulate(mesh, TriangulationRule::MinSquaredArea);
+  ops.n_folded_triangles = count_folded(mesh, tris);
+  const IntrinsicTriangulation T = intrinsic_delaunay(mesh.positions(), tris);
+  take(ops, cotan_operators(T.triangles, with_gradient));
+  ops.M_lumped = voronoi_areas(T.triangles);  // libigl's default for the intrinsic Laplacian (see header)
+  ops.n_flips = T.n_flips;
+  ops.mean_edge_length = mean_edge_length(mesh.positions(), tris);
+  return ops;
+}
+
 }  // namespace
 
 OperatorSet build_operators(const Mesh& mesh, const LaplacianChoice& choice, bool with_gradient) {
   OperatorSet ops;
-  if (choice.method == "ours")
+  const std::string& m = choice.method;
+  if (m == "ours")
     ops = virtual_vertex_operators(mesh, VirtualVertexRule::SquaredArea, with_gradient);
-  else if (choice.method == "centroid")
+  else if (m == "centroid")
     ops = virtual_vertex_operators(mesh, VirtualVertexRule::Centroid, with_gradient);
+  else if (m == "abs-area")
+    ops = virtual_vertex_operators(mesh, VirtualVertexRule::AbsArea, with_gradient);
+  else if (m == "convex")
+    ops = virtual_vertex_operators(mesh, VirtualVertexRule::Convex, with_gradient);
+  else if (m == "trace-min")
+    ops = virtual_vertex_operators(mesh, VirtualVertexRule::TraceMin, with_gradient);
+  else if (m == "triangulated-minarea")
+    ops = triangulated_operators(mesh, TriangulationRule::MinSquaredArea, with_gradient);
+  else if (m == "triangulated-maxminangle")
+    ops = triangulated_operators(mesh, TriangulationRule::MaxMinAngle, with_gradient);
+  else if (m == "refined")
+    ops = refined_operators(mesh, with_gradient);
+  else if (m == "intrinsic-delaunay")
+    ops = intrinsic_delaunay_operators(mesh, with_gradient);
+  else if (m == "aw11")
+    ops = aw11_operators(mesh, choice.parameter, with_gradient);
+  else if (m == "degoes20")
+    ops = degoes20_operators(mesh, choice.parameter, with_gradient);
   else
-    throw std::invalid_argument("unknown Laplacian '" + choice.method + "'");
+    throw std::invalid_argument("unknown Laplacian '" + m + "'");
   ops.name = choice.canonical_name();
+  if (ops.mean_edge_length == 0.0) ops.mean_edge_length = mesh.mean_edge_length();
   return ops;
 }
 

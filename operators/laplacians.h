@@ -2,14 +2,23 @@
 // name (`--laplacian NAME` on the command line). Applications take an OperatorSet, so any of
 // them can be compared on equal terms.
 //
-// Names: "ours" (the paper's operator: squared-area virtual vertex), "centroid" (ours with the
-// centroid as virtual vertex). A parameter follows a colon, e.g. "aw11:0.5".
+// Names (docs/laplacians.md describes each):
+//   ours                      the paper's operator (squared-area virtual vertex, affine weights)
+//   centroid, abs-area, convex, trace-min   ours with another virtual vertex (dec/virtual_vertex.h)
+//   triangulated-minarea, triangulated-maxminangle   cotangent Laplacian of a triangulation of
+//                             each polygon without new vertices (operators/triangulation.h)
+//   refined                   cotangent Laplacian of the refined mesh with the virtual vertices made
+//                             real; domain = refined mesh, results at its first |V| vertices
+//   intrinsic-delaunay        [BS07] on the min-area triangulation (operators/intrinsic_delaunay.h)
+//   aw11:LAMBDA               Alexa & Wardetzky 2011 (operators/aw11.h)
+//   degoes20:LAMBDA           de Goes, Butts & Desbrun 2020 (operators/degoes20.h)
+// A parameter follows a colon, e.g. "aw11:0.5".
 #pragma once
+
+#include <string>
 
 #include "dec/refinement.h"
 #include "operators/laplacian.h"
-
-#include <string>
 
 namespace polydec {
 
@@ -26,7 +35,18 @@ struct OperatorSet {
   // Gradient (3k x |V|, one 3-vector per element) and divergence D = -G^T W (|V| x 3k) with
   // S = D G; empty where the method defines none.
   SparseMatrix G, D;
-  FanQuality quality;        // fan-triangle counts where the method refines faces
+  // Row blocks of G that the heat method normalizes as one vector: block k is rows
+  // [G_blocks[k], G_blocks[k+1]). Empty means blocks of 3 rows (one 3-vector per element).
+  std::vector<int> G_blocks;
+  FanQuality quality;              // fan-triangle counts where the method refines faces
+  int n_degenerate_triangles = 0;  // triangle-based methods: triangles given no stiffness (zero area)
+  int n_folded_triangles = 0;      // triangulations: triangles oriented against their polygon's normal
+  int n_flips = 0;                 // intrinsic-delaunay: edge flips performed
+  // Mean edge length of the mesh the operators are built on: the input's for polygon methods,
+  // the triangulation's (diagonals included) for triangulation-based ones, the refined mesh's for
+  // "refined". The heat method's time step uses the input's by default (paper section 5.5);
+  // reference implementations of triangulation methods (libigl) use this one.
+  double mean_edge_length = 0.0;
 };
 
 // A parsed method name with its parameter.

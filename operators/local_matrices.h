@@ -3,10 +3,10 @@
 // weights and its fan-triangle classification. Pure functions; no mesh needed.
 #pragma once
 
-#include "dec/refinement.h"
-
 #include <Eigen/Core>
 #include <cmath>
+
+#include "dec/refinement.h"
 
 namespace polydec {
 

@@ -1,7 +1,8 @@
 // apps/cli/geodesics.cpp — `polydec geodesics MESH --source V [...] --out FILE.ply`: heat-method
-// distances (paper section 5.5) written as a per-vertex PLY property.
+// distances (paper section 5.5) written as a per-vertex PLY property and/or a picture (--png).
 #include "apps/cli/command.h"
 #include "apps/geodesics.h"
+#include "apps/render.h"
 #include "dec/io.h"
 
 #include <cmath>
@@ -11,7 +12,7 @@ namespace polydec::cli {
 namespace {
 
 struct Options {
-  std::string mesh, out;
+  std::string mesh, out, png;
   std::vector<int> sources;
   bool json = false, euclidean = false;
   std::string mass = "lumped", laplacian = "ours";
@@ -47,6 +48,15 @@ void run(const Options& o) {
     write_mesh(o.out, mesh, {{"distance", d}});
     j["out"] = o.out;
   }
+  if (!o.png.empty()) {
+    RenderOptions ropt;
+    ropt.isolines = 15;
+    ropt.scalar_label = "distance";
+    ropt.title = fmt::format("heat geodesics ({})", heat.operators().name);
+    ropt.view_direction = view_facing_vertex(mesh, o.sources[0]);
+    render_png(o.png, mesh, d, ropt);
+    j["png"] = o.png;
+  }
   if (o.json) {
     print_json(j);
     return;
@@ -56,6 +66,7 @@ void run(const Options& o) {
   fmt::print("distance: min {:.6g}, max {:.6g}, mean {:.6g}\n", mn, mx, finite ? sum / finite : 0.0);
   if (o.euclidean) fmt::print("RMSE against Euclidean distance: {:.6g}\n", j["rmse_vs_euclidean"].get<double>());
   if (!o.out.empty()) fmt::print("wrote {} (property 'distance')\n", o.out);
+  if (!o.png.empty()) fmt::print("wrote {}\n", o.png);
 }
 
 const RegisterCommand reg("geodesics", "Geodesic distances by the heat method (paper section 5.5)", [](CLI::App& app) {
@@ -63,6 +74,7 @@ const RegisterCommand reg("geodesics", "Geodesic distances by the heat method (p
   app.add_option("mesh", o->mesh, "input mesh (.obj, .off, .ply)")->required();
   app.add_option("--source", o->sources, "source vertex (0-based; repeat for several)")->required();
   app.add_option("--out", o->out, "output mesh with a 'distance' vertex property (.ply)");
+  app.add_option("--png", o->png, "picture of the distance with isolines and a colour bar (.png)");
   app.add_option("--mass", o->mass, "lumped (default) or unlumped mass in the heat step");
   app.add_option("--laplacian", o->laplacian, "Laplacian: " + fmt::format("{}", fmt::join(laplacian_names(), ", ")));
   app.add_flag("--euclidean", o->euclidean, "also report the RMSE against the Euclidean distance (planar meshes)");

@@ -30,8 +30,9 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? kOk : kUsageError;
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    std::cerr << "polydec: usage error: " << e.what() << " (see polydec --help)\n";
+    return kUsageError;
   } catch (const UsageError& e) {
     std::cerr << "polydec: usage error: " << e.what() << "\n";
     return kUsageError;

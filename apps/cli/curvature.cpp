@@ -1,0 +1,65 @@
+// apps/cli/curvature.cpp — `polydec curvature MESH [--unit-sphere] [--mass unlumped] [--out FILE.ply]`:
+// mean curvature from eq. (29) (paper section 5.2, Table 2).
+#include "apps/cli/command.h"
+#include "apps/curvature.h"
+#include "dec/generators.h"
+#include "dec/io.h"
+
+#include <fmt/format.h>
+
+namespace polydec::cli {
+namespace {
+
+struct Options {
+  std::string mesh, out, mass = "lumped", laplacian = "ours";
+  bool json = false, unit_sphere = false;
+};
+
+void run(const Options& o) {
+  if (o.mass != "lumped" && o.mass != "unlumped") throw UsageError("--mass must be lumped or unlumped");
+  Mesh mesh = read_mesh(o.mesh);
+  if (o.unit_sphere) mesh = project_to_unit_sphere(mesh);
+  const OperatorSet ops = build_operators(mesh, parse_laplacian(o.laplacian), false);
+  CurvatureOptions copt;
+  copt.lumped_mass = o.mass == "lumped";
+  const Eigen::VectorXd H = mean_curvature(ops, copt).head(ops.n_input_vertices);
+  nlohmann::json j = {{"mesh", o.mesh},
+                      {"laplacian", ops.name},
+                      {"mass", o.mass},
+                      {"vertices", mesh.n_vertices()},
+                      {"faces", mesh.n_faces()},
+                      {"min", H.minCoeff()},
+                      {"max", H.maxCoeff()},
+                      {"mean", H.mean()}};
+  if (o.unit_sphere) j["rmse_vs_unit_sphere"] = curvature_rmse(H, 1.0);
+  if (!o.out.empty()) {
+    write_mesh(o.out, mesh, {{"mean_curvature", H}});
+    j["out"] = o.out;
+  }
+  if (o.json) {
+    print_json(j);
+    return;
+  }
+  fmt::print("{}: {} vertices, {} faces; Laplacian {}, {} mass{}\n", o.mesh, mesh.n_vertices(), mesh.n_faces(), ops.name,
+             o.mass, o.unit_sphere ? ", projected to the unit sphere" : "");
+  fmt::print("mean curvature: min {:.6g}, max {:.6g}, mean {:.6g}\n", H.minCoeff(), H.maxCoeff(), H.mean());
+  if (o.unit_sphere) fmt::print("RMSE against 1 (unit sphere): {:.6g}\n", j["rmse_vs_unit_sphere"].get<double>());
+  if (!o.out.empty()) fmt::print("wrote {} (property 'mean_curvature')\n", o.out);
+}
+
+const RegisterCommand reg("curvature", "Mean curvature from the Laplacian of the coordinates (paper section 5.2)",
+                          [](CLI::App& app) {
+                            auto o = std::make_shared<Options>();
+                            app.add_option("mesh", o->mesh, "input mesh (.obj, .off, .ply)")->required();
+                            app.add_flag("--unit-sphere", o->unit_sphere,
+                                         "project the vertices to the unit sphere first and report the RMSE against 1");
+                            app.add_option("--mass", o->mass, "lumped (default) or unlumped mass in L = M^-1 S");
+                            app.add_option("--laplacian", o->laplacian,
+                                           "Laplacian: " + fmt::format("{}", fmt::join(laplacian_names(), ", ")));
+                            app.add_option("--out", o->out, "output mesh with a 'mean_curvature' vertex property (.ply)");
+                            app.add_flag("--json", o->json, "print one JSON object instead of text");
+                            app.callback([o] { run(*o); });
+                          });
+
+}  // namespace
+}  // namespace polydec::cli

@@ -1,0 +1,110 @@
+// apps/cli/dec.cpp — `polydec dec MESH --out DIR`: the FEEC building blocks (paper section 4.6)
+// in Matrix Market: d0, d1, star0, star1, star2, P0, P1, P2, plus the coarse cell lists
+// edges.txt (vertex pairs) and triangles.txt (vertex triples), 0-based, one per line, in
+// matrix order.
+#include "apps/cli/command.h"
+#include "dec/form_span.h"
+#include "dec/hodge_star.h"
+#include "dec/io.h"
+#include "dec/prolongation.h"
+
+#include <filesystem>
+#include <fmt/format.h>
+#include <fstream>
+#include <iostream>
+
+namespace polydec::cli {
+namespace {
+
+struct Options {
+  std::string mesh, out, rule = "squared-area";
+  bool json = false, lumped = false;
+};
+
+template <class Cells>
+void write_cells(const std::string& path, const Cells& cells) {
+  std::ofstream out(path);
+  if (!out) throw FileError(path, 0, -1, "cannot open file for writing");
+  for (long r = 0; r < cells.rows(); ++r) {
+    for (long c = 0; c < cells.cols(); ++c) out << (c ? " " : "") << cells(r, c);
+    out << '\n';
+  }
+  if (!out) throw FileError(path, 0, -1, "write failed");
+}
+
+void run(const Options& o) {
+  const Mesh mesh = read_mesh(o.mesh);
+  if (mesh.max_face_size() > kHighValence)
+    std::cerr << fmt::format(
+        "polydec: warning: faces with up to {} corners: a face of valence n carries n(n-1)/2 1-cells and "
+        "n(n-1)(n-2)/6 2-cells, and star2 has (n(n-1)(n-2)/6)^2 entries per face ({} for the largest)\n",
+        mesh.max_face_size(),
+        long(mesh.max_face_size()) * (mesh.max_face_size() - 1) * (mesh.max_face_size() - 2) / 6 *
+            (long(mesh.max_face_size()) * (mesh.max_face_size() - 1) * (mesh.max_face_size() - 2) / 6));
+  RefinementOptions ropt;
+  ropt.rule = parse_virtual_vertex_rule(o.rule);
+  const Refinement r = refine(mesh, ropt);
+  const CoarseComplex K(mesh);
+  const HodgeStars H = hodge_stars(mesh, r, K);
+  std::filesystem::create_directories(o.out);
+  SparseMatrix star0 = H.star0;
+  if (o.lumped) {
+    star0 = SparseMatrix(mesh.n_vertices(), mesh.n_vertices());
+    star0.setIdentity();
+    star0.diagonal() = H.star0_lumped;
+  }
+  const std::string d = o.out + "/";
+  write_matrix_market(d + "d0.mtx", K.d0());
+  write_matrix_market(d + "d1.mtx", K.d1());
+  write_matrix_market(d + "star0.mtx", star0);
+  write_matrix_market(d + "star1.mtx", H.star1);
+  write_matrix_market(d + "star2.mtx", H.star2);
+  write_matrix_market(d + "P0.mtx", prolongation(mesh, r));
+  write_matrix_market(d + "P1.mtx", prolongation1(mesh, r, K));
+  write_matrix_market(d + "P2.mtx", prolongation2(mesh, r, K));
+  write_cells(d + "edges.txt", K.pairs());
+  write_cells(d + "triangles.txt", K.triples());
+  const FormSpan s1 = form_span(mesh, r, K, 1), s2 = form_span(mesh, r, K, 2);
+  nlohmann::json j = {{"mesh", o.mesh},
+                      {"out", o.out},
+                      {"vertices", mesh.n_vertices()},
+                      {"faces", mesh.n_faces()},
+                      {"max_face_size", mesh.max_face_size()},
+                      {"pairs", K.n_pairs()},
+                      {"triples", K.triples().rows()},
+                      {"rank_star1", s1.rank()},
+                      {"rank_star2", s2.rank()},
+                      {"star0", o.lumped ? "lumped" : "galerkin"},
+                      {"star1_nonzeros", H.star1.nonZeros()},
+                      {"star2_nonzeros", H.star2.nonZeros()},
+                      {"fan_degenerate", r.quality.n_degenerate},
+                      {"fan_inverted", r.quality.n_inverted},
+                      {"files",
+                       {"d0.mtx", "d1.mtx", "star0.mtx", "star1.mtx", "star2.mtx", "P0.mtx", "P1.mtx", "P2.mtx",
+                        "edges.txt", "triangles.txt"}}};
+  if (o.json) {
+    print_json(j);
+    return;
+  }
+  fmt::print("{}: {} vertices, {} faces (up to {} corners)\n", o.mesh, mesh.n_vertices(), mesh.n_faces(),
+             mesh.max_face_size());
+  fmt::print("coarse complex: {} 1-cells (rank of star1 {}), {} 2-cells (rank of star2 {})\n", K.n_pairs(),
+             s1.rank(), K.n_triples(), s2.rank());
+  fmt::print("fan triangles: {} degenerate, {} inverted\n", r.quality.n_degenerate, r.quality.n_inverted);
+  fmt::print("wrote d0 d1 star0 star1 star2 P0 P1 P2 (.mtx), edges.txt, triangles.txt to {}\n", o.out);
+}
+
+const RegisterCommand reg("dec", "Write d0, d1, star0-2, P0-2 and the coarse cell lists (paper section 4.6)",
+                          [](CLI::App& app) {
+                            auto o = std::make_shared<Options>();
+                            app.add_option("mesh", o->mesh, "input mesh (.obj, .off, .ply)")->required();
+                            app.add_option("--out", o->out, "output directory")->required();
+                            app.add_option("--virtual-vertex", o->rule,
+                                           "virtual-vertex rule: squared-area (default), centroid");
+                            app.add_flag("--lumped", o->lumped, "write the lumped (diagonal) star0");
+                            app.add_flag("--json", o->json, "print one JSON object instead of text");
+                            app.callback([o] { run(*o); });
+                          });
+
+}  // namespace
+}  // namespace polydec::cli

@@ -1,0 +1,61 @@
+// apps/cli/harmonics.cpp — `polydec harmonics MESH`: how far the spherical harmonics are from
+// being eigenvectors of the Laplacian (paper section 5.4, eq. 30, Table 3).
+#include "apps/cli/command.h"
+#include "apps/harmonics.h"
+#include "dec/generators.h"
+#include "dec/io.h"
+
+#include <fmt/format.h>
+
+namespace polydec::cli {
+namespace {
+
+struct Options {
+  std::string mesh, mass = "lumped", laplacian = "ours";
+  bool json = false, keep_positions = false;
+};
+
+void run(const Options& o) {
+  if (o.mass != "lumped" && o.mass != "unlumped") throw UsageError("--mass must be lumped or unlumped");
+  Mesh mesh = read_mesh(o.mesh);
+  if (!o.keep_positions) mesh = project_to_unit_sphere(mesh);
+  const OperatorSet ops = build_operators(mesh, parse_laplacian(o.laplacian), false);
+  HarmonicsOptions hopt;
+  hopt.max_band = 9;
+  hopt.lumped_mass = o.mass == "lumped";
+  const HarmonicsError e = spherical_harmonics_error(ops, hopt);
+  nlohmann::json j = {{"mesh", o.mesh},
+                      {"laplacian", ops.name},
+                      {"mass", o.mass},
+                      {"vertices", mesh.n_vertices()},
+                      {"faces", mesh.n_faces()},
+                      {"projected_to_unit_sphere", !o.keep_positions},
+                      {"band_error", e.band_error},
+                      {"error_l1_8", e.sum(8)},
+                      {"error_l1_9", e.sum(9)}};
+  if (o.json) {
+    print_json(j);
+    return;
+  }
+  fmt::print("{}: {} vertices, {} faces; Laplacian {}, {} mass{}\n", o.mesh, mesh.n_vertices(), mesh.n_faces(), ops.name,
+             o.mass, o.keep_positions ? "" : ", projected to the unit sphere");
+  for (int l = 1; l <= 9; ++l) fmt::print("  band l = {}: {:.6g}\n", l, e.band_error[l - 1]);
+  fmt::print("error, l = 1..8 (authors' program): {:.6g}\n", e.sum(8));
+  fmt::print("error, l = 1..9 (paper's caption):  {:.6g}\n", e.sum(9));
+}
+
+const RegisterCommand reg(
+    "harmonics", "Spherical-harmonics reproduction error of the Laplacian (paper section 5.4, eq. 30)",
+    [](CLI::App& app) {
+      auto o = std::make_shared<Options>();
+      app.add_option("mesh", o->mesh, "input mesh of a sphere (.obj, .off, .ply)")->required();
+      app.add_option("--mass", o->mass, "lumped (default) or unlumped mass, in L = M^-1 S and in the norm");
+      app.add_option("--laplacian", o->laplacian, "Laplacian: " + fmt::format("{}", fmt::join(laplacian_names(), ", ")));
+      app.add_flag("--keep-positions", o->keep_positions,
+                   "do not project the vertices to the unit sphere first (they should lie on it)");
+      app.add_flag("--json", o->json, "print one JSON object instead of text");
+      app.callback([o] { run(*o); });
+    });
+
+}  // namespace
+}  // namespace polydec::cli

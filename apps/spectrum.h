@@ -1,0 +1,37 @@
+// apps/spectrum.h — the k smallest eigenpairs of the generalized problem -S x = lambda M x
+// (manifold harmonics, paper section 5.4) with Spectra's shift-invert Lanczos solver, using our
+// SparseCholesky (operators/cholesky.h) to apply (-S - sigma M)^-1.
+//
+// Conventions: S negative semi-definite (operators/laplacian.h), so the eigenvalues are
+// lambda >= 0 (0 once per connected component); eigenvectors are M-orthonormal
+// (U^T M U = I) and satisfy S U + M U diag(lambda) = 0. Unreferenced vertices (no face, zero
+// mass) are left out of the problem and get 0 in every eigenvector.
+#pragma once
+
+#include "operators/laplacians.h"
+
+namespace polydec {
+
+struct SpectrumOptions {
+  int k = 10;                 // number of eigenpairs (1 <= k < number of referenced vertices)
+  bool lumped_mass = true;    // lumped (default) or Galerkin mass as M
+  double shift_factor = 0.1;  // sigma = -shift_factor / (surface area): a small negative shift,
+                              // so -S - sigma M is positive definite and the smallest lambda dominate
+  double tolerance = 1e-10;   // Spectra's relative convergence tolerance
+  int max_iterations = 1000;  // Spectra restarts
+};
+
+struct Spectrum {
+  Eigen::VectorXd eigenvalues;   // k, ascending
+  Eigen::MatrixXd eigenvectors;  // |V| x k (of the operator set's domain), M-orthonormal columns
+  double shift = 0;              // the sigma that was used
+  int n_converged = 0;
+};
+
+// Eigenpairs with any operator set. Throws SolverError when the factorization or Spectra fails
+// (Spectra's info() is checked), std::invalid_argument for k out of range or a missing mass.
+Spectrum laplacian_spectrum(const OperatorSet& operators, const SpectrumOptions& options = {});
+// With the paper's operator ("ours").
+Spectrum laplacian_spectrum(const Mesh& mesh, const SpectrumOptions& options = {});
+
+}  // namespace polydec

@@ -1,0 +1,273 @@
+// dec/hodge_star.cpp — refined Whitney stars and the coarse stars P_k^T star_k^f P_k, assembled
+// face by face into a precomputed sparse pattern.
+#include "dec/hodge_star.h"
+
+#include "dec/whitney.h"
+
+#include <algorithm>
+
+namespace polydec {
+
+namespace {
+
+using Triplet = Eigen::Triplet<double>;
+
+Eigen::Vector3d row3(const Eigen::MatrixX3d& X, int r) { return X.row(r).transpose(); }
+
+// The column-major pattern of "cells sharing a face" and, per face, the slots of its local
+// m x m block (row-major (a, b)) in the value array. `cells` lists the face's cell ids.
+struct CellPattern {
+  SparseMatrix pattern;
+  std::vector<long> offsets;  // |F| + 1 offsets into slots
+  std::vector<int> slots;
+};
+
+template <class FaceCells>
+CellPattern cell_pattern(int n_cells, int n_faces, FaceCells cells_of) {
+  // Cell -> faces incidence (CSR).
+  std::vector<int> start(n_cells + 1, 0);
+  for (int f = 0; f < n_faces; ++f)
+    for (int c : cells_of(f)) ++start[c + 1];
+  for (int c = 0; c < n_cells; ++c) start[c + 1] += start[c];
+  std::vector<int> faces(start[n_cells]), fill(start.begin(), start.end() - 1);
+  for (int f = 0; f < n_faces; ++f)
+    for (int c : cells_of(f)) faces[fill[c]++] = f;
+  // Column c: all cells of the faces of c, sorted and unique.
+  std::vector<int> outer(n_cells + 1, 0), inner, buf;
+  for (int c = 0; c < n_cells; ++c) {
+    buf.clear();
+    for (int k = start[c]; k < start[c + 1]; ++k)
+      for (int d : cells_of(faces[k])) buf.push_back(d);
+    std::sort(buf.begin(), buf.end());
+    buf.erase(std::unique(buf.begin(), buf.end()), buf.end());
+    inner.insert(inner.end(), buf.begin(), buf.end());
+    outer[c + 1] = int(inner.size());
+  }
+  CellPattern cp;
+  cp.pattern.resize(n_cells, n_cells);
+  cp.pattern.resizeNonZeros(long(inner.size()));
+  std::copy(outer.begin(), outer.end(), cp.pattern.outerIndexPtr());
+  std::copy(inner.begin(), inner.end(), cp.pattern.innerIndexPtr());
+  std::fill(cp.pattern.valuePtr(), cp.pattern.valuePtr() + inner.size(), 0.0);
+  cp.offsets.assign(n_faces + 1, 0);
+  for (int f = 0; f < n_faces; ++f) {
+    const long m = long(cells_of(f).size());
+    cp.offsets[f + 1] = cp.offsets[f] + m * m;
+  }
+  cp.slots.resize(cp.offsets[n_faces]);
+  for (int f = 0; f < n_faces; ++f) {
+    const auto cells = cells_of(f);
+    const int m = int(cells.size());
+    int* slot = cp.slots.data() + cp.offsets[f];
+    for (int b = 0; b < m; ++b) {
+      const int* cb = inner.data() + outer[cells[b]];
+      const int* ce = inner.data() + outer[cells[b] + 1];
+      for (int a = 0; a < m; ++a) slot[a * m + b] = int(std::lower_bound(cb, ce, cells[a]) - inner.data());
+    }
+  }
+  return cp;
+}
+
+void scatter(const CellPattern& cp, int f, const Eigen::MatrixXd& local, SparseMatrix& A) {
+  const int m = int(local.rows());
+  const int* slot = cp.slots.data() + cp.offsets[f];
+  double* v = A.valuePtr();
+  for (int a = 0; a < m; ++a)
+    for (int b = 0; b < m; ++b) v[slot[a * m + b]] += local(a, b);
+}
+
+// Rank of each corner (position in `order`).
+std::vector<int> corner_ranks(std::span<const int> order) {
+  std::vector<int> rank(order.size());
+  for (size_t r = 0; r < order.size(); ++r) rank[order[r]] = int(r);
+  return rank;
+}
+
+// Coarse star0 of one polygon, P_f^T star0^f_f P_f with P_f = [I; w^T], in face order.
+Eigen::MatrixXd polygon_star0(const PolygonPositions& X, const Eigen::VectorXd& w, const Eigen::Vector3d& xf) {
+  const int n = int(X.rows());
+  Eigen::MatrixXd Mc = Eigen::MatrixXd::Zero(n, n);
+  Eigen::VectorXd m = Eigen::VectorXd::Zero(n);
+  double mu = 0;
+  for (int k = 0; k < n; ++k) {
+    const int l = (k + 1) % n;
+    const Eigen::Matrix3d t = whitney0_mass(row3(X, k), row3(X, l), xf);
+    Mc(k, k) += t(0, 0);
+    Mc(l, l) += t(1, 1);
+    Mc(k, l) += t(0, 1);
+    Mc(l, k) += t(1, 0);
+    m[k] += t(0, 2);
+    m[l] += t(1, 2);
+    mu += t(2, 2);
+  }
+  return Mc + m * w.transpose() + w * m.transpose() + mu * w * w.transpose();
+}
+
+}  // namespace
+
+SparseMatrix refined_star0(const Mesh& mesh, const Refinement& refinement) {
+  const int nv = mesh.n_vertices();
+  std::vector<Triplet> t;
+  t.reserve(9 * size_t(mesh.n_halfedges()));
+  for (int h = 0; h < mesh.n_halfedges(); ++h) {
+    const int f = mesh.halfedge_face(h);
+    const int v[3] = {mesh.halfedge_source(h), mesh.halfedge_target(h), nv + f};
+    const Eigen::Matrix3d m = whitney0_mass(mesh.position(v[0]), mesh.position(v[1]),
+                                            row3(refinement.virtual_points, f));
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) t.emplace_back(v[a], v[b], m(a, b));
+  }
+  SparseMatrix S(refined_n_vertices(mesh), refined_n_vertices(mesh));
+  S.setFromTriplets(t.begin(), t.end());
+  return S;
+}
+
+SparseMatrix refined_star1(const Mesh& mesh, const Refinement& refinement) {
+  const int ne = mesh.n_edges();
+  std::vector<Triplet> t;
+  t.reserve(9 * size_t(mesh.n_halfedges()));
+  for (int h = 0; h < mesh.n_halfedges(); ++h) {
+    if (refinement.fan[h] == FanTriangle::Degenerate) continue;
+    const int f = mesh.halfedge_face(h), s = mesh.halfedge_source(h), e = mesh.halfedge_target(h);
+    const bool up = s < e;
+    // Sorted corners (lo, hi, v); local edges (lo,hi), (lo,v), (hi,v).
+    const int lo = up ? s : e, hi = up ? e : s;
+    const int spoke_s = ne + h, spoke_e = ne + mesh.halfedge_next(h);
+    const int cell[3] = {mesh.halfedge_edge(h), up ? spoke_s : spoke_e, up ? spoke_e : spoke_s};
+    const Eigen::Matrix3d m =
+        whitney1_mass(mesh.position(lo), mesh.position(hi), row3(refinement.virtual_points, f));
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) t.emplace_back(cell[a], cell[b], m(a, b));
+  }
+  SparseMatrix S(refined_n_edges(mesh), refined_n_edges(mesh));
+  S.setFromTriplets(t.begin(), t.end());
+  return S;
+}
+
+SparseMatrix refined_star2(const Mesh& mesh, const Refinement& refinement) {
+  std::vector<Triplet> t;
+  t.reserve(mesh.n_halfedges());
+  for (int h = 0; h < mesh.n_halfedges(); ++h) {
+    if (refinement.fan[h] == FanTriangle::Degenerate) continue;
+    t.emplace_back(h, h,
+                   whitney2_mass(mesh.position(mesh.halfedge_source(h)), mesh.position(mesh.halfedge_target(h)),
+                                 row3(refinement.virtual_points, mesh.halfedge_face(h))));
+  }
+  SparseMatrix S(mesh.n_halfedges(), mesh.n_halfedges());
+  S.setFromTriplets(t.begin(), t.end());
+  return S;
+}
+
+Eigen::MatrixXd polygon_star1(const PolygonPositions& X, const Eigen::VectorXd& w, const Eigen::Vector3d& xf,
+                              const FanTriangle* fan, std::span<const int> order) {
+  const int n = int(X.rows()), m = n * (n - 1) / 2;
+  const std::vector<int> rank = corner_ranks(order);
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(m, m);
+  // Rows of P1 restricted to one fan triangle, on the 2n-3 pairs they touch: the polygon edge
+  // (lo, hi) -> its pair; spoke (r, v) -> sign(s - r) w_s on pair (r, s).
+  const int u = 2 * n - 3;
+  std::vector<int> idx(u);
+  Eigen::MatrixXd Q(3, u);
+  for (int k = 0; k < n; ++k) {
+    if (fan[k] == FanTriangle::Degenerate) continue;
+    const int l = (k + 1) % n;
+    const int lo = std::min(rank[k], rank[l]), hi = std::max(rank[k], rank[l]);
+    Q.setZero();
+    int c = 0;
+    idx[c] = local_pair_index(n, lo, hi);
+    Q(0, c) = 1.0;
+    Q(1, c) = w[order[hi]];   // spoke lo, pair (lo, hi): +w_hi
+    Q(2, c) = -w[order[lo]];  // spoke hi, pair (lo, hi): -w_lo
+    ++c;
+    for (int s = 0; s < n; ++s) {
+      if (s == lo || s == hi) continue;
+      idx[c] = lo < s ? local_pair_index(n, lo, s) : local_pair_index(n, s, lo);
+      Q(1, c) = s > lo ? w[order[s]] : -w[order[s]];
+      ++c;
+      idx[c] = hi < s ? local_pair_index(n, hi, s) : local_pair_index(n, s, hi);
+      Q(2, c) = s > hi ? w[order[s]] : -w[order[s]];
+      ++c;
+    }
+    const Eigen::Matrix3d M = whitney1_mass(row3(X, order[lo]), row3(X, order[hi]), xf);
+    const Eigen::MatrixXd B = Q.transpose() * (M * Q);
+    for (int a = 0; a < u; ++a)
+      for (int b = 0; b < u; ++b) A(idx[a], idx[b]) += B(a, b);
+  }
+  return A;
+}
+
+Eigen::MatrixXd polygon_star2(const PolygonPositions& X, const Eigen::VectorXd& w, const Eigen::Vector3d& xf,
+                              const FanTriangle* fan, std::span<const int> order) {
+  const int n = int(X.rows()), m = n * (n - 1) * (n - 2) / 6;
+  const std::vector<int> rank = corner_ranks(order);
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(m, m);
+  std::vector<int> idx;
+  std::vector<double> q;
+  for (int k = 0; k < n; ++k) {
+    if (fan[k] == FanTriangle::Degenerate) continue;
+    const int l = (k + 1) % n;
+    const int lo = std::min(rank[k], rank[l]), hi = std::max(rank[k], rank[l]);
+    // Row of P2 for the triangle (lo, hi, v): det [e_lo; e_hi; w] on each triple {lo, hi, c}.
+    idx.clear();
+    q.clear();
+    for (int c = 0; c < n; ++c) {
+      if (c == lo || c == hi) continue;
+      int t[3] = {lo, hi, c};
+      std::sort(t, t + 3);
+      idx.push_back(local_triple_index(n, t[0], t[1], t[2]));
+      q.push_back((c > lo && c < hi) ? -w[order[c]] : w[order[c]]);
+    }
+    const double inv_area = whitney2_mass(row3(X, k), row3(X, l), xf);
+    for (size_t a = 0; a < idx.size(); ++a)
+      for (size_t b = 0; b < idx.size(); ++b) A(idx[a], idx[b]) += inv_area * q[a] * q[b];
+  }
+  return A;
+}
+
+HodgeStars hodge_stars(const Mesh& mesh, const Refinement& refinement, const CoarseComplex& complex,
+                       HodgeStarParts parts) {
+  HodgeStars H;
+  const int nf = mesh.n_faces();
+  const bool want0 = parts.star0 || parts.star0_lumped;
+  CellPattern p0, p1, p2;
+  if (want0) {
+    p0 = cell_pattern(mesh.n_vertices(), nf, [&](int f) { return mesh.face(f); });
+    H.star0 = p0.pattern;
+  }
+  if (parts.star1) {
+    p1 = cell_pattern(complex.n_pairs(), nf, [&](int f) { return complex.face_pairs(f); });
+    H.star1 = p1.pattern;
+  }
+  if (parts.star2) {
+    p2 = cell_pattern(complex.n_triples(), nf, [&](int f) { return complex.face_triples(f); });
+    H.star2 = p2.pattern;
+  }
+  for (int f = 0; f < nf; ++f) {
+    const PolygonPositions X = face_positions(mesh, f);
+    const int h0 = mesh.face_offsets()[f];
+    const Eigen::Map<const Eigen::VectorXd> wm(refinement.weights.data() + h0, X.rows());
+    const Eigen::VectorXd w = wm;
+    const Eigen::Vector3d xf = row3(refinement.virtual_points, f);
+    const FanTriangle* fan = refinement.fan.data() + h0;
+    if (want0) scatter(p0, f, polygon_star0(X, w, xf), H.star0);
+    if (parts.star1) scatter(p1, f, polygon_star1(X, w, xf, fan, complex.sorted_corners(f)), H.star1);
+    if (parts.star2) scatter(p2, f, polygon_star2(X, w, xf, fan, complex.sorted_corners(f)), H.star2);
+  }
+  if (parts.star0_lumped) {
+    H.star0_lumped = Eigen::VectorXd::Zero(mesh.n_vertices());
+    for (int j = 0; j < H.star0.outerSize(); ++j)
+      for (SparseMatrix::InnerIterator it(H.star0, j); it; ++it) H.star0_lumped[it.row()] += it.value();
+  }
+  if (!parts.star0) H.star0 = SparseMatrix();
+  return H;
+}
+
+SparseMatrix star1(const Mesh& mesh, const Refinement& refinement, const CoarseComplex& complex) {
+  return hodge_stars(mesh, refinement, complex, {false, false, true, false}).star1;
+}
+
+SparseMatrix star2(const Mesh& mesh, const Refinement& refinement, const CoarseComplex& complex) {
+  return hodge_stars(mesh, refinement, complex, {false, false, false, true}).star2;
+}
+
+}  // namespace polydec

@@ -1,0 +1,157 @@
+// dec/io_common.h — internal helpers shared by the file readers and writers (not installed API):
+// the reader result with element locations, a line splitter, strict number parsing, and a
+// bounds-checked binary cursor.
+#pragma once
+
+#include "dec/io.h"
+
+#include <bit>
+#include <charconv>
+#include <cstdint>
+#include <cstring>
+#include <fmt/format.h>
+#include <string_view>
+#include <vector>
+
+namespace polydec::io_detail {
+
+// A reader's result: the soup plus where each vertex and face came from, so that a validation
+// error found later by Mesh can name the file position. Text formats store 1-based lines,
+// binary formats byte offsets.
+struct SoupRead {
+  PolygonSoup soup;
+  std::vector<long> vertex_where, face_where;
+  bool where_is_byte = false;
+};
+
+SoupRead read_obj(std::string_view bytes, const std::string& name);
+SoupRead read_off(std::string_view bytes, const std::string& name);
+SoupRead read_ply(std::string_view bytes, const std::string& name);
+
+std::string write_obj(const Mesh& mesh);
+std::string write_off(const Mesh& mesh, bool binary);
+std::string write_ply(const Mesh& mesh, const VertexScalars& scalars, bool binary);
+
+// Lower-case copy.
+std::string lower(std::string_view s);
+
+// Drops a leading UTF-8 byte-order mark.
+inline std::string_view strip_bom(std::string_view s) {
+  if (s.size() >= 3 && s.substr(0, 3) == "\xEF\xBB\xBF") s.remove_prefix(3);
+  return s;
+}
+
+inline bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+
+// Splits text into lines ('\n' separated, a trailing '\r' dropped), counting them from 1.
+class LineReader {
+ public:
+  explicit LineReader(std::string_view text, size_t start = 0, long first_line = 1)
+      : text_(text), pos_(start), line_(first_line - 1) {}
+  bool next(std::string_view& out) {
+    if (pos_ >= text_.size()) return false;
+    const size_t e = text_.find('\n', pos_);
+    const size_t end = e == std::string_view::npos ? text_.size() : e;
+    out = text_.substr(pos_, end - pos_);
+    if (!out.empty() && out.back() == '\r') out.remove_suffix(1);
+    pos_ = e == std::string_view::npos ? text_.size() : e + 1;
+    ++line_;
+    return true;
+  }
+  long line() const { return line_; }   // number of the line last returned (0 before the first)
+  size_t position() const { return pos_; }  // byte offset of the next line
+  size_t remaining() const { return text_.size() - pos_; }
+
+ private:
+  std::string_view text_;
+  size_t pos_;
+  long line_;
+};
+
+// Splits one line into whitespace-separated tokens (spaces, tabs, CR, VT, FF).
+inline void split(std::string_view line, std::vector<std::string_view>& tokens) {
+  tokens.clear();
+  size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && is_space(line[i])) ++i;
+    const size_t b = i;
+    while (i < line.size() && !is_space(line[i])) ++i;
+    if (i > b) tokens.push_back(line.substr(b, i - b));
+  }
+}
+
+// Strict parses: the whole token must be a number. A leading '+' is accepted.
+inline bool parse_double(std::string_view t, double& x) {
+  if (!t.empty() && t[0] == '+') t.remove_prefix(1);
+  if (t.empty()) return false;
+  const auto r = std::from_chars(t.data(), t.data() + t.size(), x);
+  return r.ec == std::errc() && r.ptr == t.data() + t.size();
+}
+inline bool parse_int(std::string_view t, long long& x) {
+  if (!t.empty() && t[0] == '+') t.remove_prefix(1);
+  if (t.empty()) return false;
+  const auto r = std::from_chars(t.data(), t.data() + t.size(), x);
+  return r.ec == std::errc() && r.ptr == t.data() + t.size();
+}
+
+// Shortens a token for an error message (a 1 MB token is not quoted in full).
+inline std::string quote(std::string_view t) {
+  std::string s;
+  for (char c : t.substr(0, 40)) s += (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) >= 127) ? '?' : c;
+  if (t.size() > 40) s += "...";
+  return "'" + s + "'";
+}
+
+// Bounds-checked reads of little- or big-endian scalars from a byte buffer.
+class BinaryCursor {
+ public:
+  BinaryCursor(std::string_view data, size_t start, bool big_endian, const std::string& name)
+      : data_(data), pos_(start), big_(big_endian), name_(name) {}
+  size_t position() const { return pos_; }
+  size_t remaining() const { return data_.size() - pos_; }
+  bool at_end() const { return pos_ >= data_.size(); }
+
+  // Throws a FileError naming `what` when fewer than n bytes are left.
+  void need(size_t n, const char* what) const {
+    if (remaining() < n)
+      throw FileError(name_, 0, long(pos_),
+                      fmt::format("truncated {}: needs {} bytes, the file ends after {}", what, n, remaining()));
+  }
+  template <class T>
+  T read(const char* what) {
+    need(sizeof(T), what);
+    unsigned char b[sizeof(T)];
+    std::memcpy(b, data_.data() + pos_, sizeof(T));
+    if (big_ != (std::endian::native == std::endian::big))
+      for (size_t i = 0; i < sizeof(T) / 2; ++i) std::swap(b[i], b[sizeof(T) - 1 - i]);
+    T x;
+    std::memcpy(&x, b, sizeof(T));
+    pos_ += sizeof(T);
+    return x;
+  }
+  void skip(size_t n, const char* what) {
+    need(n, what);
+    pos_ += n;
+  }
+
+ private:
+  std::string_view data_;
+  size_t pos_;
+  bool big_;
+  const std::string& name_;
+};
+
+// Appends the bytes of a little-endian scalar.
+template <class T>
+void put_le(std::string& out, T x) {
+  unsigned char b[sizeof(T)];
+  std::memcpy(b, &x, sizeof(T));
+  if (std::endian::native == std::endian::big)
+    for (size_t i = 0; i < sizeof(T) / 2; ++i) std::swap(b[i], b[sizeof(T) - 1 - i]);
+  out.append(reinterpret_cast<const char*>(b), sizeof(T));
+}
+
+// 17 significant digits: every double reads back bit-exactly.
+inline std::string num(double x) { return fmt::format("{:.17g}", x); }
+
+}  // namespace polydec::io_detail

@@ -1,0 +1,89 @@
+// dec/io_matrix_market.cpp — Matrix Market coordinate files: written as "real general",
+// 1-based, 17 significant digits; read as real or integer, general, symmetric or
+// skew-symmetric.
+#include "dec/io_common.h"
+
+#include <climits>
+#include <filesystem>
+#include <fstream>
+
+namespace polydec {
+
+using namespace io_detail;
+
+void write_matrix_market(const std::string& path, const Eigen::SparseMatrix<double>& A) {
+  fmt::memory_buffer b;
+  auto out = std::back_inserter(b);
+  fmt::format_to(out, "%%MatrixMarket matrix coordinate real general\n{} {} {}\n", A.rows(), A.cols(),
+                 A.nonZeros());
+  for (int j = 0; j < A.outerSize(); ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, j); it; ++it)
+      fmt::format_to(out, "{} {} {:.17g}\n", it.row() + 1, it.col() + 1, it.value());
+  std::ofstream f(path, std::ios::binary);
+  if (!f) throw FileError(path, 0, -1, "cannot open file for writing");
+  f.write(b.data(), std::streamsize(b.size()));
+  f.close();
+  if (!f) throw FileError(path, 0, -1, "write failed");
+}
+
+Eigen::SparseMatrix<double> read_matrix_market_from_memory(std::string_view bytes, const std::string& name) {
+  LineReader lines(strip_bom(bytes));
+  std::string_view line;
+  std::vector<std::string_view> tok;
+  if (!lines.next(line)) throw FileError(name, 0, -1, "empty file (no %%MatrixMarket header)");
+  split(line, tok);
+  if (tok.size() != 5 || tok[0] != "%%MatrixMarket" || lower(tok[1]) != "matrix")
+    throw FileError(name, 1, -1, "expected '%%MatrixMarket matrix coordinate FIELD SYMMETRY'");
+  if (lower(tok[2]) != "coordinate") throw FileError(name, 1, -1, "only the coordinate format is supported");
+  const std::string field = lower(tok[3]), symmetry = lower(tok[4]);
+  if (field != "real" && field != "integer" && field != "double")
+    throw FileError(name, 1, -1, "field " + quote(tok[3]) + " not supported (real or integer)");
+  if (symmetry != "general" && symmetry != "symmetric" && symmetry != "skew-symmetric")
+    throw FileError(name, 1, -1, "symmetry " + quote(tok[4]) + " not supported (general, symmetric, skew-symmetric)");
+  const double mirror = symmetry == "general" ? 0.0 : symmetry == "symmetric" ? 1.0 : -1.0;
+
+  auto next_data = [&]() {
+    while (lines.next(line)) {
+      split(line, tok);
+      if (!tok.empty() && tok[0][0] != '%') return true;
+    }
+    return false;
+  };
+  if (!next_data()) throw FileError(name, lines.line(), -1, "no size line");
+  long long r, c, nnz;
+  if (tok.size() != 3 || !parse_int(tok[0], r) || !parse_int(tok[1], c) || !parse_int(tok[2], nnz) || r < 0 ||
+      c < 0 || nnz < 0)
+    throw FileError(name, lines.line(), -1, "expected 'ROWS COLS ENTRIES', three non-negative integers");
+  if (r > INT_MAX || c > INT_MAX) throw FileError(name, lines.line(), -1, "matrix too large");
+  if (nnz > (long long)(lines.remaining() + 1) / 6)
+    throw FileError(name, lines.line(), -1,
+                    fmt::format("claims {} entries but only {} bytes follow", nnz, lines.remaining()));
+  std::vector<Eigen::Triplet<double>> t;
+  t.reserve(size_t(nnz) * (mirror != 0.0 ? 2 : 1));
+  for (long long k = 0; k < nnz; ++k) {
+    if (!next_data())
+      throw FileError(name, lines.line(), -1, fmt::format("unexpected end of file after {} of {} entries", k, nnz));
+    long long i, j;
+    double v;
+    if (tok.size() != 3 || !parse_int(tok[0], i) || !parse_int(tok[1], j) || !parse_double(tok[2], v))
+      throw FileError(name, lines.line(), -1, "expected 'ROW COL VALUE'");
+    if (i < 1 || i > r || j < 1 || j > c)
+      throw FileError(name, lines.line(), -1, fmt::format("entry ({}, {}) outside the {} x {} matrix", i, j, r, c));
+    t.emplace_back(int(i - 1), int(j - 1), v);
+    if (mirror != 0.0 && i != j) t.emplace_back(int(j - 1), int(i - 1), mirror * v);
+  }
+  Eigen::SparseMatrix<double> A(r, c);
+  A.setFromTriplets(t.begin(), t.end());
+  return A;
+}
+
+Eigen::SparseMatrix<double> read_matrix_market(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw FileError(path, 0, -1, "is a directory, not a file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw FileError(path, 0, -1, "cannot open file");
+  std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return read_matrix_market_from_memory(data, path);
+}
+
+}  // namespace polydec
