@@ -1,6 +1,11 @@
 // dec/refinement.cpp — virtual vertices for every face and fan-triangle classification.
 #include "dec/refinement.h"
 
+#include "dec/huge_pages.h"
+
+#include <algorithm>
+#include <cmath>
+
 namespace polydec {
 
 PolygonPositions face_positions(const Mesh& mesh, int f) {
@@ -10,42 +15,105 @@ PolygonPositions face_positions(const Mesh& mesh, int f) {
   return X;
 }
 
+namespace {
+
+// Virtual vertex and fan classification of face f with N corners (0: any), written into r.
+// x, Y and work are scratch of 3 * max_face_size doubles each.
+template <int N>
+void refine_face(const Mesh& mesh, int f, Refinement& r, double* x, double* Y, double* work) {
+  const int h0 = mesh.face_offsets()[f], n = N > 0 ? N : mesh.face_offsets()[f + 1] - h0;
+  const int* face = mesh.face_indices().data() + h0;
+  const Eigen::MatrixX3d& P = mesh.positions();
+  double c[3] = {0, 0, 0};
+  for (int k = 0; k < n; ++k)
+    for (int d = 0; d < 3; ++d) {
+      x[3 * k + d] = P(face[k], d);
+      c[d] += x[3 * k + d];
+    }
+  for (int d = 0; d < 3; ++d) c[d] /= n;
+  double* w = r.weights.data() + h0;
+  if (r.options.rule == VirtualVertexRule::SquaredArea) {
+    squared_area_weights(x, n, w, work);
+  } else if (r.options.rule == VirtualVertexRule::Centroid) {
+    for (int k = 0; k < n; ++k) w[k] = 1.0 / n;
+  } else {  // the other rules (dec/virtual_vertex.h) through their general routes
+    const Eigen::VectorXd wr = virtual_vertex_weights(face_positions(mesh, f), r.options.rule);
+    for (int k = 0; k < n; ++k) w[k] = wr[k];
+  }
+  // x_f = c + sum_k w_k (x_k - c): centred, so that far from the origin no digits are lost.
+  double s[3] = {0, 0, 0};
+  for (int k = 0; k < n; ++k)
+    for (int d = 0; d < 3; ++d) {
+      Y[3 * k + d] = x[3 * k + d] - c[d];
+      s[d] += w[k] * Y[3 * k + d];
+    }
+  const double xf[3] = {c[0] + s[0], c[1] + s[1], c[2] + s[2]};
+  for (int d = 0; d < 3; ++d) r.virtual_points(f, d) = xf[d];
+
+  // Polygon vector area (twice), independent of x_f.
+  double normal[3] = {0, 0, 0};
+  for (int k = 0; k < n; ++k) {
+    const double* p = Y + 3 * k;
+    const double* q = Y + 3 * (k + 1 == n ? 0 : k + 1);
+    normal[0] += p[1] * q[2] - p[2] * q[1];
+    normal[1] += p[2] * q[0] - p[0] * q[2];
+    normal[2] += p[0] * q[1] - p[1] * q[0];
+  }
+  const double tol = r.options.degenerate_tolerance;
+  bool affected = false;
+  for (int k = 0; k < n; ++k) {
+    const double* p = x + 3 * k;
+    const double* q = x + 3 * (k + 1 == n ? 0 : k + 1);
+    const double a[3] = {p[0] - xf[0], p[1] - xf[1], p[2] - xf[2]};
+    const double b[3] = {q[0] - xf[0], q[1] - xf[1], q[2] - xf[2]};
+    const double area2[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+    const double e[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    const double longest2 = std::max({a[0] * a[0] + a[1] * a[1] + a[2] * a[2], b[0] * b[0] + b[1] * b[1] + b[2] * b[2],
+                                      e[0] * e[0] + e[1] * e[1] + e[2] * e[2]});
+    const double norm = std::sqrt(area2[0] * area2[0] + area2[1] * area2[1] + area2[2] * area2[2]);
+    FanTriangle quality = FanTriangle::Valid;
+    if (norm <= tol * longest2)
+      quality = FanTriangle::Degenerate;
+    else if (area2[0] * normal[0] + area2[1] * normal[1] + area2[2] * normal[2] < 0)
+      quality = FanTriangle::Inverted;
+    r.fan[h0 + k] = quality;
+    if (quality == FanTriangle::Degenerate) ++r.quality.n_degenerate;
+    if (quality == FanTriangle::Inverted) ++r.quality.n_inverted;
+    affected = affected || quality != FanTriangle::Valid;
+  }
+  if (affected) ++r.quality.n_faces_affected;
+}
+
+}  // namespace
+
 Refinement refine(const Mesh& mesh, const RefinementOptions& options) {
   Refinement r;
   r.options = options;
+  // Large outputs on huge pages where available (first-touch faults dominate otherwise).
+  r.weights.reserve(mesh.n_halfedges());
+  advise_huge_pages(r.weights.data(), sizeof(double) * mesh.n_halfedges());
   r.weights.resize(mesh.n_halfedges());
   r.virtual_points.resize(mesh.n_faces(), 3);
+  advise_huge_pages(r.virtual_points.data(), sizeof(double) * 3 * mesh.n_faces());
+  r.fan.reserve(mesh.n_halfedges());
+  advise_huge_pages(r.fan.data(), mesh.n_halfedges());
   r.fan.assign(mesh.n_halfedges(), FanTriangle::Valid);
-  const double tol = options.degenerate_tolerance;
+  // Scratch sized once for the largest face: corner positions (row-major), centred positions
+  // and the weights' work space. No allocation per face.
+  const int nmax = mesh.max_face_size();
+  std::vector<double> buffer(9 * size_t(nmax));
+  double* x = buffer.data();
+  double* Y = x + 3 * nmax;
+  double* work = Y + 3 * nmax;
+  const int* offsets = mesh.face_offsets().data();
   for (int f = 0; f < mesh.n_faces(); ++f) {
-    const PolygonPositions X = face_positions(mesh, f);
-    const Eigen::VectorXd w = virtual_vertex_weights(X, options.rule);
-    const int n = int(X.rows()), h0 = mesh.face_offsets()[f];
-    for (int k = 0; k < n; ++k) r.weights[h0 + k] = w[k];
-    // x_f = c + sum_k w_k (x_k - c): centred, so that far from the origin no digits are lost.
-    const Eigen::RowVector3d c = X.colwise().mean();
-    const Eigen::RowVector3d xf = c + w.transpose() * (X.rowwise() - c);
-    r.virtual_points.row(f) = xf;
-
-    Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // polygon vector area (twice), independent of x_f
-    for (int k = 0; k < n; ++k)
-      normal += (X.row(k) - c).cross(X.row((k + 1) % n) - c).transpose();
-    bool affected = false;
-    for (int k = 0; k < n; ++k) {
-      const Eigen::Vector3d a = (X.row(k) - xf).transpose(), b = (X.row((k + 1) % n) - xf).transpose();
-      const Eigen::Vector3d area2 = a.cross(b);
-      const double longest2 = std::max({a.squaredNorm(), b.squaredNorm(), (b - a).squaredNorm()});
-      FanTriangle q = FanTriangle::Valid;
-      if (area2.norm() <= tol * longest2)
-        q = FanTriangle::Degenerate;
-      else if (area2.dot(normal) < 0)
-        q = FanTriangle::Inverted;
-      r.fan[h0 + k] = q;
-      if (q == FanTriangle::Degenerate) ++r.quality.n_degenerate;
-      if (q == FanTriangle::Inverted) ++r.quality.n_inverted;
-      affected = affected || q != FanTriangle::Valid;
+    switch (offsets[f + 1] - offsets[f]) {
+      case 3: refine_face<3>(mesh, f, r, x, Y, work); break;
+      case 4: refine_face<4>(mesh, f, r, x, Y, work); break;
+      case 5: refine_face<5>(mesh, f, r, x, Y, work); break;
+      case 6: refine_face<6>(mesh, f, r, x, Y, work); break;
+      default: refine_face<0>(mesh, f, r, x, Y, work); break;
     }
-    if (affected) ++r.quality.n_faces_affected;
   }
   return r;
 }

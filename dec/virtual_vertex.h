@@ -32,6 +32,9 @@ std::string to_string(VirtualVertexRule rule);
 // weights reproducing it come from the pseudo-inverse of the centred positions, whose rank
 // (2 for planar, 3 for non-planar polygons) is decided relative to the polygon's own extent.
 Eigen::VectorXd squared_area_weights(const PolygonPositions& X);
+// The same weights without allocating: x holds the n corners row by row (x[3k..3k+2]), the
+// n weights are written to w; `work` needs 3n doubles of scratch. For per-face inner loops.
+void squared_area_weights(const double* x, int n, double* w, double* work);
 
 // Uniform weights 1/n.
 Eigen::VectorXd centroid_weights(int n);

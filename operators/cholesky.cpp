@@ -1,17 +1,20 @@
-// operators/cholesky.cpp — SparseCholesky on Eigen's SimplicialLDLT.
+// operators/cholesky.cpp — SparseCholesky on CHOLMOD (supernodal) or Eigen's SimplicialLDLT.
 #include "operators/cholesky.h"
 
 #include <Eigen/SparseCholesky>
+#include <cmath>
+
+#ifdef POLYDEC_HAVE_CHOLMOD
+#include <cholmod.h>
+#endif
 
 namespace polydec {
 
-struct SparseCholesky::Impl {
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
-};
-
 namespace {
 
-void check(const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>& s, const std::string& name) {
+using SpMat = Eigen::SparseMatrix<double>;
+
+void check_eigen(const Eigen::SimplicialLDLT<SpMat>& s, const std::string& name) {
   if (s.info() != Eigen::Success)
     throw SolverError("Cholesky factorization of " + name + " failed (matrix not positive definite?)");
   // A singular positive semi-definite matrix leaves a rounding-level last pivot of either sign:
@@ -22,28 +25,176 @@ void check(const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>& s, const st
     throw SolverError("Cholesky factorization of " + name + " failed: matrix is singular or not positive definite");
 }
 
+#ifdef POLYDEC_HAVE_CHOLMOD
+// A read-only CHOLMOD view of a compressed column-major matrix; stype -1: only the lower
+// triangle is used.
+cholmod_sparse view_lower(const SpMat& A) {
+  cholmod_sparse s{};
+  s.nrow = size_t(A.rows());
+  s.ncol = size_t(A.cols());
+  s.nzmax = size_t(A.nonZeros());
+  s.p = const_cast<int*>(A.outerIndexPtr());
+  s.i = const_cast<int*>(A.innerIndexPtr());
+  s.x = const_cast<double*>(A.valuePtr());
+  s.stype = -1;
+  s.itype = CHOLMOD_INT;
+  s.xtype = CHOLMOD_REAL;
+  s.dtype = CHOLMOD_DOUBLE;
+  s.sorted = 1;
+  s.packed = 1;
+  return s;
+}
+#endif
+
 }  // namespace
 
-SparseCholesky::SparseCholesky(const Eigen::SparseMatrix<double>& A, std::string name)
-    : impl_(std::make_unique<Impl>()), name_(std::move(name)), rows_(int(A.rows())) {
-  if (A.rows() != A.cols()) throw SolverError("Cholesky of " + name_ + ": matrix is not square");
-  impl_->ldlt.analyzePattern(A);
-  impl_->ldlt.factorize(A);
-  check(impl_->ldlt, name_);
+struct SparseCholesky::Impl {
+  bool use_cholmod = false;
+  std::string ordering = "amd";
+  Eigen::SimplicialLDLT<SpMat> ldlt;
+#ifdef POLYDEC_HAVE_CHOLMOD
+  mutable cholmod_common c{};
+  cholmod_factor* L = nullptr;
+  bool started = false;
+  ~Impl() {
+    if (started) {
+      if (L) cholmod_free_factor(&L, &c);
+      cholmod_finish(&c);
+    }
+  }
+#endif
+};
+
+SparseCholesky::SparseCholesky(const Eigen::SparseMatrix<double>& A_in, std::string name,
+                               const CholeskyOptions& options)
+    : impl_(std::make_unique<Impl>()), name_(std::move(name)), rows_(int(A_in.rows())) {
+  if (A_in.rows() != A_in.cols()) throw SolverError("Cholesky of " + name_ + ": matrix is not square");
+  const bool want_cholmod = options.backend == CholeskyBackend::Cholmod ||
+                            (options.backend == CholeskyBackend::Automatic && cholmod_available());
+  if (want_cholmod && !cholmod_available())
+    throw SolverError("Cholesky of " + name_ + ": the CHOLMOD backend is not compiled in");
+  if (!want_cholmod) {
+    impl_->ldlt.analyzePattern(A_in);
+    impl_->ldlt.factorize(A_in);
+    check_eigen(impl_->ldlt, name_);
+    return;
+  }
+#ifdef POLYDEC_HAVE_CHOLMOD
+  impl_->use_cholmod = true;
+  cholmod_common& c = impl_->c;
+  cholmod_start(&c);
+  impl_->started = true;
+  c.print = 0;  // errors are reported through SolverError, not on stderr
+  c.supernodal = CHOLMOD_SUPERNODAL;
+  // Relaxed supernode amalgamation, 4x CHOLMOD's defaults: fewer, larger supernodes make the
+  // dense BLAS-3 updates pay off. Measured on FINE SPHERE's M - 0.1 S with one BLAS thread:
+  // numeric factorization 243 ms (defaults) -> 154 ms (AMD), vs 506 ms for Eigen SimplicialLLT.
+  c.nrelax[0] = 16;
+  c.nrelax[1] = 64;
+  c.nrelax[2] = 192;
+  c.zrelax[0] = 0.8;
+  c.zrelax[1] = 0.3;
+  c.zrelax[2] = 0.15;
+  c.nmethods = 1;
+  switch (options.ordering) {
+    case CholeskyOrdering::Automatic:
+    case CholeskyOrdering::Amd: c.method[0].ordering = CHOLMOD_AMD; break;
+    case CholeskyOrdering::Metis:
+      c.method[0].ordering = CHOLMOD_METIS;
+      impl_->ordering = "metis";
+      break;
+    case CholeskyOrdering::NestedDissection:
+      c.method[0].ordering = CHOLMOD_NESDIS;
+      impl_->ordering = "nesdis";
+      break;
+  }
+  const SpMat A = A_in.isCompressed() ? SpMat() : SpMat(A_in);
+  const SpMat& Ac = A_in.isCompressed() ? A_in : A;
+  cholmod_sparse s = view_lower(Ac);
+  impl_->L = cholmod_analyze(&s, &c);
+  if (!impl_->L || c.status < CHOLMOD_OK)
+    throw SolverError("Cholesky analysis of " + name_ + " failed (CHOLMOD status " + std::to_string(c.status) + ")");
+  refactor(Ac);
+#endif
 }
 
 SparseCholesky::~SparseCholesky() = default;
 SparseCholesky::SparseCholesky(SparseCholesky&&) noexcept = default;
 SparseCholesky& SparseCholesky::operator=(SparseCholesky&&) noexcept = default;
 
-void SparseCholesky::refactor(const Eigen::SparseMatrix<double>& A) {
-  impl_->ldlt.factorize(A);
-  check(impl_->ldlt, name_);
+void SparseCholesky::refactor(const Eigen::SparseMatrix<double>& A_in) {
+  if (A_in.rows() != rows_ || A_in.cols() != rows_)
+    throw SolverError("Cholesky refactorization of " + name_ + ": matrix size changed");
+  if (!impl_->use_cholmod) {
+    impl_->ldlt.factorize(A_in);
+    check_eigen(impl_->ldlt, name_);
+    return;
+  }
+#ifdef POLYDEC_HAVE_CHOLMOD
+  const SpMat A = A_in.isCompressed() ? SpMat() : SpMat(A_in);
+  cholmod_sparse s = view_lower(A_in.isCompressed() ? A_in : A);
+  cholmod_common& c = impl_->c;
+  const int ok = cholmod_factorize(&s, impl_->L, &c);
+  if (!ok || c.status == CHOLMOD_NOT_POSDEF || c.status < CHOLMOD_OK)
+    throw SolverError("Cholesky factorization of " + name_ + " failed: matrix is not positive definite" +
+                      (c.status == CHOLMOD_NOT_POSDEF ? " (breakdown at column " + std::to_string(impl_->L->minor) + ")"
+                                                      : std::string()));
+  // Non-finite entries and singular matrices (a rounding-level last pivot) do not always stop
+  // CHOLMOD: check the range of the pivots L_ii^2 as the Eigen backend does (rcond is
+  // (min L_ii / max L_ii)^2 for an LL^T factor).
+  constexpr double kSingularPivot = 1e-12;
+  const double rc = cholmod_rcond(impl_->L, &c);
+  if (!(rc > kSingularPivot) || !std::isfinite(rc))
+    throw SolverError("Cholesky factorization of " + name_ + " failed: matrix is singular or not finite");
+#endif
 }
 
-Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd& b) const { return impl_->ldlt.solve(b); }
-Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& B) const { return impl_->ldlt.solve(B); }
+Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd& b) const {
+  if (!impl_->use_cholmod) return impl_->ldlt.solve(b);
+  return solve(Eigen::MatrixXd(b)).col(0);
+}
 
-std::string SparseCholesky::backend() const { return "eigen-simplicial-ldlt"; }
+Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& B) const {
+  if (B.rows() != rows_) throw SolverError("solve with " + name_ + ": right-hand side has the wrong size");
+  if (!impl_->use_cholmod) return impl_->ldlt.solve(B);
+#ifdef POLYDEC_HAVE_CHOLMOD
+  cholmod_dense b{};
+  b.nrow = size_t(B.rows());
+  b.ncol = size_t(B.cols());
+  b.nzmax = b.nrow * b.ncol;
+  b.d = b.nrow;
+  b.x = const_cast<double*>(B.data());
+  b.xtype = CHOLMOD_REAL;
+  b.dtype = CHOLMOD_DOUBLE;
+  cholmod_dense* x = cholmod_solve(CHOLMOD_A, impl_->L, &b, &impl_->c);
+  if (!x) throw SolverError("solve with " + name_ + " failed (CHOLMOD status " + std::to_string(impl_->c.status) + ")");
+  Eigen::MatrixXd X = Eigen::Map<const Eigen::MatrixXd>(static_cast<const double*>(x->x), B.rows(), B.cols());
+  cholmod_free_dense(&x, &impl_->c);
+  return X;
+#else
+  return {};
+#endif
+}
+
+std::string SparseCholesky::backend() const {
+  return impl_->use_cholmod ? "cholmod-supernodal" : "eigen-simplicial-ldlt";
+}
+
+double SparseCholesky::factor_nonzeros() const {
+#ifdef POLYDEC_HAVE_CHOLMOD
+  if (impl_->use_cholmod) return impl_->c.lnz;
+#endif
+  return double(impl_->ldlt.matrixL().nestedExpression().nonZeros());
+}
+
+std::string SparseCholesky::ordering() const { return impl_->ordering; }
+
+bool SparseCholesky::cholmod_available() {
+#ifdef POLYDEC_HAVE_CHOLMOD
+  return true;
+#else
+  return false;
+#endif
+}
 
 }  // namespace polydec

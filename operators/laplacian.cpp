@@ -1,93 +1,334 @@
-// operators/laplacian.cpp — face-by-face assembly of S, M and lumped M into a precomputed pattern.
+// operators/laplacian.cpp — face-by-face assembly of S, M and lumped M into a precomputed
+// pattern. Per face, the compact rank-structured local matrices (operators/local_matrices.h)
+// are computed without allocation and expanded column by column straight into the value
+// arrays. With several threads, faces are processed in blocks: the local matrices of a block
+// are computed in parallel (split by faces), then scattered in parallel split by column
+// ranges, each thread walking the block's faces in ascending order; so every entry receives
+// its contributions in the same order as on one thread, and results are bitwise identical.
 #include "operators/laplacian.h"
 
-#include <algorithm>
-
+#include "dec/huge_pages.h"
 #include "operators/local_matrices.h"
+
+#include <algorithm>
+#include <barrier>
+#include <memory>
+#include <stdexcept>
+#include <thread>
+#include <type_traits>
+#include <utility>
 
 namespace polydec {
 
 FacePattern face_pattern(const Mesh& mesh) {
   const int nv = mesh.n_vertices(), nf = mesh.n_faces();
+  const int* offsets = mesh.face_offsets().data();
+  const int* indices = mesh.face_indices().data();
   FacePattern fp;
-  // Column j holds the rows of all vertices sharing a face with j: gather, sort, unique.
-  std::vector<int> col_start(nv + 1, 0);
-  for (int v = 0; v < nv; ++v)
-    for (int f : mesh.vertex_faces(v)) col_start[v + 1] += mesh.face_size(f);
-  for (int v = 0; v < nv; ++v) col_start[v + 1] += col_start[v];
-  std::vector<int> rows(col_start[nv]);
-  std::vector<int> outer(nv + 1, 0);
-  long nnz = 0;
-  for (int v = 0; v < nv; ++v) {
-    int* b = rows.data() + col_start[v];
-    int* e = b;
-    for (int f : mesh.vertex_faces(v))
-      for (int u : mesh.face(f)) *e++ = u;
-    std::sort(b, e);
-    e = std::unique(b, e);
-    std::copy(b, e, rows.data() + nnz);
-    nnz += e - b;
-    outer[v + 1] = int(nnz);
+  fp.local_offsets.resize(nf + 1);
+  fp.local_offsets[0] = 0;
+  for (int f = 0; f < nf; ++f) {
+    const long n = offsets[f + 1] - offsets[f];
+    fp.local_offsets[f + 1] = fp.local_offsets[f] + n * n;
   }
+  fp.slots.reserve(fp.local_offsets[nf]);
+  advise_huge_pages(fp.slots.data(), sizeof(int) * fp.local_offsets[nf]);
+  fp.slots.resize(fp.local_offsets[nf]);
+  // Pass 1, column v: the distinct rows of the faces around v in first-seen order (U), and for
+  // every local slot (a, b) with b = v's corner the position in U of row face[a].
+  const long bound = fp.local_offsets[nf];
+  std::unique_ptr<int[]> U(new int[bound]);  // upper bound; pages never touched cost no memory
+  advise_huge_pages(U.get(), sizeof(int) * size_t(bound));
+  std::vector<int> ucol(nv + 1), pos(nv, -1);
+  int nnz = 0;
+  ucol[0] = 0;
+  for (int v = 0; v < nv; ++v) {
+    const int base = nnz;
+    for (int f : mesh.vertex_faces(v)) {
+      const int h0 = offsets[f], n = offsets[f + 1] - h0;
+      int b = 0;
+      while (indices[h0 + b] != v) ++b;
+      int* slot = fp.slots.data() + fp.local_offsets[f] + b;
+      for (int a = 0; a < n; ++a) {
+        const int u = indices[h0 + a];
+        if (pos[u] < 0) {
+          pos[u] = nnz - base;
+          U[nnz++] = u;
+        }
+        slot[a * n] = base + pos[u];
+      }
+    }
+    for (int k = base; k < nnz; ++k) pos[U[k]] = -1;
+    ucol[v + 1] = nnz;
+  }
+  // Pass 2, transpose: the pattern is symmetric, so column i has as many rows as U's column i,
+  // and appending j to column i for j = 0, 1, ... gives every column sorted rows. perm maps the
+  // U position of entry (i, j) to the sorted position of its transpose (j, i).
   fp.pattern.resize(nv, nv);
   fp.pattern.resizeNonZeros(nnz);
-  std::copy(outer.begin(), outer.end(), fp.pattern.outerIndexPtr());
-  std::copy(rows.begin(), rows.begin() + nnz, fp.pattern.innerIndexPtr());
-  std::fill(fp.pattern.valuePtr(), fp.pattern.valuePtr() + nnz, 0.0);
-
-  fp.local_offsets.resize(nf + 1, 0);
-  for (int f = 0; f < nf; ++f)
-    fp.local_offsets[f + 1] = fp.local_offsets[f] + long(mesh.face_size(f)) * mesh.face_size(f);
-  fp.slots.resize(fp.local_offsets[nf]);
-  const int* inner = fp.pattern.innerIndexPtr();
+  int* inner = fp.pattern.innerIndexPtr();
+  int* outer = fp.pattern.outerIndexPtr();
+  advise_huge_pages(inner, sizeof(int) * size_t(nnz));
+  advise_huge_pages(fp.pattern.valuePtr(), sizeof(double) * size_t(nnz));
+  std::copy(ucol.begin(), ucol.end(), outer);
+  std::vector<int> next(ucol.begin(), ucol.end() - 1);
+  std::unique_ptr<int[]> perm(new int[nnz]);
+  advise_huge_pages(perm.get(), sizeof(int) * size_t(nnz));
+  for (int j = 0; j < nv; ++j)
+    for (int p = ucol[j]; p < ucol[j + 1]; ++p) {
+      const int q = next[U[p]]++;
+      inner[q] = j;
+      perm[p] = q;
+    }
+  // Slot (a, b) is entry (face[a], face[b]), the transpose of the U entry recorded at (b, a).
   for (int f = 0; f < nf; ++f) {
-    const auto face = mesh.face(f);
-    const int n = int(face.size());
-    for (int b = 0; b < n; ++b) {
-      const int col = face[b];
-      const int* cb = inner + outer[col];
-      const int* ce = inner + outer[col + 1];
-      for (int a = 0; a < n; ++a)
-        fp.slots[fp.local_offsets[f] + a * n + b] = int(std::lower_bound(cb, ce, face[a]) - inner);
+    const int n = offsets[f + 1] - offsets[f];
+    int* slot = fp.slots.data() + fp.local_offsets[f];
+    for (int a = 0; a < n; ++a) {
+      slot[a * n + a] = perm[slot[a * n + a]];
+      for (int b = a + 1; b < n; ++b) {
+        const int ab = slot[a * n + b], ba = slot[b * n + a];
+        slot[a * n + b] = perm[ba];
+        slot[b * n + a] = perm[ab];
+      }
     }
   }
+  std::fill(fp.pattern.valuePtr(), fp.pattern.valuePtr() + nnz, 0.0);
   return fp;
 }
 
-Laplacian assemble_laplacian(const Mesh& mesh, const Refinement& refinement, LaplacianParts parts,
-                             const FacePattern* pattern) {
-  FacePattern own;
-  if (!pattern) {
-    own = face_pattern(mesh);
-    pattern = &own;
+namespace {
+
+// Faces per block in the threaded path: about this many halfedges (the block's compact local
+// matrices, 6 doubles per halfedge, stay in the second-level cache).
+constexpr int kBlockHalfedges = 8192;
+
+// Calls f with std::integral_constant<int, n> for the common face sizes, else with 0 (any
+// size), so that the per-face loops are unrolled for triangles, quads, pentagons and hexagons.
+template <class F>
+inline void with_size(int n, F&& f) {
+  switch (n) {
+    case 3: f(std::integral_constant<int, 3>{}); break;
+    case 4: f(std::integral_constant<int, 4>{}); break;
+    case 5: f(std::integral_constant<int, 5>{}); break;
+    case 6: f(std::integral_constant<int, 6>{}); break;
+    default: f(std::integral_constant<int, 0>{}); break;
   }
-  Laplacian L;
-  L.quality = refinement.quality;
-  const bool want_mass = parts.mass || parts.lumped_mass;
-  if (parts.stiffness) L.S = pattern->pattern;
-  SparseMatrix M = pattern->pattern;
-  double* sv = parts.stiffness ? L.S.valuePtr() : nullptr;
-  double* mv = M.valuePtr();
-  Eigen::MatrixXd Sl, Ml;
-  for (int f = 0; f < mesh.n_faces(); ++f) {
-    const PolygonPositions X = face_positions(mesh, f);
-    const int n = int(X.rows()), h0 = mesh.face_offsets()[f];
-    const Eigen::Map<const Eigen::VectorXd> w(refinement.weights.data() + h0, n);
-    const Eigen::Vector3d xf = refinement.virtual_points.row(f).transpose();
-    polygon_matrices(X, w, xf, refinement.fan.data() + h0, sv ? &Sl : nullptr, want_mass ? &Ml : nullptr);
-    const int* slot = pattern->slots.data() + pattern->local_offsets[f];
-    for (int a = 0; a < n; ++a)
-      for (int b = 0; b < n; ++b) {
-        if (sv) sv[slot[a * n + b]] += Sl(a, b);
-        if (want_mass) mv[slot[a * n + b]] += Ml(a, b);
+}
+
+struct Assembler {
+  const Mesh& mesh;
+  const Refinement& r;
+  const FacePattern& fp;
+  const int* outer;  // the pattern's column starts
+  double* sv;  // stiffness values or null
+  double* mv;  // mass values or null
+  const int* offsets = mesh.face_offsets().data();
+  const int* indices = mesh.face_indices().data();
+
+  // Compact local matrices of face f (N corners, 0: any) into cs, cm (3n doubles each; either
+  // may be null).
+  template <int N>
+  void compact(int f, double* x, double* cs, double* cm) const {
+    const int h0 = offsets[f], n = N > 0 ? N : offsets[f + 1] - h0;
+    const Eigen::MatrixX3d& P = mesh.positions();
+    for (int k = 0; k < n; ++k) {
+      const int v = indices[h0 + k];
+      x[3 * k] = P(v, 0);
+      x[3 * k + 1] = P(v, 1);
+      x[3 * k + 2] = P(v, 2);
+    }
+    const double xf[3] = {r.virtual_points(f, 0), r.virtual_points(f, 1), r.virtual_points(f, 2)};
+    detail::polygon_compact<N>(x, n, r.weights.data() + h0, xf, r.fan.data() + h0, cs, cm);
+  }
+
+  // Adds face f's columns (all, or with Filter those whose vertex lies in [lo, hi)) to the
+  // value arrays.
+  template <int N, bool Filter>
+  void scatter(int f, const double* cs, const double* cm, int lo, int hi, double* col) const {
+    const int h0 = offsets[f], n = N > 0 ? N : offsets[f + 1] - h0;
+    const double* w = r.weights.data() + h0;
+    const int* slot = fp.slots.data() + fp.local_offsets[f];
+    for (int b = 0; b < n; ++b) {
+      if (Filter) {
+        const int v = indices[h0 + b];
+        if (v < lo || v >= hi) continue;
       }
+      if (sv) {
+        detail::expand_column<N>(n, b, w, cs, col);
+        for (int a = 0; a < n; ++a) sv[slot[a * n + b]] += col[a];
+      }
+      if (mv) {
+        detail::expand_column<N>(n, b, w, cm, col);
+        for (int a = 0; a < n; ++a) mv[slot[a * n + b]] += col[a];
+      }
+    }
+  }
+
+  // Lumped mass of the vertices in [lo, hi): column sums of M, in row order (M is bitwise
+  // symmetric, so these equal its row sums).
+  void lump(Eigen::VectorXd& lumped, int lo, int hi) const {
+    for (int j = lo; j < hi; ++j) {
+      double s = 0.0;
+      for (int k = outer[j]; k < outer[j + 1]; ++k) s += mv[k];
+      lumped[j] = s;
+    }
+  }
+
+  void run_serial(Eigen::VectorXd* lumped) const {
+    const int nmax = mesh.max_face_size(), nv = mesh.n_vertices();
+    std::vector<double> buf(10 * size_t(nmax));
+    double* x = buf.data();
+    double* cs = x + 3 * nmax;
+    double* cm = cs + 3 * nmax;
+    double* col = cm + 3 * nmax;
+    double* want_s = sv ? cs : nullptr;
+    double* want_m = mv ? cm : nullptr;
+    for (int f = 0; f < mesh.n_faces(); ++f)
+      with_size(offsets[f + 1] - offsets[f], [&](auto N) {
+        compact<decltype(N)::value>(f, x, want_s, want_m);
+        scatter<decltype(N)::value, false>(f, cs, cm, 0, nv, col);
+      });
+    if (lumped) lump(*lumped, 0, nv);
+  }
+
+  void run_parallel(int T, Eigen::VectorXd* lumped) const {
+    const int nf = mesh.n_faces(), nv = mesh.n_vertices(), nmax = mesh.max_face_size();
+    // Blocks of whole faces with about kBlockHalfedges halfedges.
+    std::vector<int> block{0};
+    for (int f = 0; f < nf;) {
+      const int h_end = offsets[f] + kBlockHalfedges;
+      while (f < nf && (offsets[f + 1] <= h_end || offsets[f] == offsets[block.back()])) ++f;
+      block.push_back(f);
+    }
+    const int nb = int(block.size()) - 1;
+    // Column ranges with about equal numbers of non-zeros.
+    const long nnz = outer[nv];
+    std::vector<int> col_lo(T + 1);
+    for (int t = 0; t <= T; ++t)
+      col_lo[t] = t == T ? nv : int(std::lower_bound(outer, outer + nv + 1, long(nnz * t / T)) - outer);
+    // Double-buffered compact matrices: block s is computed while block s - 1 is scattered.
+    std::vector<double> store[2];
+    size_t max_block_h = 0;
+    for (int s = 0; s < nb; ++s) max_block_h = std::max(max_block_h, size_t(offsets[block[s + 1]] - offsets[block[s]]));
+    for (auto& st : store) st.resize(6 * max_block_h);
+    std::barrier sync(T);
+    auto work = [&](int t) {
+      std::vector<double> scratch(4 * size_t(nmax));
+      double* x = scratch.data();
+      double* col = x + 3 * nmax;
+      for (int s = 0; s <= nb; ++s) {
+        if (s < nb) {
+          // This thread's share of block s: faces starting in its part of the halfedges.
+          double* st = store[s % 2].data();
+          const int f0 = block[s], f1 = block[s + 1], hb = offsets[f0], hn = offsets[f1] - hb;
+          const int fa = int(std::lower_bound(offsets + f0, offsets + f1 + 1, hb + int(long(hn) * t / T)) - offsets);
+          const int fe = int(std::lower_bound(offsets + f0, offsets + f1 + 1, hb + int(long(hn) * (t + 1) / T)) - offsets);
+          for (int f = fa; f < fe; ++f) {
+            const long h = offsets[f] - hb;
+            const int n = offsets[f + 1] - offsets[f];
+            with_size(n, [&](auto N) { compact<decltype(N)::value>(f, x, sv ? st + 6 * h : nullptr, mv ? st + 6 * h + 3 * n : nullptr); });
+          }
+        }
+        if (s > 0) {
+          const double* st = store[(s - 1) % 2].data();
+          const int f0 = block[s - 1], f1 = block[s], hb = offsets[f0];
+          for (int f = f0; f < f1; ++f) {
+            const long h = offsets[f] - hb;
+            const int n = offsets[f + 1] - offsets[f];
+            with_size(n, [&](auto N) {
+              scatter<decltype(N)::value, true>(f, st + 6 * h, st + 6 * h + 3 * n, col_lo[t], col_lo[t + 1], col);
+            });
+          }
+        }
+        sync.arrive_and_wait();
+      }
+      if (lumped) lump(*lumped, col_lo[t], col_lo[t + 1]);
+    };
+    std::vector<std::jthread> workers;
+    for (int t = 1; t < T; ++t) workers.emplace_back(work, t);
+    work(0);
+  }
+};
+
+int thread_count(const AssemblyOptions& options, const Mesh& mesh) {
+  int T = options.threads > 0 ? options.threads : int(std::thread::hardware_concurrency());
+  T = std::max(T, 1);
+  // Below a few blocks, threads cost more than they save (results do not depend on T).
+  if (mesh.n_halfedges() < 4 * kBlockHalfedges) T = 1;
+  return T;
+}
+
+// Assembles into L with the slots of `fp` and the sparsity structure `structure` (fp.pattern,
+// or a matrix that took over its storage).
+void assemble_into(const Mesh& mesh, const Refinement& refinement, const FacePattern& fp, const SparseMatrix& structure,
+                   LaplacianParts parts, Laplacian& L, const AssemblyOptions& options) {
+  if (long(refinement.weights.size()) != mesh.n_halfedges() || refinement.virtual_points.rows() != mesh.n_faces())
+    throw std::invalid_argument("assemble_laplacian: the refinement does not belong to this mesh");
+  if (structure.rows() != mesh.n_vertices() || long(fp.local_offsets.size()) != mesh.n_faces() + 1)
+    throw std::invalid_argument("assemble_laplacian: the face pattern does not belong to this mesh");
+  const long nnz = structure.nonZeros();
+  auto prepare = [&](SparseMatrix& A) {
+    if (A.rows() != structure.rows() || A.nonZeros() != nnz || !A.isCompressed()) {
+      A.resize(structure.rows(), structure.cols());
+      A.resizeNonZeros(nnz);
+      advise_huge_pages(A.innerIndexPtr(), sizeof(int) * nnz);
+      advise_huge_pages(A.valuePtr(), sizeof(double) * nnz);
+      std::copy(structure.outerIndexPtr(), structure.outerIndexPtr() + structure.outerSize() + 1, A.outerIndexPtr());
+      std::copy(structure.innerIndexPtr(), structure.innerIndexPtr() + nnz, A.innerIndexPtr());
+    }
+    std::fill(A.valuePtr(), A.valuePtr() + nnz, 0.0);
+  };
+  L.quality = refinement.quality;
+  if (parts.stiffness) prepare(L.S);
+  std::vector<double> mass_only;  // M's values when only the lumped mass is wanted
+  double* mv = nullptr;
+  if (parts.mass) {
+    prepare(L.M);
+    mv = L.M.valuePtr();
+  } else if (parts.lumped_mass) {
+    mass_only.reserve(nnz);
+    advise_huge_pages(mass_only.data(), sizeof(double) * nnz);
+    mass_only.assign(nnz, 0.0);
+    mv = mass_only.data();
   }
   if (parts.lumped_mass) {
-    L.M_lumped = Eigen::VectorXd::Zero(mesh.n_vertices());
-    for (int j = 0; j < M.outerSize(); ++j)
-      for (SparseMatrix::InnerIterator it(M, j); it; ++it) L.M_lumped[it.row()] += it.value();
+    L.M_lumped.resize(mesh.n_vertices());
+    advise_huge_pages(L.M_lumped.data(), sizeof(double) * mesh.n_vertices());
   }
-  if (parts.mass) L.M = std::move(M);
+  const Assembler as{mesh, refinement, fp, structure.outerIndexPtr(), parts.stiffness ? L.S.valuePtr() : nullptr, mv};
+  Eigen::VectorXd* lumped = parts.lumped_mass ? &L.M_lumped : nullptr;
+  const int T = thread_count(options, mesh);
+  if (T == 1)
+    as.run_serial(lumped);
+  else
+    as.run_parallel(T, lumped);
+}
+
+}  // namespace
+
+void reassemble_laplacian(const Mesh& mesh, const Refinement& refinement, const FacePattern& pattern,
+                          LaplacianParts parts, Laplacian& L, const AssemblyOptions& options) {
+  assemble_into(mesh, refinement, pattern, pattern.pattern, parts, L, options);
+}
+
+Laplacian assemble_laplacian(const Mesh& mesh, const Refinement& refinement, LaplacianParts parts,
+                             const FacePattern* pattern, const AssemblyOptions& options) {
+  Laplacian L;
+  if (pattern) {
+    reassemble_laplacian(mesh, refinement, *pattern, parts, L, options);
+    return L;
+  }
+  FacePattern own = face_pattern(mesh);
+  // The pattern's storage becomes S's (or M's) instead of being copied (swap: Eigen 3.4's
+  // SparseMatrix has no move assignment, std::move would copy).
+  SparseMatrix* host = parts.stiffness ? &L.S : parts.mass ? &L.M : nullptr;
+  if (!host) {
+    assemble_into(mesh, refinement, own, own.pattern, parts, L, options);
+    return L;
+  }
+  host->swap(own.pattern);
+  assemble_into(mesh, refinement, own, *host, parts, L, options);
   return L;
 }
 

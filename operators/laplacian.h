@@ -42,10 +42,22 @@ struct Laplacian {
   FanQuality quality;        // fan triangles of the refinement that was used
 };
 
+// How to assemble. Results are bitwise identical for any number of threads: every matrix
+// entry receives its face contributions in ascending face order.
+struct AssemblyOptions {
+  int threads = 1;  // 0: all hardware threads
+};
+
 // One pass over the faces computing the requested parts. `pattern` may be passed to skip the
 // symbolic step (re-assembly on moved vertices with the same connectivity).
 Laplacian assemble_laplacian(const Mesh& mesh, const Refinement& refinement, LaplacianParts parts = {},
-                             const FacePattern* pattern = nullptr);
+                             const FacePattern* pattern = nullptr, const AssemblyOptions& options = {});
+
+// Re-assembly on moved vertices (same connectivity as `pattern`): overwrites the requested
+// parts of L in place, reusing its storage (no allocation when L already holds them).
+// Gives the same values as a fresh assemble_laplacian.
+void reassemble_laplacian(const Mesh& mesh, const Refinement& refinement, const FacePattern& pattern,
+                          LaplacianParts parts, Laplacian& L, const AssemblyOptions& options = {});
 
 // Shorthands.
 SparseMatrix stiffness(const Mesh& mesh, const Refinement& refinement);
