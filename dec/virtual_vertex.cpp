@@ -52,136 +52,6 @@ PolygonPositions centred(const PolygonPositions& X) { return X.rowwise() - X.col
 double scale2(const PolygonPositions& Y) { return Y.rowwise().squaredNorm().maxCoeff(); }
 
 
-// The allocation-free route below (squared_area_weights on raw corners, used by refine()) solves
-// the same two systems through closed forms where they are provably well posed and falls back
-// to psd_solve / least_norm_affine_weights otherwise, so both routes make the same rank
-// decisions and agree to round-off:
-// - LDL^T when the smallest eigenvalue provably exceeds kDirect* times the largest
-//   (lambda_min >= 4 det / tr^2 and lambda_max <= tr, so lambda_min / lambda_max >= 4 det / tr^3);
-//   the relative difference is then at most ~ machine epsilon / kDirect*;
-// - a 2x2 solve in the plane orthogonal to the null direction when the Rayleigh quotient of
-//   that direction is below kRankTolerance * tr / 3 <= kRankTolerance * lambda_max, i.e. when
-//   the reference route drops it too (planar polygons).
-constexpr double kDirectA = 1e-8;  // A = sum_k |e_k|^2 I - e_k e_k^T
-constexpr double kDirectC = 1e-6;  // C = Y^T Y squares Y's condition number: stricter
-
-// Symmetric 3x3 matrix (upper triangle).
-struct Sym3 {
-  double a00 = 0, a01 = 0, a02 = 0, a11 = 0, a12 = 0, a22 = 0;
-  void add_outer(const double* v, double s) {
-    a00 += s * v[0] * v[0];
-    a01 += s * v[0] * v[1];
-    a02 += s * v[0] * v[2];
-    a11 += s * v[1] * v[1];
-    a12 += s * v[1] * v[2];
-    a22 += s * v[2] * v[2];
-  }
-  void add_diagonal(double s) {
-    a00 += s;
-    a11 += s;
-    a22 += s;
-  }
-  Eigen::Matrix3d full() const {
-    Eigen::Matrix3d M;
-    M << a00, a01, a02, a01, a11, a12, a02, a12, a22;
-    return M;
-  }
-  bool direct_solve(const double* b, double* x, double tolerance) const {
-    const double tr = a00 + a11 + a22;
-    if (!(a00 > 0)) return false;
-    const double l10 = a01 / a00, l20 = a02 / a00;
-    const double d1 = a11 - l10 * a01;
-    if (!(d1 > 0)) return false;
-    const double l21 = (a12 - l20 * a01) / d1;
-    const double d2 = a22 - l20 * a02 - l21 * l21 * d1;
-    if (!(d2 > 0 && 4 * a00 * d1 * d2 > tolerance * tr * tr * tr)) return false;
-    const double y0 = b[0], y1 = b[1] - l10 * y0, y2 = b[2] - l20 * y0 - l21 * y1;
-    x[2] = y2 / d2;
-    x[1] = y1 / d1 - l21 * x[2];
-    x[0] = y0 / a00 - l10 * x[1] - l20 * x[2];
-    return true;
-  }
-  bool rank2_solve(const double* b, double* x) const {
-    const double r[3][3] = {{a00, a01, a02}, {a01, a11, a12}, {a02, a12, a22}};
-    double v[3] = {0, 0, 0}, best = 0;
-    for (int i = 0; i < 3; ++i)
-      for (int j = i + 1; j < 3; ++j) {
-        const double c[3] = {r[i][1] * r[j][2] - r[i][2] * r[j][1], r[i][2] * r[j][0] - r[i][0] * r[j][2],
-                             r[i][0] * r[j][1] - r[i][1] * r[j][0]};
-        const double c2 = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
-        if (c2 > best) {
-          best = c2;
-          v[0] = c[0], v[1] = c[1], v[2] = c[2];
-        }
-      }
-    if (!(best > 0)) return false;
-    const double inv = 1.0 / std::sqrt(best);
-    for (double& vi : v) vi *= inv;
-    auto quad = [&](const double* p, const double* q) {
-      double s = 0;
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) s += p[i] * r[i][j] * q[j];
-      return s;
-    };
-    const double tr = a00 + a11 + a22;
-    if (!(quad(v, v) <= kRankTolerance * tr / 3)) return false;
-    int k = 0;
-    for (int i = 1; i < 3; ++i)
-      if (std::abs(v[i]) < std::abs(v[k])) k = i;
-    double e[3] = {0, 0, 0};
-    e[k] = 1;
-    double u1[3] = {v[1] * e[2] - v[2] * e[1], v[2] * e[0] - v[0] * e[2], v[0] * e[1] - v[1] * e[0]};
-    const double n1 = 1.0 / std::sqrt(u1[0] * u1[0] + u1[1] * u1[1] + u1[2] * u1[2]);
-    for (double& ui : u1) ui *= n1;
-    const double u2[3] = {v[1] * u1[2] - v[2] * u1[1], v[2] * u1[0] - v[0] * u1[2], v[0] * u1[1] - v[1] * u1[0]};
-    const double B00 = quad(u1, u1), B01 = quad(u1, u2), B11 = quad(u2, u2);
-    const double det = B00 * B11 - B01 * B01, trB = B00 + B11;
-    if (!(det > kDirectC * trB * trB)) return false;
-    const double c1 = u1[0] * b[0] + u1[1] * b[1] + u1[2] * b[2], c2 = u2[0] * b[0] + u2[1] * b[1] + u2[2] * b[2];
-    const double s1 = (B11 * c1 - B01 * c2) / det, s2 = (B00 * c2 - B01 * c1) / det;
-    for (int i = 0; i < 3; ++i) x[i] = s1 * u1[i] + s2 * u2[i];
-    return true;
-  }
-};
-
-// The squared-area weights for N corners (0: n given at run time), loops unrolled for fixed N.
-template <int N>
-void squared_area_weights_n(const double* x, int n_dyn, double* w, double* work) {
-  const int n = N > 0 ? N : n_dyn;
-  double c[3] = {0, 0, 0};
-  for (int k = 0; k < n; ++k)
-    for (int d = 0; d < 3; ++d) c[d] += x[3 * k + d];
-  for (int d = 0; d < 3; ++d) c[d] /= n;
-  double* Y = work;  // centred positions, n x 3 row-major
-  for (int k = 0; k < n; ++k)
-    for (int d = 0; d < 3; ++d) Y[3 * k + d] = x[3 * k + d] - c[d];
-  Sym3 A, C;
-  double b[3] = {0, 0, 0};
-  for (int k = 0; k < n; ++k) {
-    const double* p = Y + 3 * k;
-    const double* q = Y + 3 * (k + 1 == n ? 0 : k + 1);
-    const double e[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
-    const double ee = e[0] * e[0] + e[1] * e[1] + e[2] * e[2];
-    const double ep = e[0] * p[0] + e[1] * p[1] + e[2] * p[2];
-    A.add_outer(e, -1.0);
-    A.add_diagonal(ee);
-    for (int d = 0; d < 3; ++d) b[d] += ee * p[d] - ep * e[d];
-    C.add_outer(p, 1.0);
-  }
-  double y[3], z[3];
-  if (!A.direct_solve(b, y, kDirectA) && !A.rank2_solve(b, y)) {
-    const Eigen::Vector3d ys = psd_solve(A.full(), Eigen::Vector3d(b[0], b[1], b[2]));
-    for (int d = 0; d < 3; ++d) y[d] = ys[d];
-  }
-  if (C.direct_solve(y, z, kDirectC) || C.rank2_solve(y, z)) {
-    for (int k = 0; k < n; ++k) w[k] = 1.0 / n + (Y[3 * k] * z[0] + Y[3 * k + 1] * z[1] + Y[3 * k + 2] * z[2]);
-    return;
-  }
-  const PolygonPositions Ym = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(Y, n, 3);
-  const Eigen::VectorXd ws = least_norm_affine_weights(Ym, Eigen::Vector3d(y[0], y[1], y[2]));
-  for (int k = 0; k < n; ++k) w[k] = ws[k];
-}
-
 }  // namespace
 
 VirtualVertexRule parse_virtual_vertex_rule(const std::string& name) {
@@ -232,14 +102,14 @@ Eigen::VectorXd squared_area_weights(const PolygonPositions& X) {
   return least_norm_affine_weights(Y, y);
 }
 
-void squared_area_weights(const double* x, int n, double* w, double* work) {
-  switch (n) {
-    case 3: squared_area_weights_n<3>(x, n, w, work); break;
-    case 4: squared_area_weights_n<4>(x, n, w, work); break;
-    case 5: squared_area_weights_n<5>(x, n, w, work); break;
-    case 6: squared_area_weights_n<6>(x, n, w, work); break;
-    default: squared_area_weights_n<0>(x, n, w, work); break;
-  }
+void squared_area_weights(const double* x, int n, double* w, double* /*work*/) {
+  // The same computation as the Eigen route above, so that refine() and squared_area_weights(X)
+  // agree bit for bit. (An unrolled closed-form route was faster but lost accuracy far from the
+  // origin: M changed by 2.5e-9 under a translation by 1e3 on noisy-sphere.off.)
+  PolygonPositions X(n, 3);
+  for (int k = 0; k < n; ++k) X.row(k) << x[3 * k], x[3 * k + 1], x[3 * k + 2];
+  const Eigen::VectorXd wv = squared_area_weights(X);
+  for (int k = 0; k < n; ++k) w[k] = wv[k];
 }
 
 Eigen::VectorXd virtual_vertex_weights(const PolygonPositions& X, VirtualVertexRule rule) {
