@@ -1,5 +1,6 @@
 // dec/mesh.cpp — validation of a polygon soup and derivation of the mesh connectivity.
 #include "dec/mesh.h"
+#include "dec/union_find.h"
 
 #include <algorithm>
 #include <array>
@@ -17,18 +18,6 @@ void PolygonSoup::add_face(std::span<const int> f) {
 
 InvalidMeshError::InvalidMeshError(std::string element_, long index_, const std::string& what)
     : std::runtime_error(what), element(std::move(element_)), index(index_) {}
-
-namespace {
-
-int find_root(std::vector<int>& parent, int x) {
-  while (parent[x] != x) {
-    parent[x] = parent[parent[x]];
-    x = parent[x];
-  }
-  return x;
-}
-
-}  // namespace
 
 Mesh::Mesh(PolygonSoup soup) {
   auto t = std::make_shared<Topology>();

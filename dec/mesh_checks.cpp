@@ -1,5 +1,6 @@
 // dec/mesh_checks.cpp — diagnostics of a validated mesh.
 #include "dec/mesh_checks.h"
+#include "dec/union_find.h"
 
 #include <fmt/format.h>
 
@@ -11,14 +12,6 @@
 namespace polydec {
 
 namespace {
-
-int find_root(std::vector<int>& parent, int x) {
-  while (parent[x] != x) {
-    parent[x] = parent[parent[x]];
-    x = parent[x];
-  }
-  return x;
-}
 
 // "a, b, c" for the first few items, "..." after.
 template <class T, class F>

@@ -1,5 +1,6 @@
 // dec/repair.cpp — opt-in repair steps on a polygon soup, each reporting what it changed.
 #include "dec/repair.h"
+#include "dec/union_find.h"
 
 #include <fmt/format.h>
 
@@ -16,14 +17,6 @@
 namespace polydec {
 
 namespace {
-
-int find_root(std::vector<int>& parent, int x) {
-  while (parent[x] != x) {
-    parent[x] = parent[parent[x]];
-    x = parent[x];
-  }
-  return x;
-}
 
 // Rebuilds soup's faces keeping those with keep[f]; returns old face -> new face (-1 dropped).
 std::vector<int> keep_faces(PolygonSoup& soup, const std::vector<std::vector<int>>& faces,
