@@ -1,8 +1,9 @@
 // apps/cli/demo.cpp — `polydec demo [--out DIR]`: the main job on a generated polygon mesh (no
 // input file): a hexagon-dominant sphere, its operators with their defining properties checked,
-// and heat-method geodesics compared with the exact great-circle distance.
+// and heat-method geodesics compared with the exact great-circle distance, with a picture.
 #include "apps/cli/command.h"
 #include "apps/geodesics.h"
+#include "apps/render.h"
 #include "dec/generators.h"
 #include "dec/io.h"
 #include "operators/laplacian.h"
@@ -46,6 +47,13 @@ void run(const Options& o) {
   write_mesh(mesh_file, mesh, {{"distance", d}, {"exact_distance", exact}});
   write_matrix_market(o.out + "/S.mtx", L.S);
   write_matrix_market(o.out + "/M.mtx", L.M);
+  const std::string png_file = o.out + "/hex_sphere_distance.png";
+  RenderOptions ropt;
+  ropt.isolines = 15;
+  ropt.scalar_label = "distance";
+  ropt.title = "heat geodesics from vertex 0";
+  ropt.view_direction = view_facing_vertex(mesh, 0);
+  render_png(png_file, mesh, d, ropt);
 
   std::map<int, int> hist;
   for (int f = 0; f < mesh.n_faces(); ++f) ++hist[mesh.face_size(f)];
@@ -59,7 +67,7 @@ void run(const Options& o) {
                             {"lumped_mass_total", area},
                             {"sphere_area", 4 * std::numbers::pi},
                             {"geodesic_rmse_over_pi", err},
-                            {"files", {mesh_file, o.out + "/S.mtx", o.out + "/M.mtx"}}};
+                            {"files", {mesh_file, o.out + "/S.mtx", o.out + "/M.mtx", png_file}}};
   if (o.json) {
     print_json(j);
     return;
@@ -77,6 +85,7 @@ void run(const Options& o) {
   fmt::print("          RMSE against the exact great-circle distance: {:.3e} pi\n", err);
   fmt::print("\nfiles     {}  (properties 'distance', 'exact_distance'; open in MeshLab or ParaView)\n", mesh_file);
   fmt::print("          {}/S.mtx, {}/M.mtx  (Matrix Market)\n", o.out, o.out);
+  fmt::print("          {}  (the distance with isolines)\n", png_file);
 }
 
 const RegisterCommand reg("demo", "The main job on a generated hexagon-dominant sphere (no input needed)", [](CLI::App& app) {
