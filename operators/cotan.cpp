@@ -118,6 +118,20 @@ TriangleOperators cotan_operators(const Eigen::MatrixX3d& X, const std::vector<E
   });
 }
 
+LengthTriangles length_triangles(const Eigen::MatrixX3d& X, const std::vector<Eigen::Vector3i>& triangles) {
+  LengthTriangles T;
+  T.n_vertices = int(X.rows());
+  T.triangles = triangles;
+  T.lengths.reserve(triangles.size());
+  for (const Eigen::Vector3i& t : triangles) {
+    for (int k = 0; k < 3; ++k)
+      if (t[k] < 0 || t[k] >= X.rows()) throw std::out_of_range("length_triangles: vertex index out of range");
+    T.lengths.emplace_back((X.row(t[1]) - X.row(t[0])).norm(), (X.row(t[2]) - X.row(t[1])).norm(),
+                           (X.row(t[0]) - X.row(t[2])).norm());
+  }
+  return T;
+}
+
 Eigen::VectorXd voronoi_areas(const LengthTriangles& T) {
   Eigen::VectorXd a = Eigen::VectorXd::Zero(T.n_vertices);
   for (size_t t = 0; t < T.triangles.size(); ++t) {

@@ -48,10 +48,14 @@ TriangleOperators cotan_operators(const Eigen::MatrixX3d& positions,
 TriangleOperators cotan_operators(const LengthTriangles& triangles, bool with_gradient = true,
                                   double degenerate_tolerance = 1e-10);
 
+// The edge lengths of triangles over positions (|V| x 3), for the length-based routines below.
+LengthTriangles length_triangles(const Eigen::MatrixX3d& positions, const std::vector<Eigen::Vector3i>& triangles);
+
 // Mixed Voronoi vertex areas (Meyer et al. 2003) of triangles given by lengths: per corner the
 // circumcentric dual area in non-obtuse triangles; in an obtuse triangle half its area to the
 // obtuse corner and a quarter to each other one. Sums to the total area. This is libigl's
-// default (Voronoi) lumped mass, which the paper's [BS07] numbers were computed with.
+// default (Voronoi) lumped mass and pmp-library's voronoi_area, which the paper's [BS07] and
+// [Lie03] numbers were computed with (Tables 2, 3: see docs/paper.md).
 Eigen::VectorXd voronoi_areas(const LengthTriangles& triangles);
 
 // Mean length of the undirected edges of `triangles` over `positions` (each edge once).
