@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <map>
 #include <numeric>
@@ -146,10 +147,10 @@ VertexMerge merge_duplicate_vertices(PolygonSoup& soup, double relative_toleranc
   // diagonal, so that cell coordinates fit in 64 bits); each vertex is compared with the
   // vertices of its 27 neighbouring cells.
   const double cell = std::max({m.distance, diag * 0x1p-40, std::numeric_limits<double>::min()});
-  auto key = [](long long x, long long y, long long z) {
-    return (x * 73856093LL) ^ (y * 19349663LL) ^ (z * 83492791LL);
+  auto key = [](long long x, long long y, long long z) {  // unsigned: wraps instead of overflowing
+    return (std::uint64_t(x) * 73856093ULL) ^ (std::uint64_t(y) * 19349663ULL) ^ (std::uint64_t(z) * 83492791ULL);
   };
-  std::unordered_multimap<long long, int> grid;
+  std::unordered_multimap<std::uint64_t, int> grid;
   grid.reserve(nv);
   std::vector<std::array<long long, 3>> cells(nv);
   for (int v = 0; v < nv; ++v) {
