@@ -137,7 +137,6 @@ namespace polydec {
 Eigen::VectorXd abs_area_weights(const PolygonPositions& X) {
   const int n = int(X.rows());
   const PolygonPositions Y = centred(X);
-  const double floor = 1e-14 * scale2(Y);
   // Twice the area vector of fan triangle i: c_i(x) = (y_i - x) x e_i = y_i x e_i + e_i x x.
   std::vector<Eigen::Vector3d> e(n), a(n);
   for (int i = 0; i < n; ++i) {
@@ -149,25 +148,44 @@ Eigen::VectorXd abs_area_weights(const PolygonPositions& X) {
     for (int i = 0; i < n; ++i) f += (a[i] + e[i].cross(x)).norm();
     return f;
   };
-  Eigen::Vector3d x = Eigen::Vector3d::Zero();  // the centroid
-  double f = objective(x);
-  for (int it = 0; it < 200; ++it) {
-    // Minimize sum_i omega_i |a_i + [e_i]x x|^2: (sum omega_i B_i) x = -sum omega_i [e_i]x^T a_i with
-    // B_i = [e_i]x^T [e_i]x = |e_i|^2 I - e_i e_i^T.
-    Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
-    Eigen::Vector3d b = Eigen::Vector3d::Zero();
-    for (int i = 0; i < n; ++i) {
-      const double omega = 1.0 / std::max((a[i] + e[i].cross(x)).norm(), floor);
-      A += omega * (e[i].squaredNorm() * Eigen::Matrix3d::Identity() - e[i] * e[i].transpose());
-      b += omega * e[i].cross(a[i]);  // -[e]x^T a = [e]x a = e x a
+  // IRLS on the smoothed objective sum_i sqrt(|c_i|^2 + eps^2) (each step minimizes a quadratic
+  // majorizer, so the smoothed objective never increases), with eps decreasing from 1e-2 to 1e-7
+  // of the polygon's squared size: a small eps from the start would pin the point to the line of
+  // an edge whose fan triangle happens to be degenerate at the start. The best point by the true
+  // objective is kept; the centroid is only left for a gain above 1e-12 of the objective.
+  const double s2 = scale2(Y);
+  Eigen::Vector3d x = Eigen::Vector3d::Zero(), best = x;  // the centroid
+  double f_best = objective(x);
+  for (double eps = 1e-2 * s2; eps >= 1e-7 * s2 * (1 - 1e-9); eps *= 0.1) {
+    auto smoothed = [&](const Eigen::Vector3d& y) {
+      double f = 0;
+      for (int i = 0; i < n; ++i) f += std::sqrt((a[i] + e[i].cross(y)).squaredNorm() + eps * eps);
+      return f;
+    };
+    double fs = smoothed(x);
+    for (int it = 0; it < 100; ++it) {
+      Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+      Eigen::Vector3d b = Eigen::Vector3d::Zero();
+      for (int i = 0; i < n; ++i) {
+        const double omega = 1.0 / std::sqrt((a[i] + e[i].cross(x)).squaredNorm() + eps * eps);
+        A += omega * (e[i].squaredNorm() * Eigen::Matrix3d::Identity() - e[i] * e[i].transpose());
+        b += omega * e[i].cross(a[i]);  // -[e]x^T a = [e]x a = e x a
+      }
+      const Eigen::Vector3d x_new = psd_solve(A, b);
+      const double fs_new = smoothed(x_new);
+      if (!(fs_new < fs)) break;
+      const bool done = fs_new > fs - 1e-13 * fs;
+      x = x_new;
+      fs = fs_new;
+      const double f = objective(x);
+      if (f < f_best - 1e-12 * f_best) {
+        f_best = f;
+        best = x;
+      }
+      if (done) break;
     }
-    const Eigen::Vector3d x_new = psd_solve(A, b);
-    const double f_new = objective(x_new);
-    if (!(f_new < f - 1e-12 * f)) break;
-    x = x_new;
-    f = f_new;
   }
-  return least_norm_affine_weights(Y, x);
+  return least_norm_affine_weights(Y, best);
 }
 
 // ---- convex squared-area weights -----------------------------------------------------------
