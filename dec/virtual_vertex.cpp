@@ -193,8 +193,8 @@ Eigen::VectorXd abs_area_weights(const PolygonPositions& X) {
 Eigen::VectorXd convex_weights(const PolygonPositions& X) {
   const int n = int(X.rows());
   const PolygonPositions Y = centred(X);
-  // E(w) = 1/2 sum_k |e_k x (Y^T w - y_k)|^2 = 1/2 w^T H w + g^T w + const with
-  // H = Y A Y^T, g = -Y b (A, b as in squared_area_weights).
+  // E(w) = 1/2 sum_k |e_k x (Y^T w - y_k)|^2 = 1/2 |C w - r|^2 + const with A = L L^T, A y* = b
+  // (A, b as in squared_area_weights; b lies in the range of A), C = L^T Y^T (3 x n), r = L^T y*.
   Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
   Eigen::Vector3d b = Eigen::Vector3d::Zero();
   for (int k = 0; k < n; ++k) {
@@ -203,32 +203,42 @@ Eigen::VectorXd convex_weights(const PolygonPositions& X) {
     A += B;
     b += B * Y.row(k).transpose();
   }
-  Eigen::MatrixXd H = Y * A * Y.transpose();
-  const Eigen::VectorXd g = -(Y * b);
-  const double mu = 1e-9 * std::max(H.diagonal().mean(), std::numeric_limits<double>::min());
-  H.diagonal().array() += mu;
-  const double tol = 1e-12 * (H.cwiseAbs().maxCoeff() + g.cwiseAbs().maxCoeff());
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(A);
+  const Eigen::Matrix3d Lt = es.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal() * es.eigenvectors().transpose();
+  const Eigen::MatrixXd C = Lt * Y.transpose();
+  const Eigen::Vector3d r = Lt * psd_solve(A, b);
+  const double mu = 1e-9 * C.colwise().squaredNorm().mean();  // Tikhonov: 1e-9 mean(diag H), H = C^T C
+  const double tol = 1e-12 * C.norm() * (C.norm() + r.norm());
+  auto gradient = [&](const Eigen::VectorXd& w) -> Eigen::VectorXd { return C.transpose() * (C * w - r) + mu * w; };
 
   Eigen::VectorXd w = Eigen::VectorXd::Constant(n, 1.0 / n);
   std::vector<char> free_(n, 1);
   for (int it = 0; it < 10 * n + 10; ++it) {
-    // Equality-constrained minimizer on the free set: H_FF w_F + g_F = nu 1, sum w_F = 1.
+    // Minimizer on the free set F with sum w_F = 1: w_F = 1/m + Q z (Q an orthonormal basis of
+    // the sum-zero vectors), z the Tikhonov least-squares solution of C_F Q z = r - C_F 1/m. Solved
+    // by the SVD of the 3 x (m-1) factor, not the normal equations: their condition ~1/1e-9 let
+    // the weights move by 1e-7 under a rescaling of the polygon.
     std::vector<int> F;
     for (int i = 0; i < n; ++i)
       if (free_[i]) F.push_back(i);
     const int m = int(F.size());
-    Eigen::MatrixXd K = Eigen::MatrixXd::Zero(m + 1, m + 1);
-    Eigen::VectorXd r(m + 1);
-    for (int p = 0; p < m; ++p) {
-      for (int q = 0; q < m; ++q) K(p, q) = H(F[p], F[q]);
-      K(p, m) = K(m, p) = -1.0;
-      r[p] = -g[F[p]];
+    Eigen::MatrixXd CF(3, m);
+    for (int p = 0; p < m; ++p) CF.col(p) = C.col(F[p]);
+    Eigen::VectorXd wF = Eigen::VectorXd::Constant(m, 1.0 / m);
+    if (m > 1) {
+      const Eigen::MatrixXd Q = Eigen::MatrixXd(Eigen::HouseholderQR<Eigen::MatrixXd>(Eigen::MatrixXd::Ones(m, 1))
+                                                    .householderQ())
+                                    .rightCols(m - 1);
+      Eigen::JacobiSVD<Eigen::MatrixXd> svd(CF * Q, Eigen::ComputeThinU | Eigen::ComputeThinV);
+      Eigen::VectorXd c = svd.matrixU().transpose() * (r - CF * wF);
+      for (int i = 0; i < c.size(); ++i) {
+        const double sigma = svd.singularValues()[i];
+        c[i] = sigma > 0 ? c[i] * sigma / (sigma * sigma + mu) : 0.0;
+      }
+      wF += Q * (svd.matrixV() * c);
     }
-    r[m] = -1.0;
-    const Eigen::VectorXd sol = K.fullPivLu().solve(r);
-    const double nu = sol[m];
     Eigen::VectorXd target = Eigen::VectorXd::Zero(n);
-    for (int p = 0; p < m; ++p) target[F[p]] = sol[p];
+    for (int p = 0; p < m; ++p) target[F[p]] = wF[p];
     // Blocking constraint: the first free weight that the step w -> target drives below zero.
     double alpha = 1.0;
     int block = -1;
@@ -246,8 +256,11 @@ Eigen::VectorXd convex_weights(const PolygonPositions& X) {
       free_[block] = 0;
       continue;
     }
-    // Optimal on this face of the simplex; free the fixed weight with the most negative multiplier.
-    const Eigen::VectorXd grad = H * w + g;
+    // Optimal on this face of the simplex (gradient nu 1 on F); free the fixed weight with the
+    // most negative multiplier.
+    const Eigen::VectorXd grad = gradient(w);
+    double nu = 0;
+    for (int i : F) nu += grad[i] / m;
     int enter = -1;
     double most = -tol;
     for (int i = 0; i < n; ++i)
