@@ -137,7 +137,6 @@ namespace polydec {
 Eigen::VectorXd abs_area_weights(const PolygonPositions& X) {
   const int n = int(X.rows());
   const PolygonPositions Y = centred(X);
-  const double floor = 1e-14 * scale2(Y);
   // Twice the area vector of fan triangle i: c_i(x) = (y_i - x) x e_i = y_i x e_i + e_i x x.
   std::vector<Eigen::Vector3d> e(n), a(n);
   for (int i = 0; i < n; ++i) {
@@ -149,25 +148,44 @@ Eigen::VectorXd abs_area_weights(const PolygonPositions& X) {
     for (int i = 0; i < n; ++i) f += (a[i] + e[i].cross(x)).norm();
     return f;
   };
-  Eigen::Vector3d x = Eigen::Vector3d::Zero();  // the centroid
-  double f = objective(x);
-  for (int it = 0; it < 200; ++it) {
-    // Minimize sum_i omega_i |a_i + [e_i]x x|^2: (sum omega_i B_i) x = -sum omega_i [e_i]x^T a_i with
-    // B_i = [e_i]x^T [e_i]x = |e_i|^2 I - e_i e_i^T.
-    Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
-    Eigen::Vector3d b = Eigen::Vector3d::Zero();
-    for (int i = 0; i < n; ++i) {
-      const double omega = 1.0 / std::max((a[i] + e[i].cross(x)).norm(), floor);
-      A += omega * (e[i].squaredNorm() * Eigen::Matrix3d::Identity() - e[i] * e[i].transpose());
-      b += omega * e[i].cross(a[i]);  // -[e]x^T a = [e]x a = e x a
+  // IRLS on the smoothed objective sum_i sqrt(|c_i|^2 + eps^2) (each step minimizes a quadratic
+  // majorizer, so the smoothed objective never increases), with eps decreasing from 1e-2 to 1e-7
+  // of the polygon's squared size: a small eps from the start would pin the point to the line of
+  // an edge whose fan triangle happens to be degenerate at the start. The best point by the true
+  // objective is kept; the centroid is only left for a gain above 1e-12 of the objective.
+  const double s2 = scale2(Y);
+  Eigen::Vector3d x = Eigen::Vector3d::Zero(), best = x;  // the centroid
+  double f_best = objective(x);
+  for (double eps = 1e-2 * s2; eps >= 1e-7 * s2 * (1 - 1e-9); eps *= 0.1) {
+    auto smoothed = [&](const Eigen::Vector3d& y) {
+      double f = 0;
+      for (int i = 0; i < n; ++i) f += std::sqrt((a[i] + e[i].cross(y)).squaredNorm() + eps * eps);
+      return f;
+    };
+    double fs = smoothed(x);
+    for (int it = 0; it < 100; ++it) {
+      Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+      Eigen::Vector3d b = Eigen::Vector3d::Zero();
+      for (int i = 0; i < n; ++i) {
+        const double omega = 1.0 / std::sqrt((a[i] + e[i].cross(x)).squaredNorm() + eps * eps);
+        A += omega * (e[i].squaredNorm() * Eigen::Matrix3d::Identity() - e[i] * e[i].transpose());
+        b += omega * e[i].cross(a[i]);  // -[e]x^T a = [e]x a = e x a
+      }
+      const Eigen::Vector3d x_new = psd_solve(A, b);
+      const double fs_new = smoothed(x_new);
+      if (!(fs_new < fs)) break;
+      const bool done = fs_new > fs - 1e-13 * fs;
+      x = x_new;
+      fs = fs_new;
+      const double f = objective(x);
+      if (f < f_best - 1e-12 * f_best) {
+        f_best = f;
+        best = x;
+      }
+      if (done) break;
     }
-    const Eigen::Vector3d x_new = psd_solve(A, b);
-    const double f_new = objective(x_new);
-    if (!(f_new < f - 1e-12 * f)) break;
-    x = x_new;
-    f = f_new;
   }
-  return least_norm_affine_weights(Y, x);
+  return least_norm_affine_weights(Y, best);
 }
 
 // ---- convex squared-area weights -----------------------------------------------------------
@@ -175,8 +193,8 @@ Eigen::VectorXd abs_area_weights(const PolygonPositions& X) {
 Eigen::VectorXd convex_weights(const PolygonPositions& X) {
   const int n = int(X.rows());
   const PolygonPositions Y = centred(X);
-  // E(w) = 1/2 sum_k |e_k x (Y^T w - y_k)|^2 = 1/2 w^T H w + g^T w + const with
-  // H = Y A Y^T, g = -Y b (A, b as in squared_area_weights).
+  // E(w) = 1/2 sum_k |e_k x (Y^T w - y_k)|^2 = 1/2 |C w - r|^2 + const with A = L L^T, A y* = b
+  // (A, b as in squared_area_weights; b lies in the range of A), C = L^T Y^T (3 x n), r = L^T y*.
   Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
   Eigen::Vector3d b = Eigen::Vector3d::Zero();
   for (int k = 0; k < n; ++k) {
@@ -185,32 +203,42 @@ Eigen::VectorXd convex_weights(const PolygonPositions& X) {
     A += B;
     b += B * Y.row(k).transpose();
   }
-  Eigen::MatrixXd H = Y * A * Y.transpose();
-  const Eigen::VectorXd g = -(Y * b);
-  const double mu = 1e-9 * std::max(H.diagonal().mean(), std::numeric_limits<double>::min());
-  H.diagonal().array() += mu;
-  const double tol = 1e-12 * (H.cwiseAbs().maxCoeff() + g.cwiseAbs().maxCoeff());
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(A);
+  const Eigen::Matrix3d Lt = es.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal() * es.eigenvectors().transpose();
+  const Eigen::MatrixXd C = Lt * Y.transpose();
+  const Eigen::Vector3d r = Lt * psd_solve(A, b);
+  const double mu = 1e-9 * C.colwise().squaredNorm().mean();  // Tikhonov: 1e-9 mean(diag H), H = C^T C
+  const double tol = 1e-12 * C.norm() * (C.norm() + r.norm());
+  auto gradient = [&](const Eigen::VectorXd& w) -> Eigen::VectorXd { return C.transpose() * (C * w - r) + mu * w; };
 
   Eigen::VectorXd w = Eigen::VectorXd::Constant(n, 1.0 / n);
   std::vector<char> free_(n, 1);
   for (int it = 0; it < 10 * n + 10; ++it) {
-    // Equality-constrained minimizer on the free set: H_FF w_F + g_F = nu 1, sum w_F = 1.
+    // Minimizer on the free set F with sum w_F = 1: w_F = 1/m + Q z (Q an orthonormal basis of
+    // the sum-zero vectors), z the Tikhonov least-squares solution of C_F Q z = r - C_F 1/m. Solved
+    // by the SVD of the 3 x (m-1) factor, not the normal equations: their condition ~1/1e-9 let
+    // the weights move by 1e-7 under a rescaling of the polygon.
     std::vector<int> F;
     for (int i = 0; i < n; ++i)
       if (free_[i]) F.push_back(i);
     const int m = int(F.size());
-    Eigen::MatrixXd K = Eigen::MatrixXd::Zero(m + 1, m + 1);
-    Eigen::VectorXd r(m + 1);
-    for (int p = 0; p < m; ++p) {
-      for (int q = 0; q < m; ++q) K(p, q) = H(F[p], F[q]);
-      K(p, m) = K(m, p) = -1.0;
-      r[p] = -g[F[p]];
+    Eigen::MatrixXd CF(3, m);
+    for (int p = 0; p < m; ++p) CF.col(p) = C.col(F[p]);
+    Eigen::VectorXd wF = Eigen::VectorXd::Constant(m, 1.0 / m);
+    if (m > 1) {
+      const Eigen::MatrixXd Q = Eigen::MatrixXd(Eigen::HouseholderQR<Eigen::MatrixXd>(Eigen::MatrixXd::Ones(m, 1))
+                                                    .householderQ())
+                                    .rightCols(m - 1);
+      Eigen::JacobiSVD<Eigen::MatrixXd> svd(CF * Q, Eigen::ComputeThinU | Eigen::ComputeThinV);
+      Eigen::VectorXd c = svd.matrixU().transpose() * (r - CF * wF);
+      for (int i = 0; i < c.size(); ++i) {
+        const double sigma = svd.singularValues()[i];
+        c[i] = sigma > 0 ? c[i] * sigma / (sigma * sigma + mu) : 0.0;
+      }
+      wF += Q * (svd.matrixV() * c);
     }
-    r[m] = -1.0;
-    const Eigen::VectorXd sol = K.fullPivLu().solve(r);
-    const double nu = sol[m];
     Eigen::VectorXd target = Eigen::VectorXd::Zero(n);
-    for (int p = 0; p < m; ++p) target[F[p]] = sol[p];
+    for (int p = 0; p < m; ++p) target[F[p]] = wF[p];
     // Blocking constraint: the first free weight that the step w -> target drives below zero.
     double alpha = 1.0;
     int block = -1;
@@ -228,8 +256,11 @@ Eigen::VectorXd convex_weights(const PolygonPositions& X) {
       free_[block] = 0;
       continue;
     }
-    // Optimal on this face of the simplex; free the fixed weight with the most negative multiplier.
-    const Eigen::VectorXd grad = H * w + g;
+    // Optimal on this face of the simplex (gradient nu 1 on F); free the fixed weight with the
+    // most negative multiplier.
+    const Eigen::VectorXd grad = gradient(w);
+    double nu = 0;
+    for (int i : F) nu += grad[i] / m;
     int enter = -1;
     double most = -tol;
     for (int i = 0; i < n; ++i)

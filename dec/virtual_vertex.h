@@ -41,18 +41,19 @@ Eigen::VectorXd centroid_weights(int n);
 
 // Least-norm affine weights of the point minimizing the sum of absolute fan areas
 // sum_i area(x_i, x_{i+1}, x) (areas measured in 3D). The objective is convex but not strictly:
-// for a convex planar polygon every interior point is a minimizer. Iteratively reweighted least
-// squares (each step minimizes sum_i |c_i(x)|^2 / |c_i(x_k)| with c_i the twice-area vector, a
-// majorizer of the objective, so the objective never increases) starting at the centroid, stopped
-// as soon as a step gains less than 1e-12 of the objective: where the centroid already minimizes
-// (convex polygons) it is kept. Fan areas are floored at 1e-14 (polygon diameter)^2.
+// for a convex planar polygon every interior point is a minimizer, for a star-shaped one every
+// point of its kernel. Iteratively reweighted least squares on sum_i sqrt(|c_i|^2 + eps^2) (c_i
+// twice the area vector of fan triangle i), eps decreasing from 1e-2 to 1e-7 of the polygon's
+// squared size, starting at the centroid; the centroid is kept unless a point improves the true
+// objective by more than 1e-12 of it (so convex polygons keep their centroid).
 Eigen::VectorXd abs_area_weights(const PolygonPositions& X);
 
 // Convex weights (w >= 0, sum w = 1) minimizing the sum of squared fan areas of x = X^T w, with
 // ties (the objective has rank <= 3 in w) broken towards the least-norm w by a Tikhonov term
 // 1e-9 * mean(diag H) * |w|^2 on the n x n Hessian H. Solved exactly by a primal active-set
-// method on the simplex (finite; at most 10 n iterations). Equals squared_area_weights() when
-// those are non-negative, up to the Tikhonov term.
+// method on the simplex (finite; at most 10 n iterations), each step a Tikhonov least-squares
+// problem on the 3 x n factor of H (by SVD: the normal equations' condition number 1e9 would cost
+// seven digits). Equals squared_area_weights() when those are non-negative, up to the Tikhonov term.
 Eigen::VectorXd convex_weights(const PolygonPositions& X);
 
 // The virtual vertex of Bunge et al. 2024: in the plane orthogonal to the polygon's vector area,

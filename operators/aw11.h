@@ -11,7 +11,8 @@
 // linear u on planar faces; the second, of rank n - 2, vanishes on triangles, so on triangle
 // meshes S is the cotangent Laplacian. The lumped mass is A / n per face corner (AW11 define no
 // Galerkin mass). Gradient (following Crane et al. 2013, section 3.2.2, for AW11): on face f the
-// n-vector G_f u = R_f d u / sqrt(A) with R_f^T R_f = M_f, so |G_f u| = |grad u| for linear u;
+// n-vector G_f u = R_f d u / sqrt(A) with R_f^T R_f = M_f, so |G_f u| = |grad u| for linear u on
+// planar faces (on non-planar ones, for lambda = 0, |grad u projected to the vector area's plane|);
 // D = -G^T W with W = A per face; S = D G exactly. The heat method normalizes each face's n-vector
 // as one block (OperatorSet::G_blocks). Conventions as in operators/laplacian.h.
 #pragma once

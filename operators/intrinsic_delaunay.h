@@ -2,8 +2,10 @@
 // (Bobenko & Springborn 2007): intrinsic edge flips, computed on edge lengths only, until every
 // interior edge is Delaunay (the two angles opposite it sum to at most pi). The cotangent
 // Laplacian of the result has non-negative off-diagonal entries (S_ij >= 0 for i != j) and
-// satisfies the maximum principle. The vertices and the intrinsic metric stay those of the input;
-// only the connectivity changes, so a triangle may have two edges to the same vertex pair.
+// satisfies the maximum principle on closed surfaces; with boundary, a boundary edge (never
+// flipped) has the weight cot/2 of its one opposite angle, negative where that angle is obtuse.
+// The vertices and the intrinsic metric stay those of the input; only the connectivity
+// changes, so a triangle may have two edges to the same vertex pair.
 #pragma once
 
 #include "operators/cotan.h"

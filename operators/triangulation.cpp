@@ -50,7 +50,7 @@ PolygonTriangulation triangulate_polygon(const PolygonPositions& X, Triangulatio
           if (k - i >= 2) c = std::max(c, best(i, k));
           if (j - k >= 2) c = std::max(c, best(k, j));
         }
-        if (c < b) {
+        if (apex(i, j) < 0 || c < b - 1e-12 * std::abs(b)) {  // near-ties: smallest apex, not round-off
           b = c;
           apex(i, j) = k;
         }

@@ -22,8 +22,9 @@ enum class TriangulationRule {
 // Triangles of one polygon, as corner indices (a, b, c) with a < b < c, oriented like the polygon.
 using PolygonTriangulation = std::vector<Eigen::Vector3i>;
 
-// The optimal triangulation of the polygon X (n x 3, n >= 3); ties go to the smallest apex
-// index, so the result is deterministic.
+// The optimal triangulation of the polygon X (n x 3, n >= 3); ties (costs within 1e-12 of each
+// other, relative) go to the smallest apex index, so that round-off, which changes with the
+// polygon's position and scale, does not pick among equal triangulations.
 PolygonTriangulation triangulate_polygon(const PolygonPositions& X, TriangulationRule rule);
 
 // The objective of a triangulation: sum of squared areas (MinSquaredArea) or the smallest angle

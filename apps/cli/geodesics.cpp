@@ -14,8 +14,8 @@ namespace {
 struct Options {
   std::string mesh, out, png;
   std::vector<int> sources;
-  bool json = false, euclidean = false;
-  std::string mass = "lumped", laplacian = "ours";
+  bool json = false, euclidean = false, delta_source = false;
+  std::string mass = "lumped", laplacian = "ours", time_step_edges = "input";
 };
 
 void run(const Options& o) {
@@ -23,7 +23,12 @@ void run(const Options& o) {
   if (o.mass != "lumped" && o.mass != "unlumped") throw UsageError("--mass must be lumped or unlumped");
   HeatGeodesicsOptions hopt;
   hopt.lumped_mass = o.mass == "lumped";
-  const HeatGeodesics heat(build_operators(mesh, parse_laplacian(o.laplacian)), mesh.mean_edge_length(), hopt);
+  hopt.mass_weighted_source = !o.delta_source;
+  if (o.time_step_edges != "input" && o.time_step_edges != "operator")
+    throw UsageError("--time-step-edges must be input or operator");
+  OperatorSet ops = build_operators(mesh, parse_laplacian(o.laplacian));
+  const double h = o.time_step_edges == "input" ? mesh.mean_edge_length() : ops.mean_edge_length;
+  const HeatGeodesics heat(std::move(ops), h, hopt);
   const Eigen::VectorXd d = heat.distance(o.sources);
   double mn = INFINITY, mx = -INFINITY, sum = 0;
   int finite = 0;
@@ -77,6 +82,11 @@ const RegisterCommand reg("geodesics", "Geodesic distances by the heat method (p
   app.add_option("--png", o->png, "picture of the distance with isolines and a colour bar (.png)");
   app.add_option("--mass", o->mass, "lumped (default) or unlumped mass in the heat step");
   app.add_option("--laplacian", o->laplacian, "Laplacian: " + fmt::format("{}", fmt::join(laplacian_names(), ", ")));
+  app.add_flag("--delta-source", o->delta_source,
+               "heat step (M - t S) u = delta instead of M delta (as the paper authors' program; matters with --mass unlumped)");
+  app.add_option("--time-step-edges", o->time_step_edges,
+                 "mean edge length of the time step: input (default; the polygon mesh) or operator (the operator's mesh, "
+                 "e.g. a triangulation's, as libigl)");
   app.add_flag("--euclidean", o->euclidean, "also report the RMSE against the Euclidean distance (planar meshes)");
   app.add_flag("--json", o->json, "print one JSON object instead of text");
   app.callback([o] { run(*o); });

@@ -73,6 +73,10 @@ TEST_CASE("polydec exits 0 on success, with nothing on stderr", "[robust][cli]")
   CHECK(r.code == 0);
   CHECK(r.err.empty());
   CHECK_THAT(r.out, Catch::Contains("distance"));
+  r = run(s.dir, "geodesics " + s.path("grid.obj") +
+                     " --source 0 --laplacian intrinsic-delaunay --mass unlumped --delta-source --time-step-edges operator");
+  CHECK(r.code == 0);
+  CHECK(r.err.empty());
   r = run(s.dir, "--help");
   CHECK(r.code == 0);
 }
@@ -88,6 +92,7 @@ TEST_CASE("polydec exits 2 on usage errors", "[robust][cli]") {
   expect_failure(run(s.dir, "geodesics " + grid + " --source zero"), 2, "usage error");
   expect_failure(run(s.dir, "geodesics " + grid + " --source 0 --mass heavy"), 2, "--mass");
   expect_failure(run(s.dir, "geodesics " + grid + " --source 0 --laplacian nope"), 2, "nope");
+  expect_failure(run(s.dir, "geodesics " + grid + " --source 0 --time-step-edges both"), 2, "--time-step-edges");
   expect_failure(run(s.dir, "repair " + grid + " " + s.path("out.obj") + " --merge-tolerance -1"), 2,
                  "--merge-tolerance");
 }
