@@ -65,9 +65,11 @@ HeatGeodesics::HeatGeodesics(const Mesh& mesh, const HeatGeodesicsOptions& optio
 HeatGeodesics::HeatGeodesics(OperatorSet operators, double mean_edge_length, const HeatGeodesicsOptions& options)
     : ops_(std::move(operators)), options_(options) {
   const Mesh& mesh = ops_.domain;
-  if (ops_.G.size() == 0 || ops_.D.size() == 0)
+  // By shape, not by emptiness: a mesh without faces has a 0 x |V| gradient.
+  const int nv = mesh.n_vertices();
+  if (ops_.G.cols() != nv || ops_.D.rows() != nv)
     throw std::invalid_argument("heat geodesics: Laplacian '" + ops_.name + "' defines no gradient/divergence");
-  if (!options.lumped_mass && ops_.M.size() == 0)
+  if (!options.lumped_mass && ops_.M.rows() != nv)
     throw std::invalid_argument("heat geodesics: Laplacian '" + ops_.name + "' defines no unlumped mass");
   t_ = options.time_step_factor * mean_edge_length * mean_edge_length;
   component_ = vertex_components(ops_.S);

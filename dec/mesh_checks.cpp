@@ -85,9 +85,8 @@ MeshReport check_mesh(const Mesh& mesh, const MeshCheckOptions& options) {
   // Shape of each face: singular values of the centred corners; corners with collinear edges.
   for (int f = 0; f < nf; ++f) {
     const PolygonPositions X = face_positions(mesh, f);
-    const Eigen::Vector3d sigma =
-        Eigen::JacobiSVD<Eigen::MatrixX3d>(Eigen::MatrixX3d(X.rowwise() - X.colwise().mean()))
-            .singularValues();
+    const Eigen::VectorXd sigma =
+        Eigen::JacobiSVD<Eigen::MatrixXd>(Eigen::MatrixXd(X.rowwise() - X.colwise().mean())).singularValues();
     if (sigma[1] <= options.zero_area_tolerance * sigma[0])
       r.zero_area_faces.push_back(f);
     else if (sigma[1] < options.thin_ratio * sigma[0])

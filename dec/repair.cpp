@@ -68,10 +68,10 @@ std::vector<int> keep_vertices(PolygonSoup& soup, const std::vector<int>& repres
 
 // Whether the points are collinear (or coincident) up to the relative tolerance.
 bool collinear(const PolygonSoup& soup, const std::vector<int>& face, double tolerance) {
-  Eigen::MatrixX3d Y(face.size(), 3);
-  for (size_t k = 0; k < face.size(); ++k) Y.row(k) = soup.positions.row(face[k]);
+  Eigen::MatrixXd Y(face.size(), 3);
+  for (size_t k = 0; k < face.size(); ++k) Y.row(long(k)) = soup.positions.row(face[k]);
   Y = Y.rowwise() - Y.colwise().mean();
-  const Eigen::Vector3d sigma = Eigen::JacobiSVD<Eigen::MatrixX3d>(Y).singularValues();
+  const Eigen::VectorXd sigma = Eigen::JacobiSVD<Eigen::MatrixXd>(Y).singularValues();
   return sigma[1] <= tolerance * sigma[0];
 }
 

@@ -3,7 +3,8 @@
 # (-DPOLYDEC_SANITIZE=ON) in its own build directory and runs the whole test suite there, the
 # `polydec` program included (the CLI tests run the sanitized binary). Fails on any test failure
 # and on any sanitizer report. Usage: scripts/sanitize.sh [BUILD_DIR] (default build-sanitize/).
-# Extra arguments for the test program go in POLYDEC_TEST_ARGS (e.g. a tag such as "[robust]").
+# Extra arguments for the test program go in POLYDEC_TEST_ARGS (e.g. a tag such as "[robust]");
+# POLYDEC_JOBS limits the parallel compile jobs.
 set -euo pipefail
 
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -14,7 +15,7 @@ log="$build/sanitize-tests.log"
 # half the time of -O2 -g (Eigen-heavy sources dominate the compile).
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS="-O1 -g1" -DPOLYDEC_SANITIZE=ON \
   -DPOLYDEC_BUILD_BENCH=OFF >/dev/null
-ninja -C "$build" polydec_cli polydec_tests
+ninja -C "$build" ${POLYDEC_JOBS:+-j"$POLYDEC_JOBS"} polydec_cli polydec_tests
 
 # Any report stops the process with a non-zero status; leaks are reported at exit. Reports also go
 # to files under $reports (log_path), so that those of the `polydec` processes the CLI tests start,

@@ -413,3 +413,41 @@ TEST_CASE("check_mesh on clean generated meshes reports nothing", "[robust][dege
     CHECK(rep.clean());
   }
 }
+
+TEST_CASE("policy: extremes: empty mesh, no faces, a face whose corners coincide", "[robust][degenerate]") {
+  SECTION("empty mesh: empty operators; no source exists") {
+    const Mesh mesh{PolygonSoup{}};
+    const Operators o = check_operators(mesh);
+    CHECK(o.L.S.rows() == 0);
+    CHECK(check_mesh(mesh).clean());
+    const HeatGeodesics heat(mesh);
+    CHECK_THROWS_AS(heat.distance(0), std::out_of_range);
+  }
+  SECTION("vertices without faces: all zero rows; none can be a source") {
+    PolygonSoup s;
+    s.positions = Eigen::MatrixX3d::Random(4, 3);
+    const Mesh mesh(s);
+    const Operators o = check_operators(mesh);
+    CHECK(o.L.S.norm() == 0);
+    CHECK(check_mesh(mesh).unreferenced_vertices.size() == 4);
+    CHECK_THROWS_AS(HeatGeodesics(mesh).distance(1), std::out_of_range);
+  }
+  SECTION("a quad whose four corners coincide, beside a valid triangle") {
+    PolygonSoup s;
+    s.positions.resize(7, 3);
+    s.positions << 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0, 0, 0, 1, 0, 0, 0, 1, 0;
+    s.add_face(std::vector<int>{0, 1, 2, 3});
+    s.add_face(std::vector<int>{4, 5, 6});
+    const Mesh mesh(s);
+    CHECK(check_mesh(mesh).zero_area_faces == std::vector<int>{0});
+    const Operators o = check_operators(mesh);
+    CHECK(o.r.quality.n_degenerate == 4);
+    for (int h = 0; h < 4; ++h) CHECK(std::isfinite(o.r.weights[h]));
+    std::vector<bool> reach = {false, false, false, false, true, true, true};
+    check_distances(HeatGeodesics(mesh).distance(4), reach);
+    PolygonSoup t = s;
+    CHECK(drop_invalid_faces(t).n_zero_area == 1);
+    CHECK(merge_duplicate_vertices(s, 0.0).n_merged == 3);  // then the quad repeats one vertex
+    CHECK(drop_invalid_faces(s).n_too_few == 1);
+  }
+}
