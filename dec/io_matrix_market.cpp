@@ -56,6 +56,14 @@ Eigen::SparseMatrix<double> read_matrix_market_from_memory(std::string_view byte
       c < 0 || nnz < 0)
     throw FileError(name, lines.line(), -1, "expected 'ROWS COLS ENTRIES', three non-negative integers");
   if (r > INT_MAX || c > INT_MAX) throw FileError(name, lines.line(), -1, "matrix too large");
+  // Assembly stores one index per row and per column (setFromTriplets goes through the transposed
+  // storage): a few bytes must not claim gigabytes.
+  const long long max_dimension = (long long)bytes.size() * 64 + (1 << 20);
+  if (r > max_dimension || c > max_dimension)
+    throw FileError(name, lines.line(), -1,
+                    fmt::format("claims a {} x {} matrix in a file of {} bytes (at most 64 rows or columns per "
+                                "byte plus 2^20)",
+                                r, c, bytes.size()));
   if (mirror != 0.0 && r != c)
     throw FileError(name, lines.line(), -1,
                     fmt::format("{} matrix must be square, is {} x {}", symmetry, r, c));

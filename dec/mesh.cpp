@@ -11,6 +11,22 @@
 
 namespace polydec {
 
+namespace {
+
+// Rejects non-finite coordinates and magnitudes above kMaxCoordinate (Mesh's documented limit: the
+// operators form fourth powers of lengths, which overflow double beyond about 1e77).
+void check_position(const Eigen::MatrixX3d& X, long v) {
+  if (!X.row(v).allFinite())
+    throw InvalidMeshError("vertex", v, fmt::format("vertex {} has a non-finite coordinate", v));
+  if (X.row(v).cwiseAbs().maxCoeff() > kMaxCoordinate)
+    throw InvalidMeshError("vertex", v,
+                           fmt::format("vertex {} has a coordinate of magnitude {:g}, above the limit {:g} (fourth "
+                                       "powers of lengths would overflow)",
+                                       v, X.row(v).cwiseAbs().maxCoeff(), kMaxCoordinate));
+}
+
+}  // namespace
+
 void PolygonSoup::add_face(std::span<const int> f) {
   face_indices.insert(face_indices.end(), f.begin(), f.end());
   face_offsets.push_back(int(face_indices.size()));
@@ -28,9 +44,7 @@ Mesh::Mesh(PolygonSoup soup) {
     throw InvalidMeshError("face", 0, "face offsets do not match the face index list");
   const int nf = int(soup.face_offsets.size()) - 1;
 
-  for (long v = 0; v < nv; ++v)
-    if (!soup.positions.row(v).allFinite())
-      throw InvalidMeshError("vertex", v, fmt::format("vertex {} has a non-finite coordinate", v));
+  for (long v = 0; v < nv; ++v) check_position(soup.positions, v);
 
   // Faces: size, index range, repeated vertices.
   for (int f = 0; f < nf; ++f) {
@@ -181,9 +195,7 @@ Mesh Mesh::with_positions(Eigen::MatrixX3d positions) const {
     throw InvalidMeshError("vertex", positions.rows(),
                            fmt::format("with_positions: {} rows given, mesh has {} vertices", positions.rows(),
                                        positions_.rows()));
-  for (long v = 0; v < positions.rows(); ++v)
-    if (!positions.row(v).allFinite())
-      throw InvalidMeshError("vertex", v, fmt::format("vertex {} has a non-finite coordinate", v));
+  for (long v = 0; v < positions.rows(); ++v) check_position(positions, v);
   Mesh m;
   m.positions_ = std::move(positions);
   m.topo_ = topo_;

@@ -40,8 +40,12 @@ class InvalidMeshError : public std::runtime_error {
 // numbered in lexicographic order of (i, j) with i < j. Validation rejects faces with fewer
 // than 3 vertices, indices out of range, a vertex repeated in a face, an edge shared by more
 // than two faces or by two faces with the same direction (inconsistent orientation), and
-// non-finite coordinates. Unreferenced vertices are accepted and counted: every operator
+// non-finite coordinates or coordinates of magnitude above kMaxCoordinate. Unreferenced vertices are accepted and counted: every operator
 // gives them zero rows and columns.
+// Largest accepted coordinate magnitude: the operators form fourth powers of lengths (squared
+// areas), which stay finite in double up to about 1e77.
+inline constexpr double kMaxCoordinate = 1e75;
+
 class Mesh {
  public:
   Mesh() = default;

@@ -69,9 +69,10 @@ SparseCholesky::SparseCholesky(const Eigen::SparseMatrix<double>& A_in, std::str
                                const CholeskyOptions& options)
     : impl_(std::make_unique<Impl>()), name_(std::move(name)), rows_(int(A_in.rows())) {
   if (A_in.rows() != A_in.cols()) throw SolverError("Cholesky of " + name_ + ": matrix is not square");
-  const bool want_cholmod = options.backend == CholeskyBackend::Cholmod ||
-                            (options.backend == CholeskyBackend::Automatic && cholmod_available());
-  if (want_cholmod && !cholmod_available())
+  // A 0 x 0 matrix (an empty mesh) goes to Eigen, which factors it trivially; CHOLMOD rejects it.
+  const bool want_cholmod = rows_ > 0 && (options.backend == CholeskyBackend::Cholmod ||
+                                          (options.backend == CholeskyBackend::Automatic && cholmod_available()));
+  if (options.backend == CholeskyBackend::Cholmod && !cholmod_available())
     throw SolverError("Cholesky of " + name_ + ": the CHOLMOD backend is not compiled in");
   if (!want_cholmod) {
     impl_->ldlt.analyzePattern(A_in);

@@ -42,6 +42,7 @@ const Case kCases[] = {
     {"obj/header_only.obj", R, 0, -1, "no vertices"},
     {"obj/nan.obj", V, 5, -1, "vertex 4 has a non-finite coordinate"},
     {"obj/inf.obj", V, 2, -1, "vertex 1 has a non-finite coordinate"},
+    {"obj/huge_coordinate.obj", V, 1, -1, "vertex 0 has a coordinate of magnitude 1e+308, above the limit 1e+75"},
     {"obj/overflow.obj", R, 2, -1, "bad vertex coordinate '1e999'"},
     {"obj/face_1.obj", V, 6, -1, "face 1 has 1 vertices (at least 3 needed)"},
     {"obj/face_2.obj", V, 6, -1, "face 1 has 2 vertices (at least 3 needed)"},
@@ -131,6 +132,7 @@ const Case kMatrixCases[] = {
     {"mtx/truncated.mtx", R, 3, -1, "claims 3 entries but only 12 bytes follow"},
     {"mtx/array.mtx", R, 1, -1, "only the coordinate format is supported"},
     {"mtx/png.mtx", R, 1, -1, "expected '%%MatrixMarket matrix coordinate FIELD SYMMETRY'"},
+    {"mtx/huge_columns.mtx", R, 2, -1, "claims a 3 x 723221734 matrix in a file of 68 bytes"},  // found by fuzz_mtx
     {"mtx/symmetric_not_square.mtx", R, 2, -1,
      "symmetric matrix must be square, is 4 x 1"},  // found by fuzz_mtx
 };

@@ -31,6 +31,8 @@ put("obj/empty.obj", "")
 put("obj/header_only.obj", "# exported by a modeler\nmtllib scene.mtl\no Square\n")
 put("obj/nan.obj", V + "v nan 0 0\nf 1 2 3 4\n")
 put("obj/inf.obj", "v 0 0 0\nv inf 0 0\nv 1 1 0\nf 1 2 3\n")
+# Found by fuzz_assemble: a finite coordinate so large that fourth powers of lengths overflow.
+put("obj/huge_coordinate.obj", "v 0 0 1e308\nv 1 0 0\nv 1 1 0\nf 1 2 3\n")
 put("obj/overflow.obj", "v 0 0 0\nv 1e999 0 0\nv 1 1 0\nf 1 2 3\n")
 put("obj/face_1.obj", V + "f 1 2 3 4\nf 2\n")
 put("obj/face_2.obj", V + "f 1 2 3 4\nf 2 3\n")
@@ -178,4 +180,6 @@ put("mtx/truncated.mtx", "%%MatrixMarket matrix coordinate real general\n% a com
 put("mtx/array.mtx", "%%MatrixMarket matrix array real general\n2 2\n1\n2\n3\n4\n")
 put("mtx/png.mtx", PNG)
 # Found by fuzz_mtx: a symmetric matrix that is not square (the mirrored entry fell outside).
+# Found by fuzz_mtx: 3 entries claiming 723221734 columns (a 2.9 GB column index).
+put("mtx/huge_columns.mtx", "%%MatrixMarket matrix coordinate real general\n3 723221734 1\n1 1 1.5\n")
 put("mtx/symmetric_not_square.mtx", "%%MatrixMarket matrix coordinate integer symmetric\n4 1 2\n1 1 4\n2 1 -1\n")
