@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "dec/mesh.h"
+
 namespace polydec::cli {
 
 // Exit codes of the polydec program.
@@ -32,6 +34,15 @@ struct RegisterCommand {
 
 // Prints a JSON object on stdout (one line per object, pretty with 2 spaces).
 void print_json(const nlohmann::json& j);
+
+// Reads the mesh at `path`. With `repair_first`, the opt-in repair steps of dec/repair.h run on
+// the file's polygons before validation (coincident vertices merged exactly, invalid and duplicate
+// faces dropped, unreferenced vertices removed), one stderr line per step that changed something;
+// `vertex_map` (if given) receives file vertex -> mesh vertex (-1 when removed).
+Mesh load_mesh(const std::string& path, bool repair_first, std::vector<int>* vertex_map = nullptr);
+
+// Adds the `--repair` flag (see load_mesh) to a subcommand.
+void add_repair_flag(CLI::App& app, bool& flag);
 
 // Thrown for wrong command-line usage detected after parsing (exit code 2).
 struct UsageError : std::runtime_error {

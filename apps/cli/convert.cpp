@@ -13,6 +13,7 @@ namespace polydec::cli {
 namespace {
 
 struct Options {
+  bool repair = false;  // --repair
   std::string in, out;
   bool dual = false, unit_sphere = false, json = false;
   int subdivide = 0;
@@ -20,7 +21,7 @@ struct Options {
 
 void run(const Options& o) {
   if (o.subdivide < 0) throw UsageError("--subdivide takes a non-negative count");
-  Mesh mesh = read_mesh(o.in);
+  Mesh mesh = load_mesh(o.in, o.repair);
   auto project = [&](Mesh m) { return o.unit_sphere ? project_to_unit_sphere(m) : m; };
   if (o.dual) mesh = project(dual(mesh));
   for (int k = 0; k < o.subdivide; ++k) mesh = project(catmull_clark(mesh));
@@ -42,6 +43,7 @@ const RegisterCommand reg("convert", "Convert between formats; optionally dual, 
                             app.add_option("--subdivide", o->subdivide, "number of Catmull-Clark steps");
                             app.add_flag("--unit-sphere", o->unit_sphere, "project to the unit sphere (after each step)");
                             app.add_flag("--json", o->json, "print one JSON object instead of text");
+                            add_repair_flag(app, o->repair);
                             app.callback([o] { run(*o); });
                           });
 

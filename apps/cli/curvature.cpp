@@ -13,13 +13,14 @@ namespace polydec::cli {
 namespace {
 
 struct Options {
+  bool repair = false;  // --repair
   std::string mesh, out, png, mass = "lumped", laplacian = "ours";
   bool json = false, unit_sphere = false;
 };
 
 void run(const Options& o) {
   if (o.mass != "lumped" && o.mass != "unlumped") throw UsageError("--mass must be lumped or unlumped");
-  Mesh mesh = read_mesh(o.mesh);
+  Mesh mesh = load_mesh(o.mesh, o.repair);
   if (o.unit_sphere) mesh = project_to_unit_sphere(mesh);
   const OperatorSet ops = build_operators(mesh, parse_laplacian(o.laplacian), false);
   CurvatureOptions copt;
@@ -70,6 +71,7 @@ const RegisterCommand reg(
       app.add_option("--out", o->out, "output mesh with a 'mean_curvature' vertex property (.ply)");
       app.add_option("--png", o->png, "picture of the mean curvature with a colour bar (.png)");
       app.add_flag("--json", o->json, "print one JSON object instead of text");
+      add_repair_flag(app, o->repair);
       app.callback([o] { run(*o); });
     });
 

@@ -18,6 +18,7 @@ namespace polydec::cli {
 namespace {
 
 struct Options {
+  bool repair = false;  // --repair
   std::string mesh, out, rule = "squared-area";
   bool json = false, lumped = false;
 };
@@ -34,7 +35,7 @@ void write_cells(const std::string& path, const Cells& cells) {
 }
 
 void run(const Options& o) {
-  const Mesh mesh = read_mesh(o.mesh);
+  const Mesh mesh = load_mesh(o.mesh, o.repair);
   if (mesh.max_face_size() > kHighValence)
     std::cerr << fmt::format(
         "polydec: warning: faces with up to {} corners: a face of valence n carries n(n-1)/2 1-cells and "
@@ -104,6 +105,7 @@ const RegisterCommand reg("dec", "Write d0, d1, star0-2, P0-2 and the coarse cel
                                            "virtual-vertex rule: squared-area (default), centroid");
                             app.add_flag("--lumped", o->lumped, "write the lumped (diagonal) star0");
                             app.add_flag("--json", o->json, "print one JSON object instead of text");
+                            add_repair_flag(app, o->repair);
                             app.callback([o] { run(*o); });
                           });
 

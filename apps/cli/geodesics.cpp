@@ -12,6 +12,7 @@ namespace polydec::cli {
 namespace {
 
 struct Options {
+  bool repair = false;  // --repair
   std::string mesh, out, png;
   std::vector<int> sources;
   bool json = false, euclidean = false, delta_source = false;
@@ -19,7 +20,17 @@ struct Options {
 };
 
 void run(const Options& o) {
-  const Mesh mesh = read_mesh(o.mesh);
+  std::vector<int> vertex_map;
+  const Mesh mesh = load_mesh(o.mesh, o.repair, &vertex_map);
+  // Sources are file vertices; --repair may renumber or remove them.
+  std::vector<int> sources = o.sources;
+  for (int& s : sources) {
+    if (s < 0 || s >= int(vertex_map.size()))
+      throw std::out_of_range(fmt::format("source vertex {} is out of range (the mesh has {} vertices)", s,
+                                          vertex_map.size()));
+    if (vertex_map[s] < 0) throw std::out_of_range(fmt::format("source vertex {} was removed by --repair", s));
+    s = vertex_map[s];
+  }
   if (o.mass != "lumped" && o.mass != "unlumped") throw UsageError("--mass must be lumped or unlumped");
   HeatGeodesicsOptions hopt;
   hopt.lumped_mass = o.mass == "lumped";
@@ -29,7 +40,7 @@ void run(const Options& o) {
   OperatorSet ops = build_operators(mesh, parse_laplacian(o.laplacian));
   const double h = o.time_step_edges == "input" ? mesh.mean_edge_length() : ops.mean_edge_length;
   const HeatGeodesics heat(std::move(ops), h, hopt);
-  const Eigen::VectorXd d = heat.distance(o.sources);
+  const Eigen::VectorXd d = heat.distance(sources);
   double mn = INFINITY, mx = -INFINITY, sum = 0;
   int finite = 0;
   for (int v = 0; v < d.size(); ++v)
@@ -46,7 +57,7 @@ void run(const Options& o) {
   if (o.euclidean) {
     // Error against the Euclidean distance from the first source, shifted to minimum 0 (planar meshes).
     Eigen::VectorXd e(mesh.n_vertices());
-    for (int v = 0; v < mesh.n_vertices(); ++v) e[v] = (mesh.position(v) - mesh.position(o.sources[0])).norm();
+    for (int v = 0; v < mesh.n_vertices(); ++v) e[v] = (mesh.position(v) - mesh.position(sources[0])).norm();
     j["rmse_vs_euclidean"] = rmse(d, e.array() - e.minCoeff());
   }
   if (!o.out.empty()) {
@@ -58,7 +69,7 @@ void run(const Options& o) {
     ropt.isolines = 15;
     ropt.scalar_label = "distance";
     ropt.title = fmt::format("heat geodesics ({})", heat.operators().name);
-    ropt.view_direction = view_facing_vertex(mesh, o.sources[0]);
+    ropt.view_direction = view_facing_vertex(mesh, sources[0]);
     render_png(o.png, mesh, d, ropt);
     j["png"] = o.png;
   }
@@ -89,6 +100,7 @@ const RegisterCommand reg("geodesics", "Geodesic distances by the heat method (p
                  "e.g. a triangulation's, as libigl)");
   app.add_flag("--euclidean", o->euclidean, "also report the RMSE against the Euclidean distance (planar meshes)");
   app.add_flag("--json", o->json, "print one JSON object instead of text");
+  add_repair_flag(app, o->repair);
   app.callback([o] { run(*o); });
 });
 

@@ -17,6 +17,7 @@ namespace polydec::cli {
 namespace {
 
 struct Options {
+  bool repair = false;  // --repair
   std::string mesh, out, form;
   double noise = 0.05;
   unsigned seed = 1;
@@ -72,7 +73,7 @@ Eigen::VectorXd builtin_form(const Mesh& mesh, const CoarseComplex& K, double no
 
 void run(const Options& o) {
   if (!(o.noise >= 0) || !std::isfinite(o.noise)) throw UsageError("--noise must be a finite number >= 0");
-  const Mesh mesh = read_mesh(o.mesh);
+  const Mesh mesh = load_mesh(o.mesh, o.repair);
   if (mesh.max_face_size() > kHighValence)
     std::cerr << fmt::format("polydec: warning: faces with up to {} corners: star1 grows as n^4 per face\n",
                              mesh.max_face_size());
@@ -124,6 +125,7 @@ const RegisterCommand reg(
                      "the mean edge length (default 0.05)");
       app.add_option("--seed", o->seed, "random seed of the built-in form's noise");
       app.add_flag("--json", o->json, "print one JSON object instead of text");
+      add_repair_flag(app, o->repair);
       app.callback([o] { run(*o); });
     });
 

@@ -10,12 +10,13 @@ namespace polydec::cli {
 namespace {
 
 struct Options {
+  bool repair = false;  // --repair
   std::string mesh;
   bool json = false;
 };
 
 void run(const Options& o) {
-  const Mesh mesh = read_mesh(o.mesh);
+  const Mesh mesh = load_mesh(o.mesh, o.repair);
   const MeshStatistics s = mesh_statistics(mesh);
   nlohmann::json hist = nlohmann::json::object();
   for (const auto& [n, c] : s.valence_histogram) hist[std::to_string(n)] = c;
@@ -67,6 +68,7 @@ const RegisterCommand reg("info", "Print counts, topology, planarity and convexi
                             auto o = std::make_shared<Options>();
                             app.add_option("mesh", o->mesh, "input mesh (.obj, .off, .ply)")->required();
                             app.add_flag("--json", o->json, "print one JSON object instead of text");
+                            add_repair_flag(app, o->repair);
                             app.callback([o] { run(*o); });
                           });
 

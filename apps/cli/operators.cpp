@@ -17,6 +17,7 @@ namespace polydec::cli {
 namespace {
 
 struct Options {
+  bool repair = false;  // --repair
   std::string mesh, out, rule = "squared-area";
   int repeat = 0, threads = 1;
   bool json = false;
@@ -73,7 +74,7 @@ void run(const Options& o) {
   if (o.repeat < 0) throw UsageError("--repeat must be positive");
   if (o.threads < 0) throw UsageError("--threads must be at least 0 (0: all hardware threads)");
   if (o.repeat == 0 && o.out.empty()) throw UsageError("--out DIR is required (or --repeat N to time the assembly)");
-  const Mesh mesh = read_mesh(o.mesh);
+  const Mesh mesh = load_mesh(o.mesh, o.repair);
   RefinementOptions ropt;
   ropt.rule = parse_virtual_vertex_rule(o.rule);
   AssemblyOptions aopt;
@@ -120,6 +121,7 @@ const RegisterCommand reg("operators", "Assemble S, M, lumped M, G, D, P and wri
   app.add_option("--repeat", o->repeat, "time N assemblies of S, M, lumped M instead of writing files");
   app.add_option("--threads", o->threads, "assembly threads (default 1; 0: all hardware threads)");
   app.add_flag("--json", o->json, "print one JSON object instead of text");
+  add_repair_flag(app, o->repair);
   app.callback([o] { run(*o); });
 });
 

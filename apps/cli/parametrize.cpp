@@ -11,12 +11,13 @@ namespace polydec::cli {
 namespace {
 
 struct Options {
+  bool repair = false;  // --repair
   std::string mesh, out, png, laplacian = "ours";
   bool json = false;
 };
 
 void run(const Options& o) {
-  const Mesh mesh = read_mesh(o.mesh);
+  const Mesh mesh = load_mesh(o.mesh, o.repair);
   const OperatorSet ops = build_operators(mesh, parse_laplacian(o.laplacian), false);
   const ConformalParametrization p = spectral_conformal_parametrization(ops);
   const Eigen::MatrixX2d uv = p.uv.topRows(ops.n_input_vertices);
@@ -68,6 +69,7 @@ const RegisterCommand reg(
                      "Laplacian: " + fmt::format("{}", fmt::join(laplacian_names(), ", ")));
       app.add_option("--png", o->png, "picture of the uv layout coloured by angle distortion (.png)");
       app.add_flag("--json", o->json, "print one JSON object instead of text");
+      add_repair_flag(app, o->repair);
       app.callback([o] { run(*o); });
     });
 

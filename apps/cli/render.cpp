@@ -13,6 +13,7 @@ namespace polydec::cli {
 namespace {
 
 struct Options {
+  bool repair = false;  // --repair
   std::string mesh, png, scalar = "none", colormap = "viridis", title;
   int source = -1, isolines = -1, width = 800, height = 600;
   double spacing = 0;
@@ -26,7 +27,7 @@ Eigen::Vector3d vec3(const std::vector<double>& v, const char* name) {
 }
 
 void run(const Options& o) {
-  const Mesh mesh = read_mesh(o.mesh);
+  const Mesh mesh = load_mesh(o.mesh, o.repair);
   RenderOptions r;
   r.width = o.width;
   r.height = o.height;
@@ -80,6 +81,7 @@ const RegisterCommand reg(
       app.add_option("--width", o->width, "image width in pixels (default 800)");
       app.add_option("--height", o->height, "image height in pixels (default 600)");
       app.add_flag("--json", o->json, "print one JSON object instead of text");
+      add_repair_flag(app, o->repair);
       app.callback([o] { run(*o); });
     });
 

@@ -14,6 +14,7 @@ namespace polydec::cli {
 namespace {
 
 struct Options {
+  bool repair = false;  // --repair
   std::string mesh, out, png, mass = "lumped", laplacian = "ours", format = "obj";
   int steps = 10;
   double dt = 0;
@@ -33,7 +34,7 @@ void run(const Options& o) {
   if (o.steps < 0) throw UsageError("--steps must be >= 0");
   if (o.format != "obj" && o.format != "off" && o.format != "ply")
     throw UsageError("--format must be obj, off or ply");
-  const Mesh mesh = read_mesh(o.mesh);
+  const Mesh mesh = load_mesh(o.mesh, o.repair);
   SmoothingOptions sopt;
   sopt.time_step = o.dt;
   sopt.lumped_mass = o.mass == "lumped";
@@ -92,6 +93,7 @@ const RegisterCommand reg(
                      "Laplacian: " + fmt::format("{}", fmt::join(laplacian_names(), ", ")));
       app.add_option("--png", o->png, "picture of the last mesh coloured by its mean curvature (.png)");
       app.add_flag("--json", o->json, "print one JSON object instead of text");
+      add_repair_flag(app, o->repair);
       app.callback([o] { run(*o); });
     });
 

@@ -15,6 +15,7 @@ namespace polydec::cli {
 namespace {
 
 struct Options {
+  bool repair = false;  // --repair
   std::string mesh, out, png, mass = "lumped", laplacian = "ours";
   int k = 10, png_index = 1;
   bool json = false;
@@ -32,7 +33,7 @@ void write_dense_matrix_market(const std::string& path, const Eigen::MatrixXd& A
 
 void run(const Options& o) {
   if (o.mass != "lumped" && o.mass != "unlumped") throw UsageError("--mass must be lumped or unlumped");
-  const Mesh mesh = read_mesh(o.mesh);
+  const Mesh mesh = load_mesh(o.mesh, o.repair);
   const OperatorSet ops = build_operators(mesh, parse_laplacian(o.laplacian), false);
   SpectrumOptions sopt;
   sopt.k = o.k;
@@ -101,6 +102,7 @@ const RegisterCommand reg(
       app.add_option("--png", o->png, "picture of one eigenfunction with isolines (.png)");
       app.add_option("--png-index", o->png_index, "which eigenfunction to draw (default 1)");
       app.add_flag("--json", o->json, "print one JSON object instead of text");
+      add_repair_flag(app, o->repair);
       app.callback([o] { run(*o); });
     });
 

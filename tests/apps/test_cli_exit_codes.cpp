@@ -167,3 +167,30 @@ TEST_CASE("polydec repair reports what it changed and writes a valid mesh", "[ro
   CHECK(fixed.n_components() == 1);
   CHECK(fixed.n_boundary_edges() == 4);
 }
+
+TEST_CASE("--repair: subcommands repair the file first, say what changed, and map source vertices",
+          "[robust][cli]") {
+  Scratch s;
+  // Two triangles with their shared edge's vertices duplicated, a duplicate face, an unused vertex.
+  write_text(s.path("soup.obj"),
+             "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 7 7 7\nf 1 2 3\nf 4 5 6\nf 1 2 3\n");
+  // Without --repair the duplicate face is invalid input.
+  expect_failure(run(s.dir, "info " + s.path("soup.obj")), 3, "soup.obj");
+  const Run info = run(s.dir, "info " + s.path("soup.obj") + " --repair --json");
+  CHECK(info.code == 0);
+  CHECK(info.err.size() == 3);  // merged vertices, duplicate face, unreferenced vertex
+  for (const std::string& line : info.err) CHECK_THAT(line, Catch::StartsWith("polydec: --repair "));
+  CHECK_THAT(info.out, Catch::Contains("\"vertices\": 4"));
+  // File vertex 4 (1 1 0) becomes mesh vertex 3; its distance to file vertex 1 (1 0 0) is 1.
+  const Run geo = run(s.dir, "geodesics " + s.path("soup.obj") + " --repair --source 4 --json --out " +
+                                 s.path("d.ply"));
+  CHECK(geo.code == 0);
+  const Mesh out = read_mesh(s.path("d.ply"));
+  CHECK(out.n_vertices() == 4);
+  // The unused vertex 6 is removed: it cannot be a source.
+  const Run gone = run(s.dir, "geodesics " + s.path("soup.obj") + " --repair --source 6");
+  CHECK(gone.code == 3);
+  REQUIRE(gone.err.size() == 4);  // the three repair lines, then the error
+  CHECK_THAT(gone.err.back(),
+             Catch::StartsWith("polydec: ") && Catch::Contains("source vertex 6 was removed by --repair"));
+}

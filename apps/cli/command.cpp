@@ -1,0 +1,39 @@
+// apps/cli/command.cpp — shared CLI helpers: loading a mesh with the opt-in `--repair`.
+#include "apps/cli/command.h"
+
+#include <fmt/format.h>
+
+#include "dec/io.h"
+#include "dec/repair.h"
+
+namespace polydec::cli {
+
+Mesh load_mesh(const std::string& path, bool repair_first, std::vector<int>* vertex_map) {
+  if (!repair_first) {
+    const Mesh mesh = read_mesh(path);
+    if (vertex_map) {
+      vertex_map->resize(mesh.n_vertices());
+      for (int v = 0; v < mesh.n_vertices(); ++v) (*vertex_map)[v] = v;
+    }
+    return mesh;
+  }
+  PolygonSoup soup = read_polygon_soup(path);
+  RepairOptions options;
+  options.merge_vertices = true;  // exactly coincident vertices only (tolerance 0)
+  const RepairReport report = repair(soup, options);
+  for (const std::string& line : report.summary()) fmt::print(stderr, "polydec: --repair {}: {}\n", path, line);
+  if (vertex_map) *vertex_map = report.vertex_map;
+  try {
+    return Mesh(std::move(soup));
+  } catch (const InvalidMeshError& e) {
+    throw InvalidMeshError(e.element, e.index, fmt::format("{}: still invalid after --repair: {}", path, e.what()));
+  }
+}
+
+void add_repair_flag(CLI::App& app, bool& flag) {
+  app.add_flag("--repair", flag,
+               "repair the mesh first (merge coincident vertices, drop invalid and duplicate faces, remove "
+               "unreferenced vertices; what changed goes to stderr); vertex indices are the repaired mesh's");
+}
+
+}  // namespace polydec::cli
