@@ -6,17 +6,19 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <fmt/format.h>
 
 #include "apps/cli/command.h"
 #include "apps/image.h"
 #include "apps/paper.h"
+#include "dec/io.h"
 
 namespace polydec::cli {
 namespace {
 
 struct Options {
-  std::string data = "../shared/data", out = "paper-out";
+  std::string data = "../shared/data", out = "paper-out", report_from;
   bool quick = false, no_timings = false, no_pictures = false, json = false;
   int repeats = 3;
 };
@@ -43,6 +45,17 @@ class ProgressBar {
 };
 
 void run(const Options& o) {
+  if (!o.report_from.empty()) {  // only re-render the report of an earlier run
+    std::ifstream in(o.report_from);
+    if (!in) throw FileError(o.report_from, 0, -1, "cannot open file");
+    const nlohmann::json results = nlohmann::json::parse(in, nullptr, false);
+    if (results.is_discarded() || !results.contains("paper"))
+      throw FileError(o.report_from, 0, -1, "not a results.json of polydec paper");
+    std::filesystem::create_directories(o.out);
+    write_file_atomically(o.out + "/report.md", paper_report_markdown(results));
+    fmt::print("wrote {}/report.md\n", o.out);
+    return;
+  }
   if (!std::filesystem::is_directory(o.data))
     throw UsageError(fmt::format("--data {}: no such folder (the paper's meshes, e.g. ../shared/data)", o.data));
   if (o.repeats < 1 || o.repeats > 100) throw UsageError("--repeats must be in [1, 100]");
@@ -77,6 +90,7 @@ const RegisterCommand reg(
       app.add_flag("--no-pictures", o->no_pictures, "write no pictures or plots");
       app.add_option("--repeats", o->repeats, "Table 5: median of this many runs (default 3)");
       app.add_flag("--json", o->json, "also print results.json on stdout");
+      app.add_option("--report-from", o->report_from, "only write report.md from an earlier run's results.json");
       app.callback([o] { run(*o); });
     });
 
