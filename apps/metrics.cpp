@@ -1,4 +1,4 @@
-// apps/metrics.cpp — negative off-diagonal ratio, condition number estimate, 3D conformal distortion.
+// apps/metrics.cpp — negative off-diagonal ratio and condition number estimate.
 #include "apps/metrics.h"
 
 #include <cmath>
@@ -68,29 +68,6 @@ ConditionEstimate condition_number_estimate(const SparseMatrix& A, int max_itera
   e.condition = e.lambda_min > 0 ? e.lambda_max / e.lambda_min : INFINITY;
   e.iterations = std::max(it_max, it_min);
   return e;
-}
-
-double conformal_distortion(const Mesh& mesh, const Eigen::MatrixX3d& deformed) {
-  if (deformed.rows() != mesh.n_vertices())
-    throw std::invalid_argument("conformal distortion: the deformed positions need one row per vertex");
-  auto angle = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return std::atan2(a.cross(b).norm(), a.dot(b)); };
-  double sum = 0, wsum = 0;
-  for (int f = 0; f < mesh.n_faces(); ++f) {
-    const auto face = mesh.face(f);
-    const int n = int(face.size());
-    Eigen::Vector3d vector_area = Eigen::Vector3d::Zero();
-    for (int a = 0; a < n; ++a) vector_area += mesh.position(face[a]).cross(mesh.position(face[(a + 1) % n]));
-    const double w = 0.5 * vector_area.norm() / n;
-    for (int a = 0; a < n; ++a) {
-      const int i = face[a], j = face[(a + 1) % n], k = face[(a + n - 1) % n];
-      const double alpha = angle(mesh.position(j) - mesh.position(i), mesh.position(k) - mesh.position(i));
-      const Eigen::Vector3d p = deformed.row(i).transpose();
-      const double beta = angle(deformed.row(j).transpose() - p, deformed.row(k).transpose() - p);
-      sum += w * (alpha - beta) * (alpha - beta);
-      wsum += w;
-    }
-  }
-  return wsum > 0 ? std::sqrt(sum / wsum) : 0.0;
 }
 
 }  // namespace polydec

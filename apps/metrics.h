@@ -1,11 +1,10 @@
 // apps/metrics.h — the comparison metrics of the paper's evaluation that are not an application
 // of their own: the share of negative off-diagonal stiffness entries (section 5.5), a condition
-// number estimate of a symmetric positive definite system (the Poisson system of section 5.8),
-// and the conformal distortion between a mesh and a deformed copy of it (section 5.1, Table 1).
+// number estimate of a symmetric positive definite system (the Poisson system of section 5.8).
 // The other metrics live with their applications: curvature_rmse (apps/curvature.h),
 // spherical_harmonics_error (apps/harmonics.h), rmse of geodesic distances (apps/geodesics.h),
-// franke_convergence (apps/poisson.h), conformal_distortion against a uv map
-// (apps/parametrization.h).
+// franke_convergence (apps/poisson.h), conformal_distortion against a uv map or a deformed
+// copy (apps/parametrization.h).
 #pragma once
 
 #include "dec/mesh.h"
@@ -34,11 +33,5 @@ struct ConditionEstimate {
 ConditionEstimate condition_number_estimate(const SparseMatrix& A, int max_iterations = 300,
                                             double tolerance = 1e-6);
 
-// Conformal distortion between a mesh and a deformed copy with the same connectivity
-// (`deformed`: |V| x 3 positions), measured like conformal_distortion of a uv map: the
-// area-weighted root-mean-square difference (radians) of every face corner's angle, weights
-// |vector area of the face in the input| / (face valence). Used for the conformalized curvature
-// flow of Table 1 (input mesh against the flowed, spherical one).
-double conformal_distortion(const Mesh& mesh, const Eigen::MatrixX3d& deformed);
 
 }  // namespace polydec

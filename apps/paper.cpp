@@ -578,7 +578,7 @@ std::string paper_report_markdown(const json& r) {
   s += "## Table 1: conformal distortion\n\n";
   for (const auto& [fig, text] : r["setup"]["table1"].items()) s += "- " + fig + ": " + text.get<std::string>() + "\n";
   s += "\nThe paper compares ours with [AW11] at an unstated lambda (its column `aw11` below); our metric is the "
-       "area-weighted RMS of corner-angle differences in radians (apps/metrics.h). Our values are about 100 "
+       "area-weighted RMS of corner-angle differences in radians (apps/parametrization.h). Our values are about 100 "
        "times the paper's on Figure 6 (0.116 vs 1.157e-3): the paper does not give its normalization, so "
        "compare the methods' ranking, not the magnitudes.\n\n";
   {

@@ -137,17 +137,13 @@ ConformalParametrization spectral_conformal_parametrization(const Mesh& mesh) {
 
 namespace {
 
-// Calls visit(vertex, weight, alpha - beta) for every face corner (see conformal_distortion).
+// Calls visit(vertex, weight, alpha - beta) for every face corner (see conformal_distortion);
+// `target` holds the deformed positions (a uv map embedded with z = 0).
 template <class Visit>
-void for_each_corner_angle_difference(const Mesh& mesh, const Eigen::MatrixX2d& uv, Visit&& visit) {
-  if (uv.rows() != mesh.n_vertices())
-    throw std::invalid_argument("conformal distortion: uv needs one row per vertex");
-  auto angle3 = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-    return std::atan2(a.cross(b).norm(), a.dot(b));
-  };
-  auto angle2 = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-    return std::atan2(std::abs(a.x() * b.y() - a.y() * b.x()), a.dot(b));
-  };
+void for_each_corner_angle_difference(const Mesh& mesh, const Eigen::MatrixX3d& target, Visit&& visit) {
+  if (target.rows() != mesh.n_vertices())
+    throw std::invalid_argument("conformal distortion: the deformed positions need one row per vertex");
+  auto angle = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return std::atan2(a.cross(b).norm(), a.dot(b)); };
   for (int f = 0; f < mesh.n_faces(); ++f) {
     const auto face = mesh.face(f);
     const int n = int(face.size());
@@ -156,28 +152,40 @@ void for_each_corner_angle_difference(const Mesh& mesh, const Eigen::MatrixX2d& 
     const double w = 0.5 * vector_area.norm() / n;
     for (int a = 0; a < n; ++a) {
       const int i = face[a], j = face[(a + 1) % n], k = face[(a + n - 1) % n];
-      const double alpha = angle3(mesh.position(j) - mesh.position(i), mesh.position(k) - mesh.position(i));
-      const Eigen::Vector2d ui = uv.row(i).transpose();
-      const double beta = angle2(uv.row(j).transpose() - ui, uv.row(k).transpose() - ui);
+      const double alpha = angle(mesh.position(j) - mesh.position(i), mesh.position(k) - mesh.position(i));
+      const Eigen::Vector3d p = target.row(i).transpose();
+      const double beta = angle(target.row(j).transpose() - p, target.row(k).transpose() - p);
       visit(i, w, alpha - beta);
     }
   }
 }
 
+Eigen::MatrixX3d embed(const Eigen::MatrixX2d& uv) {
+  Eigen::MatrixX3d X = Eigen::MatrixX3d::Zero(uv.rows(), 3);
+  X.leftCols(2) = uv;
+  return X;
+}
+
 }  // namespace
 
-double conformal_distortion(const Mesh& mesh, const Eigen::MatrixX2d& uv) {
+double conformal_distortion(const Mesh& mesh, const Eigen::MatrixX3d& deformed) {
   double sum = 0, wsum = 0;
-  for_each_corner_angle_difference(mesh, uv, [&](int, double w, double d) {
+  for_each_corner_angle_difference(mesh, deformed, [&](int, double w, double d) {
     sum += w * d * d;
     wsum += w;
   });
   return wsum > 0 ? std::sqrt(sum / wsum) : 0.0;
 }
 
+double conformal_distortion(const Mesh& mesh, const Eigen::MatrixX2d& uv) {
+  if (uv.rows() != mesh.n_vertices()) throw std::invalid_argument("conformal distortion: uv needs one row per vertex");
+  return conformal_distortion(mesh, embed(uv));
+}
+
 Eigen::VectorXd vertex_conformal_distortion(const Mesh& mesh, const Eigen::MatrixX2d& uv) {
   Eigen::VectorXd sum = Eigen::VectorXd::Zero(mesh.n_vertices()), wsum = sum;
-  for_each_corner_angle_difference(mesh, uv, [&](int v, double w, double d) {
+  if (uv.rows() != mesh.n_vertices()) throw std::invalid_argument("conformal distortion: uv needs one row per vertex");
+  for_each_corner_angle_difference(mesh, embed(uv), [&](int v, double w, double d) {
     sum[v] += w * d * d;
     wsum[v] += w;
   });

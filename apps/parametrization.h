@@ -36,6 +36,10 @@ ConformalParametrization spectral_conformal_parametrization(const Mesh& mesh);
 // over all face corners c; alpha_c, beta_c in [0, pi] are the angles between the corner's two
 // edges in 3D and in uv, w_c = |vector area of c's face| / (valence of the face).
 double conformal_distortion(const Mesh& mesh, const Eigen::MatrixX2d& uv);
+// The same between a mesh and a deformed copy with the same connectivity (`deformed`: |V| x 3),
+// e.g. the input against its conformalized curvature flow (Table 1). Throws std::invalid_argument
+// for a wrong number of rows.
+double conformal_distortion(const Mesh& mesh, const Eigen::MatrixX3d& deformed);
 
 // Per vertex: the root-mean-square of alpha_c - beta_c over the vertex's corners, weighted
 // as above (0 for vertices in no face) — where the distortion sits.

@@ -168,7 +168,7 @@ TEST_CASE("polydec repair reports what it changed and writes a valid mesh", "[ro
   CHECK(fixed.n_boundary_edges() == 4);
 }
 
-TEST_CASE("--repair: subcommands repair the file first, say what changed, and map source vertices",
+TEST_CASE("subcommands with --repair repair the file first, say what changed, and map source vertices",
           "[robust][cli]") {
   Scratch s;
   // Two triangles with their shared edge's vertices duplicated, a duplicate face, an unused vertex.

@@ -1,10 +1,11 @@
 // tests/apps/test_metrics.cpp — the comparison metrics of apps/metrics.h against independent
 // computations: negative off-diagonal ratio by hand, condition number against dense eigenvalues,
-// 3D conformal distortion zero for similarities and positive for a shear.
+// conformal distortion of a deformed copy zero for similarities and positive for a shear.
 #include <Eigen/Eigenvalues>
 #include <catch2/catch.hpp>
 
 #include "apps/metrics.h"
+#include "apps/parametrization.h"
 #include "dec/generators.h"
 #include "operators/laplacians.h"
 
