@@ -48,6 +48,21 @@ Eigen::VectorXd least_norm_affine_weights(const PolygonPositions& Y, const Eigen
 
 PolygonPositions centred(const PolygonPositions& X) { return X.rowwise() - X.colwise().mean(); }
 
+// The normal equations A y = b of the squared fan area E(y) = 1/2 sum_k |e_k x (y - y_k)|^2 of the
+// corners Y (eq. 38): A = sum_k (|e_k|^2 I - e_k e_k^T), b = sum_k (|e_k|^2 I - e_k e_k^T) y_k.
+std::pair<Eigen::Matrix3d, Eigen::Vector3d> squared_area_system(const PolygonPositions& Y) {
+  const int n = int(Y.rows());
+  Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d b = Eigen::Vector3d::Zero();
+  for (int k = 0; k < n; ++k) {
+    const Eigen::Vector3d e = (Y.row((k + 1) % n) - Y.row(k)).transpose();
+    const Eigen::Matrix3d B = e.squaredNorm() * Eigen::Matrix3d::Identity() - e * e.transpose();
+    A += B;
+    b += B * Y.row(k).transpose();
+  }
+  return {A, b};
+}
+
 // Squared diameter proxy of a polygon: the largest squared distance of a corner from the centroid.
 double scale2(const PolygonPositions& Y) { return Y.rowwise().squaredNorm().maxCoeff(); }
 
@@ -83,20 +98,11 @@ std::string to_string(VirtualVertexRule rule) {
 Eigen::VectorXd centroid_weights(int n) { return Eigen::VectorXd::Constant(n, 1.0 / n); }
 
 Eigen::VectorXd squared_area_weights(const PolygonPositions& X) {
-  const int n = int(X.rows());
   const Eigen::RowVector3d c = X.colwise().mean();
   const PolygonPositions Y = X.rowwise() - c;  // centred positions
 
-  // Minimizer over R^3 of E(y) = 1/2 sum_k |e_k x (y - y_k)|^2: A y = b with
-  // A = sum_k (|e_k|^2 I - e_k e_k^T), b = sum_k (|e_k|^2 I - e_k e_k^T) y_k.
-  Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
-  Eigen::Vector3d b = Eigen::Vector3d::Zero();
-  for (int k = 0; k < n; ++k) {
-    const Eigen::Vector3d e = (Y.row((k + 1) % n) - Y.row(k)).transpose();
-    const Eigen::Matrix3d B = e.squaredNorm() * Eigen::Matrix3d::Identity() - e * e.transpose();
-    A += B;
-    b += B * Y.row(k).transpose();
-  }
+  // Minimizer over R^3 of the squared fan area: A y = b.
+  const auto [A, b] = squared_area_system(Y);
   const Eigen::Vector3d y = psd_solve(A, b);
 
   return least_norm_affine_weights(Y, y);
@@ -195,14 +201,7 @@ Eigen::VectorXd convex_weights(const PolygonPositions& X) {
   const PolygonPositions Y = centred(X);
   // E(w) = 1/2 sum_k |e_k x (Y^T w - y_k)|^2 = 1/2 |C w - r|^2 + const with A = L L^T, A y* = b
   // (A, b as in squared_area_weights; b lies in the range of A), C = L^T Y^T (3 x n), r = L^T y*.
-  Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
-  Eigen::Vector3d b = Eigen::Vector3d::Zero();
-  for (int k = 0; k < n; ++k) {
-    const Eigen::Vector3d e = (Y.row((k + 1) % n) - Y.row(k)).transpose();
-    const Eigen::Matrix3d B = e.squaredNorm() * Eigen::Matrix3d::Identity() - e * e.transpose();
-    A += B;
-    b += B * Y.row(k).transpose();
-  }
+  const auto [A, b] = squared_area_system(Y);
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(A);
   const Eigen::Matrix3d Lt = es.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal() * es.eigenvectors().transpose();
   const Eigen::MatrixXd C = Lt * Y.transpose();
