@@ -4,9 +4,11 @@
 #pragma once
 
 #include <Eigen/Sparse>
+#include <cmath>
 #include <catch2/catch.hpp>
 #include <cstdlib>
 #include <filesystem>
+#include <random>
 #include <string>
 
 namespace polydec::test {
@@ -25,6 +27,16 @@ inline std::string shared_path(const std::string& name) {
 inline double relative_difference(const Eigen::SparseMatrix<double>& A, const Eigen::SparseMatrix<double>& B) {
   const double scale = std::max({A.norm(), B.norm(), 1e-300});
   return (A - B).norm() / scale;
+}
+
+// A star-shaped n-gon with radii in [0.6, 1] around the origin, in the plane z = 0 or with z in
+// [-0.2, 0.2] (n x 3 corner positions).
+inline Eigen::Matrix<double, Eigen::Dynamic, 3> star_polygon(int n, std::mt19937& rng, bool planar) {
+  std::uniform_real_distribution<double> r(0.6, 1.0), z(-0.2, 0.2);
+  Eigen::Matrix<double, Eigen::Dynamic, 3> X(n, 3);
+  for (int k = 0; k < n; ++k)
+    X.row(k) << r(rng) * std::cos(2 * M_PI * k / n), r(rng) * std::sin(2 * M_PI * k / n), planar ? 0.0 : z(rng);
+  return X;
 }
 
 }  // namespace polydec::test

@@ -12,16 +12,9 @@
 #include <random>
 
 using namespace polydec;
+using test::star_polygon;
 
 namespace {
-
-PolygonPositions star_polygon(int n, std::mt19937& rng, bool planar) {
-  std::uniform_real_distribution<double> r(0.6, 1.0), z(-0.2, 0.2);
-  PolygonPositions X(n, 3);
-  for (int k = 0; k < n; ++k)
-    X.row(k) << r(rng) * std::cos(2 * M_PI * k / n), r(rng) * std::sin(2 * M_PI * k / n), planar ? 0.0 : z(rng);
-  return X;
-}
 
 double polygon_area(const PolygonPositions& X) {
   Eigen::Vector3d a = Eigen::Vector3d::Zero();

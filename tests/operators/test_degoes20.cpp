@@ -13,17 +13,7 @@
 
 using namespace polydec;
 
-namespace {
-
-PolygonPositions star_polygon(int n, std::mt19937& rng, bool planar) {
-  std::uniform_real_distribution<double> r(0.6, 1.0), z(-0.2, 0.2);
-  PolygonPositions X(n, 3);
-  for (int k = 0; k < n; ++k)
-    X.row(k) << r(rng) * std::cos(2 * M_PI * k / n), r(rng) * std::sin(2 * M_PI * k / n), planar ? 0.0 : z(rng);
-  return X;
-}
-
-}  // namespace
+using test::star_polygon;
 
 TEST_CASE("degoes20 gradient is exact on linear functions of planar polygons", "[compare][degoes20]") {
   std::mt19937 rng(8);
