@@ -1,5 +1,6 @@
 // dec/mesh_checks.cpp — diagnostics of a validated mesh.
 #include "dec/mesh_checks.h"
+#include "dec/face_shape.h"
 #include "dec/union_find.h"
 
 #include <fmt/format.h>
@@ -70,23 +71,15 @@ MeshReport check_mesh(const Mesh& mesh, const MeshCheckOptions& options) {
   // Duplicate faces: same cyclic vertex sequence, either direction.
   std::map<std::vector<int>, int> seen;
   for (int f = 0; f < nf; ++f) {
-    const auto face = mesh.face(f);
-    const size_t n = face.size();
-    const size_t m = size_t(std::min_element(face.begin(), face.end()) - face.begin());
-    std::vector<int> fwd(n), bwd(n);
-    for (size_t k = 0; k < n; ++k) {
-      fwd[k] = face[(m + k) % n];
-      bwd[k] = face[(m + n - k) % n];
-    }
-    auto [it, inserted] = seen.emplace(std::min(fwd, bwd), f);
+    bool reversed = false;
+    auto [it, inserted] = seen.emplace(canonical_cycle(mesh.face(f), reversed), f);
     if (!inserted) r.duplicate_faces.emplace_back(f, it->second);
   }
 
   // Shape of each face: singular values of the centred corners; corners with collinear edges.
   for (int f = 0; f < nf; ++f) {
     const PolygonPositions X = face_positions(mesh, f);
-    const Eigen::VectorXd sigma =
-        Eigen::JacobiSVD<Eigen::MatrixXd>(Eigen::MatrixXd(X.rowwise() - X.colwise().mean())).singularValues();
+    const Eigen::Vector3d sigma = centred_singular_values(X);
     if (sigma[1] <= options.zero_area_tolerance * sigma[0])
       r.zero_area_faces.push_back(f);
     else if (sigma[1] < options.thin_ratio * sigma[0])

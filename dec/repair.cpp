@@ -1,5 +1,6 @@
 // dec/repair.cpp — opt-in repair steps on a polygon soup, each reporting what it changed.
 #include "dec/repair.h"
+#include "dec/face_shape.h"
 #include "dec/union_find.h"
 
 #include <fmt/format.h>
@@ -70,8 +71,7 @@ std::vector<int> keep_vertices(PolygonSoup& soup, const std::vector<int>& repres
 bool collinear(const PolygonSoup& soup, const std::vector<int>& face, double tolerance) {
   Eigen::MatrixXd Y(face.size(), 3);
   for (size_t k = 0; k < face.size(); ++k) Y.row(long(k)) = soup.positions.row(face[k]);
-  Y = Y.rowwise() - Y.colwise().mean();
-  const Eigen::VectorXd sigma = Eigen::JacobiSVD<Eigen::MatrixXd>(Y).singularValues();
+  const Eigen::Vector3d sigma = centred_singular_values(Y);
   return sigma[1] <= tolerance * sigma[0];
 }
 
@@ -191,15 +191,9 @@ FaceDeduplication remove_duplicate_faces(PolygonSoup& soup) {
   for (size_t f = 0; f < faces.size(); ++f) {
     const auto& face = faces[f];
     if (face.empty()) continue;
-    const size_t n = face.size();
-    const size_t m = size_t(std::min_element(face.begin(), face.end()) - face.begin());
-    std::vector<int> fwd(n), bwd(n);
-    for (size_t k = 0; k < n; ++k) {
-      fwd[k] = face[(m + k) % n];
-      bwd[k] = face[(m + n - k) % n];
-    }
-    const bool reversed = bwd < fwd;
-    auto [it, inserted] = seen.emplace(reversed ? bwd : fwd, std::make_pair(int(f), reversed));
+    bool reversed = false;
+    std::vector<int> key = canonical_cycle(face, reversed);
+    auto [it, inserted] = seen.emplace(std::move(key), std::make_pair(int(f), reversed));
     if (inserted) continue;
     keep[f] = 0;
     if (it->second.second == reversed)

@@ -1,5 +1,6 @@
 // operators/cotan.cpp — cotangent stiffness, Galerkin mass and triangle gradients.
 #include "operators/cotan.h"
+#include "operators/gradient.h"
 
 #include <algorithm>
 #include <cmath>
@@ -76,16 +77,6 @@ TriangleOperators assemble(int nv, const std::vector<Eigen::Vector3i>& tris,
     ops.D = -(w3.asDiagonal() * ops.G).transpose();
   }
   return ops;
-}
-
-// Hat-function gradients of triangle (p0, p1, p2): N x e_a / |N|^2 with e_a the edge opposite a.
-void hat_gradients(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2,
-                   Eigen::Vector3d g[3]) {
-  const Eigen::Vector3d N = (p1 - p0).cross(p2 - p0);
-  const double n2 = N.squaredNorm();
-  g[0] = N.cross(p2 - p1) / n2;
-  g[1] = N.cross(p0 - p2) / n2;
-  g[2] = N.cross(p1 - p0) / n2;
 }
 
 }  // namespace

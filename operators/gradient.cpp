@@ -3,10 +3,6 @@
 
 namespace polydec {
 
-namespace {
-
-// Gradients of the three hat functions of triangle (p0, p1, p2): N x e_a / |N|^2, with N the
-// triangle's (unnormalized) normal and e_a the counter-clockwise edge opposite corner a.
 void hat_gradients(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2,
                    Eigen::Vector3d g[3]) {
   const Eigen::Vector3d N = (p1 - p0).cross(p2 - p0);
@@ -15,8 +11,6 @@ void hat_gradients(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const E
   g[1] = N.cross(p0 - p2) / n2;
   g[2] = N.cross(p1 - p0) / n2;
 }
-
-}  // namespace
 
 Eigen::VectorXd fan_areas(const Mesh& mesh, const Refinement& refinement) {
   Eigen::VectorXd a(mesh.n_halfedges());
