@@ -33,32 +33,97 @@ Eigen::Vector3d psd_solve(const Eigen::Matrix3d& A, const Eigen::Vector3d& b) {
   return x;
 }
 
-// Least-norm w with sum w = 1 and Y^T w = y, for centred positions Y. Because Y is centred, the
-// row of ones is orthogonal to the columns of Y, so w = 1/n + pinv(Y^T) y. The pseudo-inverse
-// comes from the SVD of Y itself (not of Y^T Y, which would square the condition number of nearly
-// planar polygons); singular values below sqrt(kRankTolerance) of the largest count as zero.
+// Least-norm w with sum w = 1 and Y^T w = y, for the n centred corners Y (row by row, 3n
+// doubles; overwritten). Because Y is centred, the row of ones is orthogonal to the columns of Y,
+// so w = 1/n + pinv(Y^T) y. Y = Q R by Householder reflections (backward stable: the normal
+// equations Y^T Y would square the condition number of nearly planar polygons); singular values
+// of R (those of Y) below sqrt(kRankTolerance) of the largest count as zero. When the bound
+// sigma_min / sigma_max >= 1 / (|R|_F |R^-1|_F) already clears that cut, R is full rank and
+// w = 1/n + Q R^-T y without an SVD; otherwise the SVD of the 3x3 R decides the rank.
+void least_norm_affine_weights(double* Y, int n, const double y[3], double* w) {
+  double R[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}, beta[3] = {0, 0, 0};
+  const int m = std::min(n, 3);
+  for (int j = 0; j < m; ++j) {
+    double norm2 = 0;
+    for (int k = j; k < n; ++k) norm2 += Y[3 * k + j] * Y[3 * k + j];
+    const double x0 = Y[3 * j + j], alpha = x0 > 0 ? -std::sqrt(norm2) : std::sqrt(norm2);
+    const double v0 = x0 - alpha, vv = norm2 - x0 * x0 + v0 * v0;
+    Y[3 * j + j] = v0;  // v = (x0 - alpha, x1, ...) stored in column j, rows j..n-1
+    beta[j] = vv > 0 ? 2.0 / vv : 0.0;
+    R[j][j] = vv > 0 ? alpha : x0;
+    for (int c = j + 1; c < 3; ++c) {
+      double dot = 0;
+      for (int k = j; k < n; ++k) dot += Y[3 * k + j] * Y[3 * k + c];
+      dot *= beta[j];
+      for (int k = j; k < n; ++k) Y[3 * k + c] -= dot * Y[3 * k + j];
+      R[j][c] = Y[3 * j + c];
+    }
+  }
+  // z = pinv(R^T) y (3 entries, the rest of Q^T's range is zero).
+  double z[3] = {0, 0, 0};
+  const double Rf = std::sqrt(R[0][0] * R[0][0] + R[0][1] * R[0][1] + R[0][2] * R[0][2] + R[1][1] * R[1][1] +
+                              R[1][2] * R[1][2] + R[2][2] * R[2][2]);
+  bool full_rank = false;
+  if (m == 3 && R[0][0] != 0 && R[1][1] != 0 && R[2][2] != 0) {
+    // Inverse of the upper-triangular R.
+    const double i00 = 1 / R[0][0], i11 = 1 / R[1][1], i22 = 1 / R[2][2];
+    const double i01 = -R[0][1] * i00 * i11, i12 = -R[1][2] * i11 * i22;
+    const double i02 = -(R[0][1] * i12 + R[0][2] * i22) * i00;
+    const double Rinv_f = std::sqrt(i00 * i00 + i11 * i11 + i22 * i22 + i01 * i01 + i12 * i12 + i02 * i02);
+    if (Rf * Rinv_f * std::sqrt(kRankTolerance) < 1) {
+      full_rank = true;
+      // R^T z = y: forward substitution with the lower-triangular R^T.
+      z[0] = y[0] / R[0][0];
+      z[1] = (y[1] - R[0][1] * z[0]) / R[1][1];
+      z[2] = (y[2] - R[0][2] * z[0] - R[1][2] * z[1]) / R[2][2];
+    }
+  }
+  if (!full_rank && Rf > 0) {
+    // R = U S V^T: pinv(R^T) y = U S^+ V^T y.
+    Eigen::Matrix3d Rm;
+    Rm << R[0][0], R[0][1], R[0][2], 0, R[1][1], R[1][2], 0, 0, R[2][2];
+    Eigen::JacobiSVD<Eigen::Matrix3d> svd(Rm, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    const Eigen::Vector3d sigma = svd.singularValues();
+    Eigen::Vector3d t = svd.matrixV().transpose() * Eigen::Vector3d(y[0], y[1], y[2]);
+    for (int i = 0; i < 3; ++i) t[i] = sigma[i] > std::sqrt(kRankTolerance) * sigma[0] ? t[i] / sigma[i] : 0.0;
+    const Eigen::Vector3d u = svd.matrixU() * t;
+    for (int i = 0; i < m; ++i) z[i] = u[i];
+  }
+  // w = 1/n + Q (z, 0, ..., 0): apply the reflections in reverse order.
+  for (int k = 0; k < n; ++k) w[k] = k < m ? z[k] : 0.0;
+  for (int j = m - 1; j >= 0; --j) {
+    double dot = 0;
+    for (int k = j; k < n; ++k) dot += Y[3 * k + j] * w[k];
+    dot *= beta[j];
+    for (int k = j; k < n; ++k) w[k] -= dot * Y[3 * k + j];
+  }
+  for (int k = 0; k < n; ++k) w[k] += 1.0 / n;
+}
+
 Eigen::VectorXd least_norm_affine_weights(const PolygonPositions& Y, const Eigen::Vector3d& y) {
-  Eigen::JacobiSVD<Eigen::MatrixXd> svd(Eigen::MatrixXd(Y), Eigen::ComputeThinU | Eigen::ComputeThinV);
-  const Eigen::Vector3d sigma = svd.singularValues();
-  const double cut = std::sqrt(kRankTolerance) * sigma[0];
-  Eigen::Vector3d z = svd.matrixV().transpose() * y;
-  for (int i = 0; i < 3; ++i) z[i] = sigma[i] > cut ? z[i] / sigma[i] : 0.0;
-  return Eigen::VectorXd::Constant(Y.rows(), 1.0 / double(Y.rows())) + svd.matrixU() * z;
+  const int n = int(Y.rows());
+  std::vector<double> Yr(3 * size_t(n));
+  for (int k = 0; k < n; ++k)
+    for (int d = 0; d < 3; ++d) Yr[3 * k + d] = Y(k, d);
+  Eigen::VectorXd w(n);
+  least_norm_affine_weights(Yr.data(), n, y.data(), w.data());
+  return w;
 }
 
 PolygonPositions centred(const PolygonPositions& X) { return X.rowwise() - X.colwise().mean(); }
 
 // The normal equations A y = b of the squared fan area E(y) = 1/2 sum_k |e_k x (y - y_k)|^2 of the
-// corners Y (eq. 38): A = sum_k (|e_k|^2 I - e_k e_k^T), b = sum_k (|e_k|^2 I - e_k e_k^T) y_k.
-std::pair<Eigen::Matrix3d, Eigen::Vector3d> squared_area_system(const PolygonPositions& Y) {
-  const int n = int(Y.rows());
+// n corners Y (row by row; eq. 38): A = sum_k (|e_k|^2 I - e_k e_k^T), b = sum_k (|e_k|^2 I - e_k e_k^T) y_k.
+std::pair<Eigen::Matrix3d, Eigen::Vector3d> squared_area_system(const double* Y, int n) {
   Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
   Eigen::Vector3d b = Eigen::Vector3d::Zero();
   for (int k = 0; k < n; ++k) {
-    const Eigen::Vector3d e = (Y.row((k + 1) % n) - Y.row(k)).transpose();
-    const Eigen::Matrix3d B = e.squaredNorm() * Eigen::Matrix3d::Identity() - e * e.transpose();
-    A += B;
-    b += B * Y.row(k).transpose();
+    const Eigen::Map<const Eigen::Vector3d> p(Y + 3 * k), q(Y + 3 * (k + 1 == n ? 0 : k + 1));
+    const Eigen::Vector3d e = q - p;
+    const double ee = e.squaredNorm();
+    A -= e * e.transpose();
+    A.diagonal().array() += ee;
+    b += ee * p - e * e.dot(p);
   }
   return {A, b};
 }
@@ -98,24 +163,57 @@ std::string to_string(VirtualVertexRule rule) {
 Eigen::VectorXd centroid_weights(int n) { return Eigen::VectorXd::Constant(n, 1.0 / n); }
 
 Eigen::VectorXd squared_area_weights(const PolygonPositions& X) {
-  const Eigen::RowVector3d c = X.colwise().mean();
-  const PolygonPositions Y = X.rowwise() - c;  // centred positions
-
-  // Minimizer over R^3 of the squared fan area: A y = b.
-  const auto [A, b] = squared_area_system(Y);
-  const Eigen::Vector3d y = psd_solve(A, b);
-
-  return least_norm_affine_weights(Y, y);
+  const int n = int(X.rows());
+  std::vector<double> x(3 * size_t(n)), work(3 * size_t(n));
+  for (int k = 0; k < n; ++k)
+    for (int d = 0; d < 3; ++d) x[3 * k + d] = X(k, d);
+  Eigen::VectorXd w(n);
+  squared_area_weights(x.data(), n, w.data(), work.data());
+  return w;
 }
 
-void squared_area_weights(const double* x, int n, double* w, double* /*work*/) {
-  // The same computation as the Eigen route above, so that refine() and squared_area_weights(X)
-  // agree bit for bit. (An unrolled closed-form route was faster but lost accuracy far from the
-  // origin: M changed by 2.5e-9 under a translation by 1e3 on noisy-sphere.off.)
-  PolygonPositions X(n, 3);
-  for (int k = 0; k < n; ++k) X.row(k) << x[3 * k], x[3 * k + 1], x[3 * k + 2];
-  const Eigen::VectorXd wv = squared_area_weights(X);
-  for (int k = 0; k < n; ++k) w[k] = wv[k];
+void squared_area_weights(const double* x, int n, double* w, double* work) {
+  // Centred corners Y (so that nothing depends on where the polygon sits), in two passes: far
+  // from the origin the rounded mean c leaves a residual mean of ~eps |c| in Y, which the
+  // least-norm weights below (they assume sum_k Y_k = 0) would amplify by the inverse of the
+  // polygon's out-of-plane extent; the second pass removes it down to ~eps |Y|.
+  double* Y = work;
+  for (int pass = 0; pass < 2; ++pass) {
+    const double* src = pass == 0 ? x : Y;
+    double c[3] = {0, 0, 0};
+    for (int k = 0; k < n; ++k)
+      for (int d = 0; d < 3; ++d) c[d] += src[3 * k + d];
+    for (int d = 0; d < 3; ++d) c[d] /= n;
+    for (int k = 0; k < n; ++k)
+      for (int d = 0; d < 3; ++d) Y[3 * k + d] = src[3 * k + d] - c[d];
+  }
+  // The minimizer y of the squared fan area: A y = b (eq. 38). A is positive semi-definite and
+  // singular only for degenerate polygons (all edges parallel). LDL^T when every pivot exceeds
+  // 1e-3 of the trace: then lambda_min >= 1e-9 lambda_max (the pivots' product is det A), above
+  // the eigenvalue cut of psd_solve(), which handles the rest.
+  const auto [A, b] = squared_area_system(Y, n);
+  const double tau = 1e-3 * A.trace();
+  double y[3];
+  bool solved = false;
+  if (A(0, 0) > tau) {
+    const double l10 = A(1, 0) / A(0, 0), l20 = A(2, 0) / A(0, 0);
+    const double d1 = A(1, 1) - l10 * A(1, 0), a21 = A(2, 1) - l10 * A(2, 0);
+    if (d1 > tau) {
+      const double l21 = a21 / d1, d2 = A(2, 2) - l20 * A(2, 0) - l21 * a21;
+      if (d2 > tau) {
+        const double f0 = b[0], f1 = b[1] - l10 * f0, f2 = b[2] - l20 * f0 - l21 * f1;
+        y[2] = f2 / d2;
+        y[1] = f1 / d1 - l21 * y[2];
+        y[0] = f0 / A(0, 0) - l10 * y[1] - l20 * y[2];
+        solved = true;
+      }
+    }
+  }
+  if (!solved) {
+    const Eigen::Vector3d ys = psd_solve(A, b);
+    for (int d = 0; d < 3; ++d) y[d] = ys[d];
+  }
+  least_norm_affine_weights(Y, n, y, w);
 }
 
 Eigen::VectorXd virtual_vertex_weights(const PolygonPositions& X, VirtualVertexRule rule) {
@@ -201,7 +299,8 @@ Eigen::VectorXd convex_weights(const PolygonPositions& X) {
   const PolygonPositions Y = centred(X);
   // E(w) = 1/2 sum_k |e_k x (Y^T w - y_k)|^2 = 1/2 |C w - r|^2 + const with A = L L^T, A y* = b
   // (A, b as in squared_area_weights; b lies in the range of A), C = L^T Y^T (3 x n), r = L^T y*.
-  const auto [A, b] = squared_area_system(Y);
+  const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> Yr = Y;
+  const auto [A, b] = squared_area_system(Yr.data(), n);
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(A);
   const Eigen::Matrix3d Lt = es.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal() * es.eigenvectors().transpose();
   const Eigen::MatrixXd C = Lt * Y.transpose();

@@ -27,10 +27,12 @@ VirtualVertexRule parse_virtual_vertex_rule(const std::string& name);
 std::string to_string(VirtualVertexRule rule);
 
 // Least-norm affine weights w (sum 1) of the point minimizing sum_i area(x_i, x_{i+1}, x)^2
-// (eq. 16 and 38). Computed in centred coordinates so that the result does not depend on where
-// the polygon sits or how large it is: the minimizer solves a 3x3 system, and the least-norm
-// weights reproducing it come from the pseudo-inverse of the centred positions, whose rank
-// (2 for planar, 3 for non-planar polygons) is decided relative to the polygon's own extent.
+// (eq. 16 and 38). Computed in centred coordinates (two-pass mean) so that the result does not
+// depend on where the polygon sits or how large it is: the minimizer solves a 3x3 system (LDL^T,
+// or an eigen-decomposition when it is ill-conditioned), and the least-norm weights reproducing
+// it come from the pseudo-inverse of the centred positions (Householder QR, then R^-T or the SVD
+// of R), whose rank (2 for planar, 3 for non-planar polygons) is decided relative to the
+// polygon's own extent. No allocation in the pointer version below.
 Eigen::VectorXd squared_area_weights(const PolygonPositions& X);
 // The same weights without allocating: x holds the n corners row by row (x[3k..3k+2]), the
 // n weights are written to w; `work` needs 3n doubles of scratch. For per-face inner loops.

@@ -104,7 +104,7 @@ TEST_CASE("fast S and M equal the refined cotangent route P^T S_tri P", "[perf]"
   }
 }
 
-TEST_CASE("allocation-free squared-area weights equal the general route and eq. (38)", "[perf]") {
+TEST_CASE("allocation-free squared-area weights equal an SVD route and eq. (38)", "[perf]") {
   // Eq. (38) solved as in the authors' code: the normal equations of the squared fan areas plus
   // the affine constraint, least-norm by a complete orthogonal decomposition.
   auto reference = [](const PolygonPositions& X) {
@@ -123,7 +123,28 @@ TEST_CASE("allocation-free squared-area weights equal the general route and eq. 
     rhs(n) = 1.0;
     return Eigen::VectorXd(K.completeOrthogonalDecomposition().solve(rhs));
   };
-  // The raw-pointer route used by refine(): LDL^T, closed-form planar solve, or fallback.
+  // An independent route: the minimizer by an eigen-decomposition of A, the least-norm weights by
+  // the SVD of the centred corners (the library uses LDL^T, Householder QR and R^-T, or the
+  // SVD of R near the rank cut).
+  auto svd_route = [](const PolygonPositions& X) {
+    const int n = int(X.rows());
+    const PolygonPositions Y = X.rowwise() - X.colwise().mean();
+    Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d b = Eigen::Vector3d::Zero();
+    for (int k = 0; k < n; ++k) {
+      const Eigen::Vector3d e = (Y.row((k + 1) % n) - Y.row(k)).transpose();
+      const Eigen::Matrix3d B = e.squaredNorm() * Eigen::Matrix3d::Identity() - e * e.transpose();
+      A += B;
+      b += B * Y.row(k).transpose();
+    }
+    const Eigen::Vector3d y = A.ldlt().solve(b);
+    Eigen::JacobiSVD<Eigen::MatrixXd> svd(Eigen::MatrixXd(Y), Eigen::ComputeThinU | Eigen::ComputeThinV);
+    const Eigen::Vector3d sigma = svd.singularValues();
+    Eigen::Vector3d z = svd.matrixV().transpose() * y;
+    for (int i = 0; i < 3; ++i) z[i] = sigma[i] > 1e-5 * sigma[0] ? z[i] / sigma[i] : 0.0;
+    return Eigen::VectorXd(Eigen::VectorXd::Constant(n, 1.0 / n) + svd.matrixU() * z);
+  };
+  // The raw-pointer route used by refine().
   auto fast = [](const PolygonPositions& X) {
     const int n = int(X.rows());
     std::vector<double> x(3 * n), work(3 * n);
@@ -137,8 +158,8 @@ TEST_CASE("allocation-free squared-area weights equal the general route and eq. 
   std::uniform_real_distribution<double> U(-1.0, 1.0);
   for (int n = 3; n <= 12; ++n)
     // Planar, planar up to 1e-9 (both routes drop the normal direction), nearly planar but
-    // kept (fallback route), non-planar (LDL^T route). Bumps near the rank cut (~1e-5 of the
-    // size) are avoided: there the weights jump between the two cases by design.
+    // kept, non-planar. Bumps near the rank cut (~1e-5 of the size) are avoided: there the
+    // weights jump between the two cases by design.
     for (double bump : {0.0, 1e-9, 1e-3, 0.05, 0.3}) {
       PolygonPositions X(n, 3);
       for (int k = 0; k < n; ++k) {
@@ -146,9 +167,10 @@ TEST_CASE("allocation-free squared-area weights equal the general route and eq. 
         X.row(k) << rad * std::cos(phi), rad * std::sin(phi), bump * U(rng);
       }
       INFO("n " << n << " bump " << bump);
-      const Eigen::VectorXd w = fast(X), general = squared_area_weights(X);
+      const Eigen::VectorXd w = fast(X), general = svd_route(X);
       CHECK(std::abs(w.sum() - 1.0) < 1e-13);
       CHECK((w - general).norm() < 1e-9 * general.norm());
+      CHECK((squared_area_weights(X) - w).norm() == 0.0);
       if (bump >= 0.05 || bump == 0.0) CHECK((w - reference(X)).norm() < 1e-9 * w.norm());
       // Moved and shrunk: the weights do not depend on position or scale.
       const PolygonPositions Y = (X * 1e-3).rowwise() + Eigen::RowVector3d(2e-3, -1e-3, 5e-4);
