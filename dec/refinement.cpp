@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <thread>
+#include <vector>
 
 namespace polydec {
 
@@ -20,7 +22,7 @@ namespace {
 // Virtual vertex and fan classification of face f with N corners (0: any), written into r.
 // x, Y and work are scratch of 3 * max_face_size doubles each.
 template <int N>
-void refine_face(const Mesh& mesh, int f, Refinement& r, double* x, double* Y, double* work) {
+void refine_face(const Mesh& mesh, int f, Refinement& r, FanQuality& count, double* x, double* Y, double* work) {
   const int h0 = mesh.face_offsets()[f], n = N > 0 ? N : mesh.face_offsets()[f + 1] - h0;
   const int* face = mesh.face_indices().data() + h0;
   const Eigen::MatrixX3d& P = mesh.positions();
@@ -77,11 +79,11 @@ void refine_face(const Mesh& mesh, int f, Refinement& r, double* x, double* Y, d
     else if (area2[0] * normal[0] + area2[1] * normal[1] + area2[2] * normal[2] < 0)
       quality = FanTriangle::Inverted;
     r.fan[h0 + k] = quality;
-    if (quality == FanTriangle::Degenerate) ++r.quality.n_degenerate;
-    if (quality == FanTriangle::Inverted) ++r.quality.n_inverted;
+    if (quality == FanTriangle::Degenerate) ++count.n_degenerate;
+    if (quality == FanTriangle::Inverted) ++count.n_inverted;
     affected = affected || quality != FanTriangle::Valid;
   }
-  if (affected) ++r.quality.n_faces_affected;
+  if (affected) ++count.n_faces_affected;
 }
 
 }  // namespace
@@ -98,22 +100,38 @@ Refinement refine(const Mesh& mesh, const RefinementOptions& options) {
   r.fan.reserve(mesh.n_halfedges());
   advise_huge_pages(r.fan.data(), mesh.n_halfedges());
   r.fan.assign(mesh.n_halfedges(), FanTriangle::Valid);
-  // Scratch sized once for the largest face: corner positions (row-major), centred positions
-  // and the weights' work space. No allocation per face.
-  const int nmax = mesh.max_face_size();
-  std::vector<double> buffer(9 * size_t(nmax));
-  double* x = buffer.data();
-  double* Y = x + 3 * nmax;
-  double* work = Y + 3 * nmax;
-  const int* offsets = mesh.face_offsets().data();
-  for (int f = 0; f < mesh.n_faces(); ++f) {
-    switch (offsets[f + 1] - offsets[f]) {
-      case 3: refine_face<3>(mesh, f, r, x, Y, work); break;
-      case 4: refine_face<4>(mesh, f, r, x, Y, work); break;
-      case 5: refine_face<5>(mesh, f, r, x, Y, work); break;
-      case 6: refine_face<6>(mesh, f, r, x, Y, work); break;
-      default: refine_face<0>(mesh, f, r, x, Y, work); break;
+  // Faces are independent: T threads take contiguous face ranges, each with its own scratch
+  // (sized once for the largest face: corner positions, centred positions, the weights' work
+  // space; no allocation per face) and its own counts, summed at the end.
+  const int nf = mesh.n_faces(), nmax = mesh.max_face_size();
+  int T = options.threads > 0 ? options.threads : int(std::thread::hardware_concurrency());
+  T = std::clamp(T, 1, std::max(1, nf / 4096));  // a few thousand faces per thread at least
+  std::vector<FanQuality> counts(T);
+  auto work = [&](int t) {
+    std::vector<double> buffer(9 * size_t(nmax));
+    double* x = buffer.data();
+    double* Y = x + 3 * nmax;
+    double* scratch = Y + 3 * nmax;
+    const int* offsets = mesh.face_offsets().data();
+    for (int f = int(long(nf) * t / T), f1 = int(long(nf) * (t + 1) / T); f < f1; ++f) {
+      switch (offsets[f + 1] - offsets[f]) {
+        case 3: refine_face<3>(mesh, f, r, counts[t], x, Y, scratch); break;
+        case 4: refine_face<4>(mesh, f, r, counts[t], x, Y, scratch); break;
+        case 5: refine_face<5>(mesh, f, r, counts[t], x, Y, scratch); break;
+        case 6: refine_face<6>(mesh, f, r, counts[t], x, Y, scratch); break;
+        default: refine_face<0>(mesh, f, r, counts[t], x, Y, scratch); break;
+      }
     }
+  };
+  {
+    std::vector<std::jthread> workers;
+    for (int t = 1; t < T; ++t) workers.emplace_back(work, t);
+    work(0);
+  }
+  for (const FanQuality& c : counts) {
+    r.quality.n_degenerate += c.n_degenerate;
+    r.quality.n_inverted += c.n_inverted;
+    r.quality.n_faces_affected += c.n_faces_affected;
   }
   return r;
 }

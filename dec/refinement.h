@@ -19,6 +19,8 @@ struct RefinementOptions {
   // its length). Degenerate fan triangles get zero stiffness and zero gradient: relative to
   // the triangle's own size, so independent of the mesh's scale and position.
   double degenerate_tolerance = 1e-8;
+  // Threads for the per-face work (0: all hardware threads). Results do not depend on it.
+  int threads = 1;
 };
 
 // Fan-triangle quality, per halfedge.

@@ -40,7 +40,10 @@ Eigen::Vector3d psd_solve(const Eigen::Matrix3d& A, const Eigen::Vector3d& b) {
 // of R (those of Y) below sqrt(kRankTolerance) of the largest count as zero. When the bound
 // sigma_min / sigma_max >= 1 / (|R|_F |R^-1|_F) already clears that cut, R is full rank and
 // w = 1/n + Q R^-T y without an SVD; otherwise the SVD of the 3x3 R decides the rank.
-void least_norm_affine_weights(double* Y, int n, const double y[3], double* w) {
+// N > 0: the corner count fixed at compile time (loops unrolled); N = 0: n_dyn corners.
+template <int N = 0>
+inline void least_norm_affine_weights(double* Y, int n_dyn, const double y[3], double* w) {
+  const int n = N > 0 ? N : n_dyn;
   double R[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}, beta[3] = {0, 0, 0};
   const int m = std::min(n, 3);
   for (int j = 0; j < m; ++j) {
@@ -114,7 +117,9 @@ PolygonPositions centred(const PolygonPositions& X) { return X.rowwise() - X.col
 
 // The normal equations A y = b of the squared fan area E(y) = 1/2 sum_k |e_k x (y - y_k)|^2 of the
 // n corners Y (row by row; eq. 38): A = sum_k (|e_k|^2 I - e_k e_k^T), b = sum_k (|e_k|^2 I - e_k e_k^T) y_k.
-std::pair<Eigen::Matrix3d, Eigen::Vector3d> squared_area_system(const double* Y, int n) {
+template <int N = 0>
+inline std::pair<Eigen::Matrix3d, Eigen::Vector3d> squared_area_system(const double* Y, int n_dyn) {
+  const int n = N > 0 ? N : n_dyn;
   Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
   Eigen::Vector3d b = Eigen::Vector3d::Zero();
   for (int k = 0; k < n; ++k) {
@@ -172,7 +177,11 @@ Eigen::VectorXd squared_area_weights(const PolygonPositions& X) {
   return w;
 }
 
-void squared_area_weights(const double* x, int n, double* w, double* work) {
+namespace {
+
+template <int N>
+void squared_area_weights_n(const double* x, int n_dyn, double* w, double* work) {
+  const int n = N > 0 ? N : n_dyn;
   // Centred corners Y (so that nothing depends on where the polygon sits), in two passes: far
   // from the origin the rounded mean c leaves a residual mean of ~eps |c| in Y, which the
   // least-norm weights below (they assume sum_k Y_k = 0) would amplify by the inverse of the
@@ -191,7 +200,7 @@ void squared_area_weights(const double* x, int n, double* w, double* work) {
   // singular only for degenerate polygons (all edges parallel). LDL^T when every pivot exceeds
   // 1e-3 of the trace: then lambda_min >= 1e-9 lambda_max (the pivots' product is det A), above
   // the eigenvalue cut of psd_solve(), which handles the rest.
-  const auto [A, b] = squared_area_system(Y, n);
+  const auto [A, b] = squared_area_system<N>(Y, n);
   const double tau = 1e-3 * A.trace();
   double y[3];
   bool solved = false;
@@ -213,7 +222,19 @@ void squared_area_weights(const double* x, int n, double* w, double* work) {
     const Eigen::Vector3d ys = psd_solve(A, b);
     for (int d = 0; d < 3; ++d) y[d] = ys[d];
   }
-  least_norm_affine_weights(Y, n, y, w);
+  least_norm_affine_weights<N>(Y, n, y, w);
+}
+
+}  // namespace
+
+void squared_area_weights(const double* x, int n, double* w, double* work) {
+  switch (n) {
+    case 3: squared_area_weights_n<3>(x, n, w, work); break;
+    case 4: squared_area_weights_n<4>(x, n, w, work); break;
+    case 5: squared_area_weights_n<5>(x, n, w, work); break;
+    case 6: squared_area_weights_n<6>(x, n, w, work); break;
+    default: squared_area_weights_n<0>(x, n, w, work); break;
+  }
 }
 
 Eigen::VectorXd virtual_vertex_weights(const PolygonPositions& X, VirtualVertexRule rule) {

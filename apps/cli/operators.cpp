@@ -79,6 +79,7 @@ void run(const Options& o) {
   ropt.rule = parse_virtual_vertex_rule(o.rule);
   AssemblyOptions aopt;
   aopt.threads = o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+  ropt.threads = aopt.threads;
   if (o.repeat > 0) {
     run_timing(o, mesh, ropt, aopt);
     return;

@@ -55,6 +55,16 @@ TEST_CASE("assembly is bitwise identical for any thread count", "[perf]") {
       CHECK(bitwise_equal(one.S, many.S));
       CHECK(bitwise_equal(one.M, many.M));
       CHECK(bitwise_equal(one.M_lumped, many.M_lumped));
+      // The threaded refinement (split by faces).
+      RefinementOptions options;
+      options.threads = T;
+      const Refinement rT = refine(mesh, options);
+      CHECK(std::memcmp(r.weights.data(), rT.weights.data(), sizeof(double) * r.weights.size()) == 0);
+      CHECK(std::memcmp(r.virtual_points.data(), rT.virtual_points.data(), sizeof(double) * r.virtual_points.size()) == 0);
+      CHECK(r.fan == rT.fan);
+      CHECK(r.quality.n_degenerate == rT.quality.n_degenerate);
+      CHECK(r.quality.n_inverted == rT.quality.n_inverted);
+      CHECK(r.quality.n_faces_affected == rT.quality.n_faces_affected);
     }
     // Symmetric bit for bit, so that lumped row sums equal column sums.
     CHECK(bitwise_equal(one.S, SparseMatrix(one.S.transpose())));
