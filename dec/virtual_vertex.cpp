@@ -113,7 +113,12 @@ Eigen::VectorXd least_norm_affine_weights(const PolygonPositions& Y, const Eigen
   return w;
 }
 
-PolygonPositions centred(const PolygonPositions& X) { return X.rowwise() - X.colwise().mean(); }
+// Centred corners, two passes (see squared_area_weights_n: the least-norm weights need sum Y = 0
+// to ~eps |Y|, not ~eps |X|).
+PolygonPositions centred(const PolygonPositions& X) {
+  const PolygonPositions Y = X.rowwise() - X.colwise().mean();
+  return Y.rowwise() - Y.colwise().mean();
+}
 
 // The normal equations A y = b of the squared fan area E(y) = 1/2 sum_k |e_k x (y - y_k)|^2 of the
 // n corners Y (row by row; eq. 38): A = sum_k (|e_k|^2 I - e_k e_k^T), b = sum_k (|e_k|^2 I - e_k e_k^T) y_k.
