@@ -120,7 +120,7 @@ const RegisterCommand reg("operators", "Assemble S, M, lumped M, G, D, P and wri
   app.add_option("--out", o->out, "output directory (required unless --repeat)");
   app.add_option("--virtual-vertex", o->rule, "virtual-vertex rule: squared-area (default), centroid");
   app.add_option("--repeat", o->repeat, "time N assemblies of S, M, lumped M instead of writing files");
-  app.add_option("--threads", o->threads, "assembly threads (default 1; 0: all hardware threads)");
+  app.add_option("--threads", o->threads, "threads for the virtual vertices and the assembly (default 1; 0: all hardware threads)");
   app.add_flag("--json", o->json, "print one JSON object instead of text");
   add_repair_flag(app, o->repair);
   app.callback([o] { run(*o); });
