@@ -319,17 +319,10 @@ class Evaluation {
     for (const auto& [family, grid] : grids)
       for (const std::string& m : kAllMethods) {
         const OperatorSet ops = build_operators(grid, parse_laplacian(m), false);
-        std::vector<int> index(ops.domain.n_vertices(), -1);
-        int k = 0;
+        std::vector<int> boundary;
         for (int v = 0; v < ops.domain.n_vertices(); ++v)
-          if (!ops.domain.is_boundary_vertex(v) && ops.M_lumped[v] > 0) index[v] = k++;
-        std::vector<Eigen::Triplet<double>> t;
-        for (int c = 0; c < ops.S.outerSize(); ++c)
-          for (SparseMatrix::InnerIterator it(ops.S, c); it; ++it)
-            if (index[it.row()] >= 0 && index[it.col()] >= 0) t.emplace_back(index[it.row()], index[it.col()], -it.value());
-        SparseMatrix A(k, k);
-        A.setFromTriplets(t.begin(), t.end());
-        const ConditionEstimate e = condition_number_estimate(A);
+          if (ops.domain.is_boundary_vertex(v)) boundary.push_back(v);
+        const ConditionEstimate e = condition_number_estimate(poisson_free_block(ops, boundary).A);
         r_["poisson_condition"][family][m] = number(e.condition);
       }
     if (!pictures()) return;

@@ -46,15 +46,10 @@ double franke_laplacian(double x, double y) {
   return l1 + l2 + l3 + l4;
 }
 
-Eigen::VectorXd solve_dirichlet_poisson(const OperatorSet& ops, const Eigen::VectorXd& b,
-                                        const std::vector<int>& fixed, const Eigen::VectorXd& values,
-                                        bool lumped_mass) {
+PoissonBlock poisson_free_block(const OperatorSet& ops, const std::vector<int>& fixed) {
   const int nv = int(ops.S.rows());
-  if (b.size() != nv || values.size() != nv)
-    throw std::invalid_argument("Dirichlet Poisson: b and values need one entry per vertex");
-  if (!lumped_mass && ops.M.size() == 0)
-    throw std::invalid_argument("Dirichlet Poisson: Laplacian '" + ops.name + "' defines no unlumped mass");
-  std::vector<int> index(nv, -1);  // interior index, or -1 for fixed vertices
+  PoissonBlock block;
+  block.index.assign(nv, -1);
   std::vector<unsigned char> is_fixed(nv, 0);
   for (int v : fixed) {
     if (v < 0 || v >= nv)
@@ -63,33 +58,41 @@ Eigen::VectorXd solve_dirichlet_poisson(const OperatorSet& ops, const Eigen::Vec
   }
   int n = 0;
   for (int v = 0; v < nv; ++v)
-    if (!is_fixed[v] && ops.M_lumped[v] > 0) index[v] = n++;
+    if (!is_fixed[v] && ops.M_lumped[v] > 0) block.index[v] = n++;
+  std::vector<Eigen::Triplet<double>> t;
+  for (int j = 0; j < ops.S.outerSize(); ++j)
+    if (block.index[j] >= 0)
+      for (SparseMatrix::InnerIterator it(ops.S, j); it; ++it)
+        if (block.index[it.row()] >= 0) t.emplace_back(block.index[it.row()], block.index[j], -it.value());
+  block.A.resize(n, n);
+  block.A.setFromTriplets(t.begin(), t.end());
+  return block;
+}
+
+Eigen::VectorXd solve_dirichlet_poisson(const OperatorSet& ops, const Eigen::VectorXd& b,
+                                        const std::vector<int>& fixed, const Eigen::VectorXd& values,
+                                        bool lumped_mass) {
+  const int nv = int(ops.S.rows());
+  if (b.size() != nv || values.size() != nv)
+    throw std::invalid_argument("Dirichlet Poisson: b and values need one entry per vertex");
+  if (!lumped_mass && ops.M.size() == 0)
+    throw std::invalid_argument("Dirichlet Poisson: Laplacian '" + ops.name + "' defines no unlumped mass");
+  const PoissonBlock block = poisson_free_block(ops, fixed);
   Eigen::VectorXd f = Eigen::VectorXd::Zero(nv);
-  for (int v = 0; v < nv; ++v)
-    if (is_fixed[v]) f[v] = values[v];
+  for (int v : fixed) f[v] = values[v];
+  const int n = int(block.A.rows());
   if (n == 0) return f;
   const Eigen::VectorXd Mb =
       lumped_mass ? Eigen::VectorXd(ops.M_lumped.cwiseProduct(b)) : Eigen::VectorXd(ops.M * b);
-  // -S_II f_I = -(M b)_I + S_IB f_B
+  // -S_II f_I = -(M b)_I + S_IB f_B (f is zero away from the fixed vertices).
+  const Eigen::VectorXd Sf = ops.S * f;
   Eigen::VectorXd rhs(n);
   for (int v = 0; v < nv; ++v)
-    if (index[v] >= 0) rhs[index[v]] = -Mb[v];
-  std::vector<Eigen::Triplet<double>> t;
-  for (int j = 0; j < ops.S.outerSize(); ++j)
-    for (SparseMatrix::InnerIterator it(ops.S, j); it; ++it) {
-      const int r = index[it.row()];
-      if (r < 0) continue;
-      if (index[j] >= 0)
-        t.emplace_back(r, index[j], -it.value());
-      else if (is_fixed[j])
-        rhs[r] += it.value() * f[j];
-    }
-  SparseMatrix A(n, n);
-  A.setFromTriplets(t.begin(), t.end());
+    if (block.index[v] >= 0) rhs[block.index[v]] = Sf[v] - Mb[v];
   const Eigen::VectorXd fI =
-      SparseCholesky(A, "-S restricted to the free vertices (Dirichlet Poisson)").solve(rhs);
+      SparseCholesky(block.A, "-S restricted to the free vertices (Dirichlet Poisson)").solve(rhs);
   for (int v = 0; v < nv; ++v)
-    if (index[v] >= 0) f[v] = fI[index[v]];
+    if (block.index[v] >= 0) f[v] = fI[block.index[v]];
   return f;
 }
 

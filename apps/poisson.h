@@ -18,6 +18,16 @@ namespace polydec {
 double franke(double x, double y);
 double franke_laplacian(double x, double y);
 
+// The Dirichlet Poisson system: A = -S restricted to the free vertices (not in `fixed`, with
+// positive lumped mass; symmetric positive definite when some vertex is fixed on every
+// component), and each vertex's row in it (-1 for the others). Throws std::out_of_range for a
+// fixed index outside the mesh.
+struct PoissonBlock {
+  SparseMatrix A;
+  std::vector<int> index;
+};
+PoissonBlock poisson_free_block(const OperatorSet& operators, const std::vector<int>& fixed);
+
 // Solves S f = M b at the vertices that are not fixed, with f = values at the fixed vertices
 // (`fixed` lists vertex indices of the operator set's domain, `values` has one entry per vertex
 // and is read at the fixed ones). `b` holds the right-hand side per vertex. Every connected

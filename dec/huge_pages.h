@@ -2,7 +2,8 @@
 // huge pages (Linux madvise MADV_HUGEPAGE; a no-op elsewhere and for buffers under 2 MB).
 // First-touch page faults dominate the assembly of large meshes on virtual machines: measured
 // here, one 4 KB fault costs ~13 us, so filling 32 MB takes ~100 ms with 4 KB pages and ~10 ms
-// with 2 MB pages (docs/benchmarks.md). Call it right after allocating, before writing.
+// with 2 MB pages (docs/benchmarks.md). Call it right after allocating, before writing. The
+// environment variable POLYDEC_NO_HUGE_PAGES (any value) turns it off, to measure its effect.
 #pragma once
 
 #include <cstddef>
@@ -18,7 +19,8 @@ namespace polydec {
 inline void advise_huge_pages(const void* data, std::size_t bytes) {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
   constexpr std::uintptr_t kHuge = std::uintptr_t(2) << 20;
-  if (bytes < kHuge || std::getenv("POLYDEC_NO_HUGE_PAGES")) return;
+  static const bool disabled = std::getenv("POLYDEC_NO_HUGE_PAGES") != nullptr;  // read once
+  if (bytes < kHuge || disabled) return;
   const std::uintptr_t begin = (reinterpret_cast<std::uintptr_t>(data) + kHuge - 1) & ~(kHuge - 1);
   const std::uintptr_t end = (reinterpret_cast<std::uintptr_t>(data) + bytes) & ~(kHuge - 1);
   if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);

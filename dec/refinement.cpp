@@ -2,10 +2,10 @@
 #include "dec/refinement.h"
 
 #include "dec/huge_pages.h"
+#include "dec/threads.h"
 
 #include <algorithm>
 #include <cmath>
-#include <thread>
 #include <vector>
 
 namespace polydec {
@@ -104,8 +104,7 @@ Refinement refine(const Mesh& mesh, const RefinementOptions& options) {
   // (sized once for the largest face: corner positions, centred positions, the weights' work
   // space; no allocation per face) and its own counts, summed at the end.
   const int nf = mesh.n_faces(), nmax = mesh.max_face_size();
-  int T = options.threads > 0 ? options.threads : int(std::thread::hardware_concurrency());
-  T = std::clamp(T, 1, std::max(1, nf / 4096));  // a few thousand faces per thread at least
+  const int T = std::min(resolve_threads(options.threads), std::max(1, nf / 4096));  // >= 4096 faces per thread
   std::vector<FanQuality> counts(T);
   auto work = [&](int t) {
     std::vector<double> buffer(9 * size_t(nmax));
@@ -123,11 +122,7 @@ Refinement refine(const Mesh& mesh, const RefinementOptions& options) {
       }
     }
   };
-  {
-    std::vector<std::jthread> workers;
-    for (int t = 1; t < T; ++t) workers.emplace_back(work, t);
-    work(0);
-  }
+  run_on_threads(T, work);
   for (const FanQuality& c : counts) {
     r.quality.n_degenerate += c.n_degenerate;
     r.quality.n_inverted += c.n_inverted;

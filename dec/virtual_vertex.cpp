@@ -103,13 +103,13 @@ inline void least_norm_affine_weights(double* Y, int n_dyn, const double y[3], d
   for (int k = 0; k < n; ++k) w[k] += 1.0 / n;
 }
 
+// Corners row by row (x[3k..3k+2]), the layout of the pointer routines.
+using RowCorners = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
+
 Eigen::VectorXd least_norm_affine_weights(const PolygonPositions& Y, const Eigen::Vector3d& y) {
-  const int n = int(Y.rows());
-  std::vector<double> Yr(3 * size_t(n));
-  for (int k = 0; k < n; ++k)
-    for (int d = 0; d < 3; ++d) Yr[3 * k + d] = Y(k, d);
-  Eigen::VectorXd w(n);
-  least_norm_affine_weights(Yr.data(), n, y.data(), w.data());
+  RowCorners Yr = Y;
+  Eigen::VectorXd w(Y.rows());
+  least_norm_affine_weights(Yr.data(), int(Y.rows()), y.data(), w.data());
   return w;
 }
 
@@ -173,12 +173,10 @@ std::string to_string(VirtualVertexRule rule) {
 Eigen::VectorXd centroid_weights(int n) { return Eigen::VectorXd::Constant(n, 1.0 / n); }
 
 Eigen::VectorXd squared_area_weights(const PolygonPositions& X) {
-  const int n = int(X.rows());
-  std::vector<double> x(3 * size_t(n)), work(3 * size_t(n));
-  for (int k = 0; k < n; ++k)
-    for (int d = 0; d < 3; ++d) x[3 * k + d] = X(k, d);
-  Eigen::VectorXd w(n);
-  squared_area_weights(x.data(), n, w.data(), work.data());
+  const RowCorners x = X;
+  RowCorners work(X.rows(), 3);
+  Eigen::VectorXd w(X.rows());
+  squared_area_weights(x.data(), int(X.rows()), w.data(), work.data());
   return w;
 }
 
@@ -325,7 +323,7 @@ Eigen::VectorXd convex_weights(const PolygonPositions& X) {
   const PolygonPositions Y = centred(X);
   // E(w) = 1/2 sum_k |e_k x (Y^T w - y_k)|^2 = 1/2 |C w - r|^2 + const with A = L L^T, A y* = b
   // (A, b as in squared_area_weights; b lies in the range of A), C = L^T Y^T (3 x n), r = L^T y*.
-  const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> Yr = Y;
+  const RowCorners Yr = Y;
   const auto [A, b] = squared_area_system(Yr.data(), n);
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(A);
   const Eigen::Matrix3d Lt = es.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal() * es.eigenvectors().transpose();

@@ -8,13 +8,13 @@
 #include "operators/laplacian.h"
 
 #include "dec/huge_pages.h"
+#include "dec/threads.h"
 #include "operators/local_matrices.h"
 
 #include <algorithm>
 #include <barrier>
 #include <memory>
 #include <stdexcept>
-#include <thread>
 #include <type_traits>
 #include <utility>
 
@@ -245,18 +245,13 @@ struct Assembler {
       }
       if (lumped) lump(*lumped, col_lo[t], col_lo[t + 1]);
     };
-    std::vector<std::jthread> workers;
-    for (int t = 1; t < T; ++t) workers.emplace_back(work, t);
-    work(0);
+    run_on_threads(T, work);
   }
 };
 
 int thread_count(const AssemblyOptions& options, const Mesh& mesh) {
-  int T = options.threads > 0 ? options.threads : int(std::thread::hardware_concurrency());
-  T = std::max(T, 1);
   // Below a few blocks, threads cost more than they save (results do not depend on T).
-  if (mesh.n_halfedges() < 4 * kBlockHalfedges) T = 1;
-  return T;
+  return mesh.n_halfedges() < 4 * kBlockHalfedges ? 1 : resolve_threads(options.threads);
 }
 
 // Assembles into L with the slots of `fp` and the sparsity structure `structure` (fp.pattern,

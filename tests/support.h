@@ -29,13 +29,16 @@ inline double relative_difference(const Eigen::SparseMatrix<double>& A, const Ei
   return (A - B).norm() / scale;
 }
 
-// A star-shaped n-gon with radii in [0.6, 1] around the origin, in the plane z = 0 or with z in
-// [-0.2, 0.2] (n x 3 corner positions).
-inline Eigen::Matrix<double, Eigen::Dynamic, 3> star_polygon(int n, std::mt19937& rng, bool planar) {
-  std::uniform_real_distribution<double> r(0.6, 1.0), z(-0.2, 0.2);
+// A star-shaped n-gon around the origin (n x 3 corner positions): corner k at angle 2 pi k / n
+// and radius uniform in [r_min, r_max], at height uniform in [-height, height] (0: planar).
+inline Eigen::Matrix<double, Eigen::Dynamic, 3> star_polygon(int n, std::mt19937& rng, double r_min, double r_max,
+                                                             double height) {
+  std::uniform_real_distribution<double> r(r_min, r_max), z(-height, height);
   Eigen::Matrix<double, Eigen::Dynamic, 3> X(n, 3);
-  for (int k = 0; k < n; ++k)
-    X.row(k) << r(rng) * std::cos(2 * M_PI * k / n), r(rng) * std::sin(2 * M_PI * k / n), planar ? 0.0 : z(rng);
+  for (int k = 0; k < n; ++k) {
+    const double a = 2 * M_PI * k / n, rad = r(rng);
+    X.row(k) << rad * std::cos(a), rad * std::sin(a), height > 0 ? z(rng) : 0.0;
+  }
   return X;
 }
 

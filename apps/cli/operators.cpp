@@ -4,6 +4,7 @@
 // pattern and values; load time excluded) and writes no files.
 #include "apps/cli/command.h"
 #include "dec/io.h"
+#include "dec/threads.h"
 #include "dec/prolongation.h"
 #include "operators/gradient.h"
 
@@ -11,7 +12,6 @@
 #include <chrono>
 #include <filesystem>
 #include <fmt/format.h>
-#include <thread>
 
 namespace polydec::cli {
 namespace {
@@ -78,7 +78,7 @@ void run(const Options& o) {
   RefinementOptions ropt;
   ropt.rule = parse_virtual_vertex_rule(o.rule);
   AssemblyOptions aopt;
-  aopt.threads = o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+  aopt.threads = resolve_threads(o.threads);
   ropt.threads = aopt.threads;
   if (o.repeat > 0) {
     run_timing(o, mesh, ropt, aopt);

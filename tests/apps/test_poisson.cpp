@@ -1,6 +1,8 @@
 // tests/apps/test_poisson.cpp — Dirichlet Poisson solves: the Franke Laplacian against finite
 // differences, exactness for linear functions, second-order convergence (Figure 9).
+#include <Eigen/Dense>
 #include <cmath>
+#include <stdexcept>
 
 #include "apps/poisson.h"
 #include "dec/generators.h"
@@ -31,6 +33,29 @@ TEST_CASE("poisson: linear functions are reproduced exactly on every grid family
     const Eigen::VectorXd f = solve_dirichlet_poisson(ops, Eigen::VectorXd::Zero(nv), fixed, exact);
     CHECK((f - exact).cwiseAbs().maxCoeff() <= 1e-12);
   }
+}
+
+TEST_CASE("poisson: the free block is -S on the interior vertices, positive definite", "[apps]") {
+  const Mesh mesh = hex_grid(4, 3);
+  const OperatorSet ops = build_operators(mesh, parse_laplacian("ours"), false);
+  const int nv = mesh.n_vertices();
+  std::vector<int> fixed;
+  for (int v = 0; v < nv; ++v)
+    if (mesh.is_boundary_vertex(v)) fixed.push_back(v);
+  const PoissonBlock block = poisson_free_block(ops, fixed);
+  const Eigen::MatrixXd S = Eigen::MatrixXd(ops.S), A = Eigen::MatrixXd(block.A);
+  REQUIRE(A.rows() == nv - int(fixed.size()));
+  int rows = 0;
+  for (int u = 0; u < nv; ++u) {
+    CHECK((block.index[u] < 0) == mesh.is_boundary_vertex(u));
+    if (block.index[u] < 0) continue;
+    ++rows;
+    for (int v = 0; v < nv; ++v)
+      if (block.index[v] >= 0) CHECK(A(block.index[u], block.index[v]) == -S(u, v));
+  }
+  CHECK(rows == A.rows());
+  CHECK(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(A).eigenvalues().minCoeff() > 0);
+  CHECK_THROWS_AS(poisson_free_block(ops, {nv}), std::out_of_range);
 }
 
 TEST_CASE("poisson: quadratic convergence for triangles, quads and hexagons (Figure 9)", "[apps]") {

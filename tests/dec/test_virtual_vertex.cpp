@@ -1,11 +1,13 @@
 // tests/dec/test_virtual_vertex.cpp — squared-area virtual vertex (eq. 15-16, Appendix A).
 #include "dec/virtual_vertex.h"
+#include "tests/support.h"
 
 #include <Eigen/Dense>
 #include <catch2/catch.hpp>
 #include <random>
 
 using namespace polydec;
+using test::star_polygon;
 
 namespace {
 
@@ -19,23 +21,13 @@ double fan_energy(const PolygonPositions& X, const Eigen::Vector3d& x) {
   return e;
 }
 
-PolygonPositions random_polygon(int n, bool planar, std::mt19937& rng) {
-  std::uniform_real_distribution<double> u(-0.3, 0.3);
-  PolygonPositions X(n, 3);
-  for (int k = 0; k < n; ++k) {
-    const double t = 2 * M_PI * k / n, r = 1 + u(rng);
-    X.row(k) << r * std::cos(t), r * std::sin(t), planar ? 0.0 : u(rng);
-  }
-  return X;
-}
-
 }  // namespace
 
 TEST_CASE("squared-area weights: affine, minimizing, least-norm", "[virtual-vertex]") {
   std::mt19937 rng(11);
   for (int n = 3; n <= 9; ++n)
     for (bool planar : {true, false}) {
-      const PolygonPositions X = random_polygon(n, planar, rng);
+      const PolygonPositions X = star_polygon(n, rng, 0.7, 1.3, planar ? 0.0 : 0.3);
       const Eigen::VectorXd w = squared_area_weights(X);
       CHECK(w.sum() == Approx(1.0).epsilon(1e-14));
       const Eigen::Vector3d x = X.transpose() * w;

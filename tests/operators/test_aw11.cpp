@@ -27,7 +27,7 @@ double polygon_area(const PolygonPositions& X) {
 TEST_CASE("aw11 local stiffness: Dirichlet energy of linear functions, kernel term, symmetry", "[compare][aw11]") {
   std::mt19937 rng(2);
   for (int n = 3; n <= 8; ++n) {
-    const PolygonPositions X = star_polygon(n, rng, true);
+    const PolygonPositions X = star_polygon(n, rng, 0.6, 1.0, 0.0);
     const double A = polygon_area(X);
     const Eigen::Vector3d g(0.3, -1.2, 0.0);  // in-plane gradient
     const Eigen::VectorXd u = X * g;
@@ -49,7 +49,7 @@ TEST_CASE("aw11 local stiffness: Dirichlet energy of linear functions, kernel te
 
 TEST_CASE("aw11 on a non-planar polygon uses the plane of the vector area", "[compare][aw11]") {
   std::mt19937 rng(4);
-  const PolygonPositions X = star_polygon(6, rng, false);
+  const PolygonPositions X = star_polygon(6, rng, 0.6, 1.0, 0.2);
   // Invariance under rigid motions.
   const Eigen::Matrix3d R = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
   const PolygonPositions Y = (X * R.transpose()).rowwise() + Eigen::RowVector3d(5, -1, 2);

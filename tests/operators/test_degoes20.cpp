@@ -18,7 +18,7 @@ using test::star_polygon;
 TEST_CASE("degoes20 gradient is exact on linear functions of planar polygons", "[compare][degoes20]") {
   std::mt19937 rng(8);
   for (int n = 3; n <= 9; ++n) {
-    PolygonPositions X = star_polygon(n, rng, true);
+    PolygonPositions X = star_polygon(n, rng, 0.6, 1.0, 0.0);
     const Eigen::Matrix3d R = Eigen::AngleAxisd(0.4 * n, Eigen::Vector3d(1, -1, 2).normalized()).toRotationMatrix();
     X = (X * R.transpose()).rowwise() + Eigen::RowVector3d(1, 2, 3);  // a tilted plane
     const Eigen::Vector3d nrm = R.col(2);

@@ -13,6 +13,7 @@
 #include <random>
 
 using namespace polydec;
+using test::star_polygon;
 
 namespace {
 
@@ -38,26 +39,13 @@ void all_triangulations(int i, int j, std::vector<PolygonTriangulation>& out) {
   }
 }
 
-// A random polygon: star-shaped around the origin with random radii, optionally lifted out of the
-// plane, optionally with a deep notch (non-convex).
-PolygonPositions random_polygon(int n, std::mt19937& rng, bool planar) {
-  std::uniform_real_distribution<double> r(0.3, 1.0), z(-0.3, 0.3);
-  PolygonPositions X(n, 3);
-  for (int k = 0; k < n; ++k) {
-    const double a = 2 * M_PI * k / n;
-    const double rad = r(rng);
-    X.row(k) << rad * std::cos(a), rad * std::sin(a), planar ? 0.0 : z(rng);
-  }
-  return X;
-}
-
 }  // namespace
 
 TEST_CASE("triangulation DP finds the brute-force optimum", "[compare][triangulation]") {
   std::mt19937 rng(7);
   for (int n = 3; n <= 8; ++n)
     for (int trial = 0; trial < 6; ++trial) {
-      const PolygonPositions X = random_polygon(n, rng, trial % 2 == 0);
+      const PolygonPositions X = star_polygon(n, rng, 0.3, 1.0, trial % 2 == 0 ? 0.0 : 0.3);
       std::vector<PolygonTriangulation> all;
       all_triangulations(0, n - 1, all);
       for (auto rule : {TriangulationRule::MinSquaredArea, TriangulationRule::MaxMinAngle}) {
