@@ -276,6 +276,26 @@ Axis make_axis(const std::vector<double>& values, bool log) {
 const Color kPalette[] = {{0.12, 0.38, 0.70}, {0.90, 0.42, 0.08}, {0.18, 0.58, 0.24}, {0.80, 0.14, 0.20},
                           {0.50, 0.32, 0.72}, {0.55, 0.35, 0.25}, {0.85, 0.35, 0.65}, {0.40, 0.40, 0.40}};
 
+// How much of the plotted data a legend box [a, b] would hide: ten for each marker whose disc of
+// radius r meets the box, one for each sample (every r) of the lines between consecutive points.
+long legend_overlap(const std::vector<std::vector<Vec2>>& drawn, const Vec2& a, const Vec2& b, double r, bool markers,
+                    bool lines) {
+  auto inside = [&](const Vec2& p) {
+    return p.x() > a.x() - r && p.x() < b.x() + r && p.y() > a.y() - r && p.y() < b.y() + r;
+  };
+  long n = 0;
+  for (const std::vector<Vec2>& pts : drawn) {
+    if (markers)
+      for (const Vec2& p : pts) n += 10 * inside(p);
+    if (lines)
+      for (size_t j = 1; j < pts.size(); ++j) {
+        const int steps = std::clamp(int((pts[j] - pts[j - 1]).norm() / r), 1, 10000);
+        for (int k = 1; k < steps; ++k) n += inside(pts[j - 1] + (pts[j] - pts[j - 1]) * (double(k) / steps));
+      }
+  }
+  return n;
+}
+
 void draw_plot(Canvas& cv, const std::vector<PlotSeries>& series, const PlotOptions& o) {
   const double u = o.height / 480.0;
   const Color ink{0.1, 0.1, 0.1}, grid{0.88, 0.88, 0.88}, minor_grid{0.95, 0.95, 0.95};
@@ -341,10 +361,11 @@ void draw_plot(Canvas& cv, const std::vector<PlotSeries>& series, const PlotOpti
   // Series: lines, then markers on top.
   const double mr = 4.5 * u, lw = 2 * u;
   std::vector<std::string> labels;
+  std::vector<std::vector<Vec2>> drawn;  // each series' points in pixels, for the legend's placement
   for (size_t i = 0; i < series.size(); ++i) {
     const PlotSeries& s = series[i];
     const Color& c = kPalette[i % std::size(kPalette)];
-    std::vector<Vec2> pts;
+    std::vector<Vec2>& pts = drawn.emplace_back();
     for (size_t j = 0; j < s.x.size(); ++j)
       if (ax.valid(s.x[j]) && ay.valid(s.y[j])) pts.emplace_back(ax.map(s.x[j]), ay.map(s.y[j]));
     if (o.lines && pts.size() > 1) cv.polyline(pts, c, lw);
@@ -358,13 +379,24 @@ void draw_plot(Canvas& cv, const std::vector<PlotSeries>& series, const PlotOpti
     labels.push_back(label);
   }
 
-  // Legend, top left inside the axes.
+  // Legend inside the axes, in the corner (top left, top right, bottom left, bottom right, in
+  // that order of preference) that hides the fewest markers and line samples.
   if (!series.empty()) {
     double w = 0;
     for (const std::string& l : labels) w = std::max(w, cv.text_width(l));
     const double row = std::max(th * 1.5, 16 * u), sample = 26 * u;
-    const Vec2 a(L + 10 * u, T + 10 * u);
-    const Vec2 b = a + Vec2(sample + 18 * u + w, row * double(series.size()) + 8 * u);
+    const Vec2 size(sample + 18 * u + w, row * double(series.size()) + 8 * u);
+    const Vec2 corners[4] = {{L + 10 * u, T + 10 * u},
+                             {R - 10 * u - size.x(), T + 10 * u},
+                             {L + 10 * u, B - 10 * u - size.y()},
+                             {R - 10 * u - size.x(), B - 10 * u - size.y()}};
+    Vec2 a = corners[0];
+    long fewest = -1;
+    for (const Vec2& c : corners) {
+      const long hidden = legend_overlap(drawn, c, c + size, mr, o.markers, o.lines);
+      if (fewest < 0 || hidden < fewest) fewest = hidden, a = c;
+    }
+    const Vec2 b = a + size;
     cv.rect(a, b, {1, 1, 1}, {0.7, 0.7, 0.7});
     for (size_t i = 0; i < series.size(); ++i) {
       const Color& c = kPalette[i % std::size(kPalette)];

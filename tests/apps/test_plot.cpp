@@ -1,7 +1,9 @@
 // tests/apps/test_plot.cpp — convergence plots: fitted slopes, SVG structure (markers, series
 // lines, decade ticks, well-formed nesting, escaping), the raster version and file output.
+#include <array>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -10,6 +12,8 @@
 #include "dec/io.h"
 
 using namespace polydec;
+
+namespace test_plot {
 
 namespace {
 
@@ -122,6 +126,34 @@ TEST_CASE("plot_svg: one marker per plotted point, one line per series, decade t
   }
 }
 
+// The legend box (x, y, width, height) of an SVG plot: the one framed white rectangle smaller
+// than the canvas.
+std::array<double, 4> legend_box(const std::string& svg, int canvas_width) {
+  std::vector<std::array<double, 4>> boxes;
+  for (size_t at = svg.find("<rect "); at != std::string::npos; at = svg.find("<rect ", at + 1)) {
+    std::array<double, 4> r{};
+    REQUIRE(std::sscanf(svg.c_str() + at, "<rect x=\"%lf\" y=\"%lf\" width=\"%lf\" height=\"%lf\"", &r[0], &r[1],
+                        &r[2], &r[3]) == 4);
+    if (r[2] < 0.9 * canvas_width) boxes.push_back(r);
+  }
+  REQUIRE(boxes.size() == 1);
+  return boxes[0];
+}
+
+TEST_CASE("plot_svg: the legend goes to a corner that hides no data", "[render]") {
+  PlotOptions o;
+  o.log_x = o.log_y = false;
+  // Data crowd the top left corner (the legend's first choice) and run down to the bottom right;
+  // the top right and bottom left corners are empty.
+  const auto crowded = legend_box(plot_svg({{"crowded", {0, 0.5, 1, 1.5, 2, 10}, {10, 9.5, 9.8, 9, 8.5, 0}}}, o), o.width);
+  const bool right = crowded[0] > 0.5 * o.width, bottom = crowded[1] > 0.5 * o.height;
+  CHECK(right != bottom);
+  // Data along the bottom and in the top right: the top left is free and kept.
+  const auto free = legend_box(plot_svg({{"low", {0, 10}, {0, 1}}, {"high right", {9, 10}, {9, 10}}}, o), o.width);
+  CHECK(free[0] < 0.5 * o.width);
+  CHECK(free[1] < 0.5 * o.height);
+}
+
 TEST_CASE("plot_image draws the series in their colours", "[render]") {
   PlotOptions o;
   o.width = 480;
@@ -166,3 +198,5 @@ TEST_CASE("write_plot writes SVG or PNG by extension", "[render]") {
   CHECK_THROWS_AS(write_plot((dir / "x.pdf").string(), study(), {}), std::invalid_argument);
   CHECK_THROWS_AS(write_plot("/nonexistent-dir/p.svg", study(), {}), FileError);
 }
+
+}  // namespace test_plot
