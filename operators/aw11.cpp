@@ -6,9 +6,6 @@
 
 namespace polydec {
 
-namespace {
-
-// Cyclic difference matrix of an n-gon: row i = e_{i+1} - e_i.
 Eigen::MatrixXd cyclic_difference(int n) {
   Eigen::MatrixXd d = Eigen::MatrixXd::Zero(n, n);
   for (int i = 0; i < n; ++i) {
@@ -17,6 +14,8 @@ Eigen::MatrixXd cyclic_difference(int n) {
   }
   return d;
 }
+
+namespace {
 
 // Vector area of a polygon, (1/2) sum_i y_i x y_{i+1} on centred positions.
 Eigen::Vector3d vector_area(const PolygonPositions& Y) {

@@ -21,6 +21,10 @@
 
 namespace polydec {
 
+// Cyclic difference of an n-gon's corners (n x n): row i = e_{i+1} - e_i, i.e. (d u)_i = u_{i+1} - u_i,
+// the face's d0 restricted to its boundary cycle (used by AW11 and de Goes et al. 2020).
+Eigen::MatrixXd cyclic_difference(int n);
+
 // Local AW11 stiffness S_f (n x n, symmetric negative semi-definite) of one polygon.
 Eigen::MatrixXd aw11_local_stiffness(const PolygonPositions& X, double lambda);
 

@@ -1,6 +1,8 @@
 // operators/degoes20.cpp — de Goes, Butts & Desbrun 2020 polygon operators.
 #include "operators/degoes20.h"
 
+#include "operators/aw11.h"
+
 #include <cmath>
 
 namespace polydec {
@@ -37,15 +39,6 @@ Eigen::MatrixXd sharp(const FaceFrame& F) {
   Eigen::MatrixXd Bc(3, k);
   for (int i = 0; i < k; ++i) Bc.col(i) = 0.5 * (F.Y.row(i) + F.Y.row((i + 1) % k)).transpose();
   return cross_matrix(F.n) * Bc / F.A;
-}
-
-Eigen::MatrixXd cyclic_difference(int k) {
-  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(k, k);
-  for (int i = 0; i < k; ++i) {
-    d(i, i) = -1.0;
-    d(i, (i + 1) % k) = 1.0;
-  }
-  return d;
 }
 
 }  // namespace

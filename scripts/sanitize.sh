@@ -12,9 +12,10 @@ build=${1:-"$root/build-sanitize"}
 log="$build/sanitize-tests.log"
 
 # -O1 with line tables only (-g1): stack traces name file and line, and the build takes about
-# half the time of -O2 -g (Eigen-heavy sources dominate the compile).
+# half the time of -O2 -g (Eigen-heavy sources dominate the compile). The unity build (batches of
+# 8 files, CMakeLists.txt) compiles the Eigen templates once per batch; POLYDEC_UNITY=OFF turns it off.
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS="-O1 -g1" -DPOLYDEC_SANITIZE=ON \
-  -DPOLYDEC_BUILD_BENCH=OFF >/dev/null
+  -DPOLYDEC_BUILD_BENCH=OFF -DPOLYDEC_UNITY_BUILD=${POLYDEC_UNITY:-ON} >/dev/null
 ninja -C "$build" ${POLYDEC_JOBS:+-j"$POLYDEC_JOBS"} polydec_cli polydec_tests
 
 # Any report stops the process with a non-zero status; leaks are reported at exit. Reports also go
@@ -25,9 +26,15 @@ rm -rf "$reports" && mkdir -p "$reports"
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1:halt_on_error=1:strict_string_checks=1:log_path=$reports/asan}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1:log_path=$reports/ubsan}
 
+# The whole suite through ctest, one process per test case, as many at a time as there are cores;
+# with POLYDEC_TEST_ARGS, the test program directly with those arguments.
 status=0
-# shellcheck disable=SC2086
-"$build/polydec_tests" ${POLYDEC_TEST_ARGS:-} 2>&1 | tee "$log" || status=$?
+if [ -n "${POLYDEC_TEST_ARGS:-}" ]; then
+  # shellcheck disable=SC2086
+  "$build/polydec_tests" $POLYDEC_TEST_ARGS 2>&1 | tee "$log" || status=$?
+else
+  ctest --test-dir "$build" --output-on-failure -j "${POLYDEC_JOBS:-$(nproc)}" 2>&1 | tee "$log" || status=$?
+fi
 if [ -n "$(ls -A "$reports")" ] || grep -Eq "runtime error:|AddressSanitizer|LeakSanitizer|UndefinedBehaviorSanitizer" "$log"; then
   echo "sanitize.sh: sanitizer report(s):" >&2
   cat "$reports"/* >&2 || true

@@ -9,7 +9,7 @@
 
 #include <fmt/format.h>
 
-namespace polydec::cli {
+namespace polydec::cli::convert_command {
 namespace {
 
 struct Options {
@@ -48,4 +48,4 @@ const RegisterCommand reg("convert", "Convert between formats; optionally dual, 
                           });
 
 }  // namespace
-}  // namespace polydec::cli
+}  // namespace polydec::cli::convert_command

@@ -9,7 +9,7 @@
 #include "dec/generators.h"
 #include "dec/io.h"
 
-namespace polydec::cli {
+namespace polydec::cli::curvature_command {
 namespace {
 
 struct Options {
@@ -76,4 +76,4 @@ const RegisterCommand reg(
     });
 
 }  // namespace
-}  // namespace polydec::cli
+}  // namespace polydec::cli::curvature_command

@@ -14,7 +14,7 @@
 #include "dec/io.h"
 #include "dec/prolongation.h"
 
-namespace polydec::cli {
+namespace polydec::cli::dec_command {
 namespace {
 
 struct Options {
@@ -110,4 +110,4 @@ const RegisterCommand reg("dec", "Write d0, d1, star0-2, P0-2 and the coarse cel
                           });
 
 }  // namespace
-}  // namespace polydec::cli
+}  // namespace polydec::cli::dec_command

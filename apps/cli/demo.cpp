@@ -14,7 +14,7 @@
 #include <fmt/format.h>
 #include <numbers>
 
-namespace polydec::cli {
+namespace polydec::cli::demo_command {
 namespace {
 
 struct Options {
@@ -97,4 +97,4 @@ const RegisterCommand reg("demo", "The main job on a generated hexagon-dominant 
 });
 
 }  // namespace
-}  // namespace polydec::cli
+}  // namespace polydec::cli::demo_command

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <fmt/format.h>
 
-namespace polydec::cli {
+namespace polydec::cli::geodesics_command {
 namespace {
 
 struct Options {
@@ -105,4 +105,4 @@ const RegisterCommand reg("geodesics", "Geodesic distances by the heat method (p
 });
 
 }  // namespace
-}  // namespace polydec::cli
+}  // namespace polydec::cli::geodesics_command

@@ -9,7 +9,7 @@
 #include "dec/generators.h"
 #include "dec/io.h"
 
-namespace polydec::cli {
+namespace polydec::cli::harmonics_command {
 namespace {
 
 struct Options {
@@ -80,4 +80,4 @@ const RegisterCommand reg(
     });
 
 }  // namespace
-}  // namespace polydec::cli
+}  // namespace polydec::cli::harmonics_command

@@ -13,7 +13,7 @@
 #include "dec/hodge_star.h"
 #include "dec/io.h"
 
-namespace polydec::cli {
+namespace polydec::cli::hodge_command {
 namespace {
 
 struct Options {
@@ -130,4 +130,4 @@ const RegisterCommand reg(
     });
 
 }  // namespace
-}  // namespace polydec::cli
+}  // namespace polydec::cli::hodge_command

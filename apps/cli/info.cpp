@@ -6,7 +6,7 @@
 
 #include <fmt/format.h>
 
-namespace polydec::cli {
+namespace polydec::cli::info_command {
 namespace {
 
 struct Options {
@@ -73,4 +73,4 @@ const RegisterCommand reg("info", "Print counts, topology, planarity and convexi
                           });
 
 }  // namespace
-}  // namespace polydec::cli
+}  // namespace polydec::cli::info_command

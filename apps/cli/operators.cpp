@@ -13,7 +13,7 @@
 #include <filesystem>
 #include <fmt/format.h>
 
-namespace polydec::cli {
+namespace polydec::cli::operators_command {
 namespace {
 
 struct Options {
@@ -127,4 +127,4 @@ const RegisterCommand reg("operators", "Assemble S, M, lumped M, G, D, P and wri
 });
 
 }  // namespace
-}  // namespace polydec::cli
+}  // namespace polydec::cli::operators_command

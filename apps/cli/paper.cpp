@@ -14,7 +14,7 @@
 #include "apps/paper.h"
 #include "dec/io.h"
 
-namespace polydec::cli {
+namespace polydec::cli::paper_command {
 namespace {
 
 struct Options {
@@ -95,4 +95,4 @@ const RegisterCommand reg(
     });
 
 }  // namespace
-}  // namespace polydec::cli
+}  // namespace polydec::cli::paper_command

@@ -7,7 +7,7 @@
 #include "apps/render.h"
 #include "dec/io.h"
 
-namespace polydec::cli {
+namespace polydec::cli::parametrize_command {
 namespace {
 
 struct Options {
@@ -74,4 +74,4 @@ const RegisterCommand reg(
     });
 
 }  // namespace
-}  // namespace polydec::cli
+}  // namespace polydec::cli::parametrize_command

@@ -9,7 +9,7 @@
 #include "apps/render.h"
 #include "dec/generators.h"
 
-namespace polydec::cli {
+namespace polydec::cli::poisson_command {
 namespace {
 
 struct Options {
@@ -97,4 +97,4 @@ const RegisterCommand reg(
     });
 
 }  // namespace
-}  // namespace polydec::cli
+}  // namespace polydec::cli::poisson_command

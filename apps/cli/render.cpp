@@ -9,7 +9,7 @@
 #include "apps/geodesics.h"
 #include "dec/io.h"
 
-namespace polydec::cli {
+namespace polydec::cli::render_command {
 namespace {
 
 struct Options {
@@ -86,4 +86,4 @@ const RegisterCommand reg(
     });
 
 }  // namespace
-}  // namespace polydec::cli
+}  // namespace polydec::cli::render_command

@@ -11,7 +11,7 @@
 #include "dec/io.h"
 #include "dec/mesh_checks.h"
 
-namespace polydec::cli {
+namespace polydec::cli::repair_command {
 namespace {
 
 struct Options {
@@ -82,4 +82,4 @@ const RegisterCommand reg(
     });
 
 }  // namespace
-}  // namespace polydec::cli
+}  // namespace polydec::cli::repair_command

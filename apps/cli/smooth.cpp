@@ -10,7 +10,7 @@
 #include "apps/smoothing.h"
 #include "dec/io.h"
 
-namespace polydec::cli {
+namespace polydec::cli::smooth_command {
 namespace {
 
 struct Options {
@@ -98,4 +98,4 @@ const RegisterCommand reg(
     });
 
 }  // namespace
-}  // namespace polydec::cli
+}  // namespace polydec::cli::smooth_command

@@ -11,7 +11,7 @@
 #include "apps/render.h"
 #include "dec/io.h"
 
-namespace polydec::cli {
+namespace polydec::cli::spectrum_command {
 namespace {
 
 struct Options {
@@ -107,4 +107,4 @@ const RegisterCommand reg(
     });
 
 }  // namespace
-}  // namespace polydec::cli
+}  // namespace polydec::cli::spectrum_command

@@ -16,6 +16,8 @@
 using namespace polydec;
 namespace fs = std::filesystem;
 
+namespace test_cli_exit_codes {
+
 namespace {
 
 struct Run {
@@ -194,3 +196,5 @@ TEST_CASE("subcommands with --repair repair the file first, say what changed, an
   CHECK_THAT(gone.err.back(),
              Catch::StartsWith("polydec: ") && Catch::Contains("source vertex 6 was removed by --repair"));
 }
+
+}  // namespace test_cli_exit_codes

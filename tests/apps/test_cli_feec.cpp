@@ -17,6 +17,8 @@
 
 using namespace polydec;
 
+namespace test_cli_feec {
+
 namespace {
 
 struct Run {
@@ -134,3 +136,5 @@ TEST_CASE("polydec hodge decomposes a given 1-form and reports its norms", "[fee
   CHECK(run_cli("hodge " + dir + "/torus.obj --noise -1", dir).code == 2);
   std::filesystem::remove_all(dir);
 }
+
+}  // namespace test_cli_feec

@@ -10,6 +10,8 @@
 
 using namespace polydec;
 
+namespace test_curvature {
+
 namespace {
 
 Mesh unit_sphere_mesh(const std::string& path) { return project_to_unit_sphere(read_mesh(path)); }
@@ -121,3 +123,5 @@ TEST_CASE("curvature: a vertex in no face changes nothing and gets H = 0", "[app
     CHECK((He.head(sphere.n_vertices()) - H).cwiseAbs().maxCoeff() <= 1e-12);
   }
 }
+
+}  // namespace test_curvature

@@ -12,6 +12,8 @@
 
 using namespace polydec;
 
+namespace test_geodesics {
+
 namespace {
 
 // RMSE of the heat distance from vertex 0 against the Euclidean distance (planar meshes),
@@ -151,3 +153,5 @@ TEST_CASE("TETRIS 1: the two regimes around exactly degenerate fan triangles", "
   CHECK(slivers_kept == Approx(0.1805).epsilon(0.01));      // the sliver limit: a different operator
   CHECK(std::abs(slivers_kept - dropped) > 0.01);
 }
+
+}  // namespace test_geodesics

@@ -11,6 +11,8 @@
 
 using namespace polydec;
 
+namespace test_harmonics {
+
 namespace {
 
 Mesh unit_sphere_mesh(const std::string& path) { return project_to_unit_sphere(read_mesh(path)); }
@@ -87,3 +89,5 @@ TEST_CASE("harmonics: Table 3 error on HEX and FINE SPHERE", "[apps]") {
   CHECK(spherical_harmonics_error(test::hex_sphere(path).ops, o).sum(8) == Approx(7.411e-7).epsilon(0.01));
   CHECK(spherical_harmonics_error(test::fine_sphere(path).ops, o).sum(8) == Approx(3.168e-4).epsilon(0.01));
 }
+
+}  // namespace test_harmonics

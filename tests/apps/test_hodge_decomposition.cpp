@@ -17,6 +17,8 @@
 
 using namespace polydec;
 
+namespace test_hodge_decomposition {
+
 namespace {
 
 Eigen::VectorXd random_vector(long n, unsigned seed) {
@@ -230,3 +232,5 @@ TEST_CASE("several components and an unreferenced vertex: Betti numbers add up",
   CHECK((hd.complex().d1() * p.harmonic).cwiseAbs().maxCoeff() <= 1e-12 * p.harmonic.cwiseAbs().maxCoeff());
   CHECK(std::isfinite(p.potential.sum()));
 }
+
+}  // namespace test_hodge_decomposition

@@ -11,6 +11,8 @@
 
 using namespace polydec;
 
+namespace test_metrics {
+
 TEST_CASE("negative_offdiagonal_ratio counts strictly negative couplings among stored off-diagonals",
           "[metrics]") {
   SparseMatrix S(3, 3);
@@ -48,3 +50,5 @@ TEST_CASE("conformal_distortion of a deformed copy: zero for similarities, posit
   CHECK(d < 0.5);
   CHECK_THROWS_AS(conformal_distortion(m, Eigen::MatrixX3d(2, 3)), std::invalid_argument);
 }
+
+}  // namespace test_metrics

@@ -10,6 +10,8 @@
 
 using namespace polydec;
 
+namespace test_parametrization {
+
 TEST_CASE("parametrization: a planar mesh is mapped by a similarity (zero distortion)", "[apps]") {
   // For a flat mesh the identity is conformal: E_C = 0 up to translation, so the first
   // non-trivial eigenvector must be a similarity of the input (angles kept exactly).
@@ -56,3 +58,5 @@ TEST_CASE("parametrization: OBJ with vt round-trips and closed meshes are reject
   std::filesystem::remove(file);
   CHECK_THROWS_AS(spectral_conformal_parametrization(cube_sphere(3)), std::invalid_argument);
 }
+
+}  // namespace test_parametrization

@@ -10,6 +10,8 @@
 
 using namespace polydec;
 
+namespace test_poisson {
+
 TEST_CASE("poisson: Franke's Laplacian matches central differences", "[apps]") {
   const double d = 1e-4;
   for (double x : {0.1, 0.35, 0.5, 0.8})
@@ -70,3 +72,5 @@ TEST_CASE("poisson: quadratic convergence for triangles, quads and hexagons (Fig
     for (size_t i = 1; i < s.errors.size(); ++i) CHECK(s.errors[i].l2_error < s.errors[i - 1].l2_error);
   }
 }
+
+}  // namespace test_poisson

@@ -19,6 +19,8 @@
 
 using namespace polydec;
 
+namespace test_render {
+
 namespace {
 
 using Pixels = std::initializer_list<std::pair<int, int>>;
@@ -597,3 +599,5 @@ TEST_CASE("render: a long title is made to fit", "[render]") {
   CHECK(last <= img.width - 5);
   CHECK(last - first > 150);
 }
+
+}  // namespace test_render

@@ -8,6 +8,8 @@
 
 using namespace polydec;
 
+namespace test_smoothing {
+
 namespace {
 
 // Standard deviation / mean of the distances to the area centroid.
@@ -72,3 +74,5 @@ TEST_CASE("smoothing: unlumped mass and bad options", "[apps]") {
   o.time_step = -1;
   CHECK_THROWS_AS(CurvatureFlow(sphere, o), std::invalid_argument);
 }
+
+}  // namespace test_smoothing

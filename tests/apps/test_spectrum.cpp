@@ -17,6 +17,8 @@
 
 using namespace polydec;
 
+namespace test_spectrum {
+
 namespace {
 
 Mesh unit_sphere_mesh(const std::string& path) { return project_to_unit_sphere(read_mesh(path)); }
@@ -160,3 +162,5 @@ TEST_CASE("applications CLI: named JSON keys and output files agree with the lib
   const nlohmann::json po = run_cli_json("poisson --resolutions 4 8 16");
   for (const char* fam : {"triangles", "quads", "hexagons"}) CHECK(po["families"][fam]["levels"].size() == 3);
 }
+
+}  // namespace test_spectrum

@@ -8,6 +8,8 @@
 
 using namespace polydec;
 
+namespace test_complex {
+
 TEST_CASE("coarse complex of one hexagon lists all pairs and triples lexicographically", "[feec]") {
   const Mesh mesh = test::random_polygon(6, 4);  // shuffled vertex order
   const CoarseComplex K(mesh);
@@ -140,3 +142,5 @@ TEST_CASE("refined complex = coarse complex of the explicit fan triangulation, u
     CHECK(e1.norm() == 0.0);
   }
 }
+
+}  // namespace test_complex

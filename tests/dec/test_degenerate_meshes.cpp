@@ -18,6 +18,8 @@
 
 using namespace polydec;
 
+namespace test_degenerate_meshes {
+
 namespace {
 
 PolygonSoup to_soup(const Mesh& m) {
@@ -453,3 +455,5 @@ TEST_CASE("policy: extremes: empty mesh, no faces, a face whose corners coincide
     CHECK(drop_invalid_faces(s).n_too_few == 1);
   }
 }
+
+}  // namespace test_degenerate_meshes

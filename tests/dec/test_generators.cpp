@@ -7,6 +7,8 @@
 
 using namespace polydec;
 
+namespace test_generators {
+
 TEST_CASE("planar grids tile the unit square", "[generators]") {
   for (const Mesh& m : {quad_grid(4, 3), triangle_grid(4, 3), hex_grid(6, 6)}) {
     CHECK(m.euler_characteristic() == 1);
@@ -84,3 +86,5 @@ TEST_CASE("the paper's HEX and FINE spheres from unit-sphere.off", "[generators]
   const Mesh fine = project_to_unit_sphere(catmull_clark(hex));
   CHECK(fine.n_faces() == 96408);
 }
+
+}  // namespace test_generators

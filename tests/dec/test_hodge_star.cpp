@@ -15,6 +15,8 @@
 #include "tests/dec/feec_meshes.h"
 
 using namespace polydec;
+
+namespace test_hodge_star {
 using polydec::test::relative_difference;
 
 namespace {
@@ -259,3 +261,5 @@ TEST_CASE("re-assembly with precomputed star patterns on moved vertices", "[feec
   CHECK_THROWS_AS(hodge_stars(moved, r, K, {}, &only1), std::invalid_argument);
   CHECK(relative_difference(hodge_stars(moved, r, K, {false, false, true, false}, &only1).star1, fresh.star1) == 0.0);
 }
+
+}  // namespace test_hodge_star

@@ -14,9 +14,11 @@
 
 using namespace polydec;
 
-namespace {
-
 namespace fs = std::filesystem;
+
+namespace test_io {
+
+namespace {
 
 fs::path temp_dir() {
   const fs::path d = fs::temp_directory_path() / ("polydec_test_io_" + std::to_string(::getpid()));
@@ -293,3 +295,5 @@ TEST_CASE("FileError formats FILE:LINE, FILE: byte N, or FILE alone", "[io]") {
   CHECK(e.byte_offset == -1);
   CHECK(e.reason == "why");
 }
+
+}  // namespace test_io

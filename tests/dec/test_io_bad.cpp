@@ -12,6 +12,8 @@
 
 using namespace polydec;
 
+namespace test_io_bad {
+
 namespace {
 
 enum class Stage { Reader, Validation };
@@ -229,3 +231,5 @@ TEST_CASE("a claimed 10^12 or 10^9 elements fail before any proportional allocat
                       Catch::Contains("m.ply:7: element 'junk' claims 100000000000 records"));
   }
 }
+
+}  // namespace test_io_bad

@@ -6,6 +6,8 @@
 
 using namespace polydec;
 
+namespace test_mesh {
+
 namespace {
 
 PolygonSoup soup(std::vector<Eigen::Vector3d> p, std::vector<std::vector<int>> faces) {
@@ -91,3 +93,5 @@ TEST_CASE("with_positions keeps connectivity and rejects wrong sizes", "[mesh]")
   CHECK(moved.mean_edge_length() == Approx(2.0 * m.mean_edge_length()));
   CHECK_THROWS_AS(m.with_positions(Eigen::MatrixX3d::Zero(3, 3)), InvalidMeshError);
 }
+
+}  // namespace test_mesh

@@ -12,6 +12,8 @@
 
 using namespace polydec;
 
+namespace test_prolongation {
+
 namespace {
 
 // Numerical rank by SVD, singular values above rel_tol times the largest.
@@ -164,7 +166,7 @@ TEST_CASE("Whitney reconstruction of d0 f for linear f is grad f on every refine
       const bool up = t[0] == mesh.halfedge_source(h);
       const Eigen::Vector3d ce(c[mesh.halfedge_edge(h)], c[up ? spoke_s : spoke_t],
                                c[up ? spoke_t : spoke_s]);
-      for (const Eigen::Vector3d bary : {Eigen::Vector3d(1.0 / 3, 1.0 / 3, 1.0 / 3),
+      for (const Eigen::Vector3d& bary : {Eigen::Vector3d(1.0 / 3, 1.0 / 3, 1.0 / 3),
                                          Eigen::Vector3d(0.6, 0.3, 0.1), Eigen::Vector3d(0.05, 0.15, 0.8)}) {
         const Eigen::Vector3d v = whitney1_value(pos(t[0]), pos(t[1]), pos(t[2]), ce, bary);
         REQUIRE((v - grad).norm() <= 1e-9 * a.norm());
@@ -174,3 +176,5 @@ TEST_CASE("Whitney reconstruction of d0 f for linear f is grad f on every refine
     CHECK(checked > 0);
   }
 }
+
+}  // namespace test_prolongation

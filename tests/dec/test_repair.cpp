@@ -9,6 +9,8 @@
 
 using namespace polydec;
 
+namespace test_repair {
+
 namespace {
 
 PolygonSoup soup_of(const std::vector<Eigen::RowVector3d>& p, const std::vector<std::vector<int>>& faces) {
@@ -240,3 +242,5 @@ TEST_CASE("repair composes the steps, and its maps describe the result", "[robus
   CHECK_FALSE(none.changed());
   CHECK(none.summary() == std::vector<std::string>{"nothing changed"});
 }
+
+}  // namespace test_repair

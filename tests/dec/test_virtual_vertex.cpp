@@ -7,6 +7,8 @@
 #include <random>
 
 using namespace polydec;
+
+namespace test_virtual_vertex {
 using test::star_polygon;
 
 namespace {
@@ -56,3 +58,5 @@ TEST_CASE("triangle weights are barycentric and reproduce the minimizer", "[virt
   CHECK(w.minCoeff() > 0);
   CHECK(w.sum() == Approx(1.0));
 }
+
+}  // namespace test_virtual_vertex

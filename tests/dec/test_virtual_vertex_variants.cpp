@@ -12,6 +12,8 @@
 
 using namespace polydec;
 
+namespace test_virtual_vertex_variants {
+
 namespace {
 
 Eigen::Vector3d point(const PolygonPositions& X, const Eigen::VectorXd& w) { return X.transpose() * w; }
@@ -224,3 +226,5 @@ TEST_CASE("fan quality of each variant on tetris.obj (non-star-shaped polygons)"
   CHECK(centroid.n_inverted > ours.n_inverted);
   CHECK(convex.n_inverted + convex.n_degenerate >= 1);  // no convex combination sees every edge either
 }
+
+}  // namespace test_virtual_vertex_variants

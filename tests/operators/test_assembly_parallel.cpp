@@ -20,6 +20,8 @@
 
 using namespace polydec;
 
+namespace test_assembly_parallel {
+
 namespace {
 
 bool bitwise_equal(const SparseMatrix& A, const SparseMatrix& B) {
@@ -241,3 +243,5 @@ TEST_CASE("polydec operators --repeat --threads --json times the assembly withou
   CHECK(j.at("faces").get<int>() == 512);
   CHECK(j.at("S_nonzeros").get<long>() == assemble_laplacian(read_mesh(path), refine(read_mesh(path))).S.nonZeros());
 }
+
+}  // namespace test_assembly_parallel

@@ -12,6 +12,8 @@
 #include <random>
 
 using namespace polydec;
+
+namespace test_aw11 {
 using test::star_polygon;
 
 namespace {
@@ -107,3 +109,5 @@ TEST_CASE("aw11 operators on meshes: cotangent on triangles, block gradient, lum
   }
   CHECK(worst_tilt > 1e-4);  // the faces are really non-planar, or the check above proves nothing
 }
+
+}  // namespace test_aw11

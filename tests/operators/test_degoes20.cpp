@@ -13,6 +13,8 @@
 
 using namespace polydec;
 
+namespace test_degoes20 {
+
 using test::star_polygon;
 
 TEST_CASE("degoes20 gradient is exact on linear functions of planar polygons", "[compare][degoes20]") {
@@ -68,3 +70,5 @@ TEST_CASE("degoes20 operators: cotangent on triangles, S = D G at lambda 0, lump
   }
   CHECK(o1.M_lumped.sum() == Approx(area).epsilon(1e-12));
 }
+
+}  // namespace test_degoes20

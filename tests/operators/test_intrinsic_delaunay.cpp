@@ -14,6 +14,8 @@
 
 using namespace polydec;
 
+namespace test_intrinsic_delaunay {
+
 TEST_CASE("a thin rhombus is flipped to its short diagonal", "[compare][intrinsic_delaunay]") {
   Eigen::MatrixX3d X(4, 3);
   X << -2, 0, 0, 0, -0.5, 0, 2, 0, 0, 0, 0.5, 0;
@@ -89,3 +91,5 @@ TEST_CASE("an already Delaunay triangulation is kept: plain cotangent Laplacian"
   const std::vector<Eigen::Vector3i> bad = {{0, 1, 2}, {0, 1, 3}};
   CHECK_THROWS_AS(intrinsic_delaunay(grid.positions(), bad), std::invalid_argument);
 }
+
+}  // namespace test_intrinsic_delaunay

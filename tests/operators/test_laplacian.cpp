@@ -15,6 +15,8 @@
 #include <random>
 
 using namespace polydec;
+
+namespace test_laplacian {
 using polydec::test::relative_difference;
 
 namespace {
@@ -185,3 +187,5 @@ TEST_CASE("invariance under rigid motion, relabeling and scaling", "[laplacian]"
     CHECK(relative_difference(Sp, Lr.S) < 1e-13);
   }
 }
+
+}  // namespace test_laplacian

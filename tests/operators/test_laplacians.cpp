@@ -15,6 +15,8 @@
 
 using namespace polydec;
 
+namespace test_laplacians {
+
 namespace {
 
 const char* kAll[] = {"ours",   "centroid",           "abs-area", "convex",  "trace-min",  "triangulated-minarea",
@@ -198,3 +200,5 @@ TEST_CASE("Table 4: geodesic RMSE of [BS07] and AW11 against the paper", "[compa
     if (row.aw1 > 0) CHECK(rmse_of("aw11:1", false) == Approx(row.aw1).epsilon(0.1));
   }
 }
+
+}  // namespace test_laplacians

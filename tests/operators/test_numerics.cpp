@@ -18,6 +18,8 @@
 
 using namespace polydec;
 
+namespace test_numerics {
+
 namespace {
 
 // The mesh moved to the origin and scaled to bounding-box diagonal 1.
@@ -183,3 +185,5 @@ TEST_CASE("failed factorizations raise SolverError naming the operator", "[robus
   CHECK((A * chol.solve(b) - b).norm() <= 1e-12 * b.norm());
   CHECK_THROWS_WITH(chol.refactor(SparseMatrix(-S)), Catch::Contains("shifted -S"));
 }
+
+}  // namespace test_numerics

@@ -13,6 +13,8 @@
 #include <random>
 
 using namespace polydec;
+
+namespace test_triangulation {
 using test::star_polygon;
 
 namespace {
@@ -141,3 +143,5 @@ TEST_CASE("triangulate() splits every n-gon of a mesh into n - 2 triangles", "[c
     CHECK((a_tri - a_poly).norm() <= 1e-12 * a_poly.norm());
   }
 }
+
+}  // namespace test_triangulation
