@@ -57,13 +57,29 @@ SparseMatrix pin(const SparseMatrix& A, const std::vector<unsigned char>& pinned
   return B;
 }
 
+// `src` moved into a new set without copying its sparse matrices: Eigen 3.4's SparseMatrix has
+// no move constructor, so std::move(OperatorSet) deep-copies S, M, G and D (~0.3 s on FINE SPHERE).
+OperatorSet take(OperatorSet& src) {
+  SparseMatrix S, M, G, D;
+  S.swap(src.S);
+  M.swap(src.M);
+  G.swap(src.G);
+  D.swap(src.D);
+  OperatorSet dst = std::move(src);  // the other members move; the matrices are empty here
+  dst.S.swap(S);
+  dst.M.swap(M);
+  dst.G.swap(G);
+  dst.D.swap(D);
+  return dst;
+}
+
 }  // namespace
 
 HeatGeodesics::HeatGeodesics(const Mesh& mesh, const HeatGeodesicsOptions& options)
     : HeatGeodesics(build_operators(mesh, parse_laplacian("ours")), mesh.mean_edge_length(), options) {}
 
 HeatGeodesics::HeatGeodesics(OperatorSet operators, double mean_edge_length, const HeatGeodesicsOptions& options)
-    : ops_(std::move(operators)), options_(options) {
+    : ops_(take(operators)), options_(options) {
   const Mesh& mesh = ops_.domain;
   // By shape, not by emptiness: a mesh without faces has a 0 x |V| gradient.
   const int nv = mesh.n_vertices();

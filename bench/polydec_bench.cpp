@@ -328,7 +328,10 @@ void bench_feec(const std::string& name, const Mesh& mesh, int reps) {
   Laplacian L;
   const auto [s_ms, star_ms] = interleaved(
       reps, [&] { take(L, assemble_laplacian(mesh, r, {true, false, false})); },
-      [&] { st1 = star1(mesh, r, complex); });
+      [&] {
+        SparseMatrix fresh = star1(mesh, r, complex);
+        st1.swap(fresh);  // not `st1 = star1(...)`: a deep copy (no move assignment in Eigen 3.4)
+      });
   Row row{"FEEC star1 vs S", name, "S (pattern + values)", "star1", s_ms, star_ms, 0, 0,
           fmt::format("ratio = star1 time / S time (lower is better); star1 {} x {}, {} non-zeros", st1.rows(),
                       st1.cols(), st1.nonZeros())};
