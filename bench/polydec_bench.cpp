@@ -424,11 +424,16 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--memory-child" && i + 1 < argc) return memory_child(std::stoi(argv[i + 1]));
-    if (a == "--profile") {  // one assembly of FINE SPHERE, for valgrind --tool=callgrind
+    if (a == "--profile") {  // one assembly of FINE SPHERE (or `plain`, or `star1`), for valgrind --tool=callgrind
       const Mesh hex = project_to_unit_sphere(dual(read_mesh(shared("unit-sphere.off"))));
       const Mesh fine = project_to_unit_sphere(catmull_clark(hex));
       const auto input = plain_reference::make_input(fine.positions(), fine.face_offsets(), fine.face_indices());
       SparseMatrix Sp, Mp;
+      if (i + 1 < argc && std::string(argv[i + 1]) == "star1") {  // --toggle-collect='polydec::star1*'
+        const Refinement r = refine(fine);
+        const SparseMatrix st1 = star1(fine, r, CoarseComplex(fine));
+        return st1.nonZeros() > 0 ? 0 : 1;
+      }
       if (i + 1 < argc && std::string(argv[i + 1]) == "plain") plain_reference::build(*input, Sp, Mp);
       const Laplacian L = assemble_all(fine, 1);
       return L.S.nonZeros() + Sp.nonZeros() > 0 ? 0 : 1;
