@@ -127,9 +127,9 @@ HeatGeodesics::HeatGeodesics(OperatorSet operators, double mean_edge_length, con
   } else {
     heat = ops_.M - t_ * ops_.S;
   }
-  // CHOLMOD's default supernodes: each source costs two solves, ~35% faster than with the relaxed
-  // amalgamation (FINE SPHERE, same session: 36 vs 56-63 ms per source; the precomputation
-  // measured the same within noise).
+  // CHOLMOD's default supernodes: each source costs two solves, and a solve is ~30% faster than
+  // with the relaxed amalgamation (FINE SPHERE: 10.1 vs 14.0 ms) for a somewhat slower
+  // factorization (docs/benchmarks.md).
   CholeskyOptions copt;
   copt.relaxed_supernodes = false;
   heat_ = std::make_unique<SparseCholesky>(pin(heat, pinned_), "heat operator M - t S", copt);
