@@ -104,45 +104,49 @@ void scatter(const StarPattern& cp, int f, const Eigen::MatrixXd& local, SparseM
 template <int N>
 struct Star1Local {
   static constexpr int M = N == Eigen::Dynamic ? Eigen::Dynamic : N * (N - 1) / 2;
-  static constexpr int U = N == Eigen::Dynamic ? Eigen::Dynamic : 2 * N - 3;
   Eigen::Matrix<double, M, M> A;  // the result, pairs in local lexicographic order of corner ranks
-  Eigen::Matrix<double, 3, U> Q;
-  Eigen::Matrix<double, U, U> B;
-  std::vector<int> rank, idx;
+  std::vector<int> rank, idx, row;
+  std::vector<double> q;
 
+  // Q (3 x (2n-3)) has the column (1, w_hi, -w_lo) for the edge pair and one non-zero q_c in
+  // row r_c (1: spoke lo, 2: spoke hi) in every other column c, so Q^T Mk Q is formed entry by
+  // entry: with v = Mk Q_0, B_00 = Q_0 . v, B_c0 = B_0c = q_c v_(r_c), B_ab = q_a (Mk_(r_a r_b) q_b).
   void compute(int n, const Eigen::Vector3d* x, const double* w, const Eigen::Vector3d& xf, const FanTriangle* fan,
                const int* order) {
     const int m = n * (n - 1) / 2, u = 2 * n - 3;
     A.setZero(m, m);
-    Q.resize(3, u);
-    B.resize(u, u);
     rank.resize(size_t(n));
     idx.resize(size_t(u));
+    row.resize(size_t(u));
+    q.resize(size_t(u));
     for (int r = 0; r < n; ++r) rank[size_t(order[r])] = r;
     for (int k = 0; k < n; ++k) {
       if (fan[k] == FanTriangle::Degenerate) continue;
       const int l = (k + 1) % n;
       const int lo = std::min(rank[k], rank[l]), hi = std::max(rank[k], rank[l]);
-      Q.setZero();
-      int c = 0;
-      idx[c] = local_pair_index(n, lo, hi);
-      Q(0, c) = 1.0;
-      Q(1, c) = w[order[hi]];   // spoke lo, pair (lo, hi): +w_hi
-      Q(2, c) = -w[order[lo]];  // spoke hi, pair (lo, hi): -w_lo
-      ++c;
+      const Eigen::Vector3d q0(1.0, w[order[hi]], -w[order[lo]]);  // spokes lo (+w_hi) and hi (-w_lo)
+      int c = 1;
       for (int s = 0; s < n; ++s) {
         if (s == lo || s == hi) continue;
         idx[c] = lo < s ? local_pair_index(n, lo, s) : local_pair_index(n, s, lo);
-        Q(1, c) = s > lo ? w[order[s]] : -w[order[s]];
+        row[c] = 1;
+        q[c] = s > lo ? w[order[s]] : -w[order[s]];
         ++c;
         idx[c] = hi < s ? local_pair_index(n, hi, s) : local_pair_index(n, s, hi);
-        Q(2, c) = s > hi ? w[order[s]] : -w[order[s]];
+        row[c] = 2;
+        q[c] = s > hi ? w[order[s]] : -w[order[s]];
         ++c;
       }
+      const int e = local_pair_index(n, lo, hi);
       const Eigen::Matrix3d Mk = whitney1_mass(x[order[lo]], x[order[hi]], xf);
-      B.noalias() = Q.transpose() * (Mk * Q);
-      for (int a = 0; a < u; ++a)
-        for (int b = 0; b < u; ++b) A(idx[a], idx[b]) += B(a, b);
+      const Eigen::Vector3d v = Mk * q0;
+      A(e, e) += q0.dot(v);
+      for (int a = 1; a < u; ++a) {
+        const double b0 = q[a] * v[row[a]];
+        A(idx[a], e) += b0;
+        A(e, idx[a]) += b0;
+        for (int b = 1; b < u; ++b) A(idx[a], idx[b]) += q[a] * (Mk(row[a], row[b]) * q[b]);
+      }
     }
   }
 };
