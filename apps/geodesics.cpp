@@ -1,11 +1,12 @@
 // apps/geodesics.cpp — heat-method geodesic distances.
 #include "apps/geodesics.h"
 
-
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
 #include <numeric>
+
+#include "dec/huge_pages.h"
 
 namespace polydec {
 
@@ -43,18 +44,56 @@ std::vector<int> vertex_components(const SparseMatrix& S) {
   return comp;
 }
 
-// A with the rows and columns of pinned vertices replaced by the identity.
+// A with the rows and columns of pinned vertices replaced by the identity, written column by
+// column (A's columns are sorted; a pinned column keeps only its diagonal 1). Triplets and
+// setFromTriplets took seconds on the 1.5M-quad mesh; the result is the same matrix.
 SparseMatrix pin(const SparseMatrix& A, const std::vector<unsigned char>& pinned) {
-  std::vector<Eigen::Triplet<double>> t;
-  t.reserve(A.nonZeros());
-  for (int j = 0; j < A.outerSize(); ++j)
-    for (SparseMatrix::InnerIterator it(A, j); it; ++it)
-      if (!pinned[it.row()] && !pinned[it.col()]) t.emplace_back(it.row(), it.col(), it.value());
-  for (size_t v = 0; v < pinned.size(); ++v)
-    if (pinned[v]) t.emplace_back(int(v), int(v), 1.0);
+  const int n = int(A.cols());
   SparseMatrix B(A.rows(), A.cols());
-  B.setFromTriplets(t.begin(), t.end());
+  int* outer = B.outerIndexPtr();
+  for (int j = 0; j < n; ++j) {
+    int count = 1;
+    if (!pinned[j]) {
+      count = 0;
+      for (SparseMatrix::InnerIterator it(A, j); it; ++it) count += !pinned[it.row()];
+    }
+    outer[j + 1] = outer[j] + count;
+  }
+  B.resizeNonZeros(outer[n]);
+  advise_huge_pages(B.valuePtr(), sizeof(double) * size_t(outer[n]));
+  advise_huge_pages(B.innerIndexPtr(), sizeof(int) * size_t(outer[n]));
+  int* inner = B.innerIndexPtr();
+  double* value = B.valuePtr();
+  for (int j = 0; j < n; ++j) {
+    int at = outer[j];
+    if (pinned[j]) {
+      inner[at] = j;
+      value[at] = 1.0;
+      continue;
+    }
+    for (SparseMatrix::InnerIterator it(A, j); it; ++it)
+      if (!pinned[it.row()]) {
+        inner[at] = int(it.row());
+        value[at++] = it.value();
+      }
+  }
   return B;
+}
+
+// `src` moved into a new set without copying its sparse matrices: Eigen 3.4's SparseMatrix has
+// no move constructor, so std::move(OperatorSet) deep-copies S, M, G and D (~0.3 s on FINE SPHERE).
+OperatorSet take(OperatorSet& src) {
+  SparseMatrix S, M, G, D;
+  S.swap(src.S);
+  M.swap(src.M);
+  G.swap(src.G);
+  D.swap(src.D);
+  OperatorSet dst = std::move(src);  // the other members move; the matrices are empty here
+  dst.S.swap(S);
+  dst.M.swap(M);
+  dst.G.swap(G);
+  dst.D.swap(D);
+  return dst;
 }
 
 }  // namespace
@@ -63,7 +102,7 @@ HeatGeodesics::HeatGeodesics(const Mesh& mesh, const HeatGeodesicsOptions& optio
     : HeatGeodesics(build_operators(mesh, parse_laplacian("ours")), mesh.mean_edge_length(), options) {}
 
 HeatGeodesics::HeatGeodesics(OperatorSet operators, double mean_edge_length, const HeatGeodesicsOptions& options)
-    : ops_(std::move(operators)), options_(options) {
+    : ops_(take(operators)), options_(options) {
   const Mesh& mesh = ops_.domain;
   // By shape, not by emptiness: a mesh without faces has a 0 x |V| gradient.
   const int nv = mesh.n_vertices();
@@ -88,7 +127,12 @@ HeatGeodesics::HeatGeodesics(OperatorSet operators, double mean_edge_length, con
   } else {
     heat = ops_.M - t_ * ops_.S;
   }
-  heat_ = std::make_unique<SparseCholesky>(pin(heat, pinned_), "heat operator M - t S");
+  // CHOLMOD's default supernodes: each source costs two solves, and a solve is ~30% faster than
+  // with the relaxed amalgamation (FINE SPHERE: 10.1 vs 14.0 ms) for a somewhat slower
+  // factorization (docs/benchmarks.md).
+  CholeskyOptions copt;
+  copt.relaxed_supernodes = false;
+  heat_ = std::make_unique<SparseCholesky>(pin(heat, pinned_), "heat operator M - t S", copt);
 
   // Poisson operator -S with one vertex pinned per component (S has constants per component in
   // its null space; the right-hand side D g sums to zero on each, so pinning loses nothing).
@@ -99,7 +143,7 @@ HeatGeodesics::HeatGeodesics(OperatorSet operators, double mean_edge_length, con
       seen[component_[v]] = 1;
       pinned_[v] = 1;
     }
-  poisson_ = std::make_unique<SparseCholesky>(pin(-ops_.S, pinned_), "Poisson operator -S");
+  poisson_ = std::make_unique<SparseCholesky>(pin(-ops_.S, pinned_), "Poisson operator -S", copt);
 }
 
 Eigen::VectorXd HeatGeodesics::distance(std::span<const int> sources) const {

@@ -1,6 +1,10 @@
 // apps/spectrum.h — the k smallest eigenpairs of the generalized problem -S x = lambda M x
-// (manifold harmonics, paper section 5.4) with Spectra's shift-invert Lanczos solver, using our
-// SparseCholesky (operators/cholesky.h) to apply (-S - sigma M)^-1.
+// (manifold harmonics, paper section 5.4) by shift-invert Lanczos, using our SparseCholesky
+// (operators/cholesky.h) to apply (-S - sigma M)^-1.
+// Lumped (diagonal) M: the equivalent standard problem for z = M^1/2 x, whose shift-inverted
+// operator M^1/2 (-S - sigma M)^-1 M^1/2 is symmetric, by our thick-restart Lanczos (full
+// reorthogonalization, restarts by one matrix product). Galerkin M: Spectra's generalized
+// shift-invert solver (SymGEigsShiftSolver).
 //
 // Conventions: S negative semi-definite (operators/laplacian.h), so the eigenvalues are
 // lambda >= 0 (0 once per connected component); eigenvectors are M-orthonormal
@@ -17,8 +21,10 @@ struct SpectrumOptions {
   bool lumped_mass = true;    // lumped (default) or Galerkin mass as M
   double shift_factor = 0.1;  // sigma = -shift_factor / (surface area): a small negative shift,
                               // so -S - sigma M is positive definite and the smallest lambda dominate
-  double tolerance = 1e-10;   // Spectra's relative convergence tolerance
-  int max_iterations = 1000;  // Spectra restarts
+  double tolerance = 1e-10;   // relative convergence tolerance (Spectra's criterion: Ritz residual
+                              // <= tolerance * |Ritz value| of the shift-inverted operator)
+  int max_iterations = 1000;  // restarts
+  int krylov_size = 0;        // Krylov subspace dimension; 0: spectrum_krylov_size(k, n)
 };
 
 struct Spectrum {
@@ -26,7 +32,12 @@ struct Spectrum {
   Eigen::MatrixXd eigenvectors;  // |V| x k (of the operator set's domain), M-orthonormal columns
   double shift = 0;              // the sigma that was used
   int n_converged = 0;
+  int n_solves = 0;       // applications of (-S - sigma M)^-1
+  std::string method;     // "thick-restart Lanczos (lumped M)" or "Spectra SymGEigsShiftSolver"
 };
+
+// The default Krylov subspace dimension for k eigenpairs of an n x n problem: min(n, max(2k + 1, k + 20)).
+int spectrum_krylov_size(int k, int n);
 
 // Eigenpairs with any operator set. Throws SolverError when the factorization or Spectra fails
 // (Spectra's info() is checked), std::invalid_argument for k out of range or a missing mass.

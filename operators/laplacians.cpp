@@ -94,13 +94,14 @@ OperatorSet virtual_vertex_operators(const Mesh& mesh, VirtualVertexRule rule, b
   ro.rule = rule;
   const Refinement r = refine(mesh, ro);
   Laplacian L = assemble_laplacian(mesh, r);
-  ops.S = std::move(L.S);
-  ops.M = std::move(L.M);
+  ops.S.swap(L.S);  // swap, not move: std::move copies an Eigen 3.4 SparseMatrix
+  ops.M.swap(L.M);
   ops.M_lumped = std::move(L.M_lumped);
   ops.quality = r.quality;
   if (with_gradient) {
-    ops.G = gradient(mesh, r);
-    ops.D = divergence(mesh, r);
+    SparseMatrix G = gradient(mesh, r), D = divergence(mesh, r);
+    ops.G.swap(G);
+    ops.D.swap(D);
   }
   return ops;
 }
@@ -178,35 +179,30 @@ OperatorSet intrinsic_delaunay_operators(const Mesh& mesh, bool with_gradient) {
   return ops;
 }
 
+// Returns each method's set as a prvalue: `ops = f(...)` would deep-copy S, M, G and D (Eigen
+// 3.4's SparseMatrix has no move assignment; ~10 s of the 1.5M-quad heat-method set-up).
+OperatorSet operators_by_name(const Mesh& mesh, const LaplacianChoice& choice, bool with_gradient) {
+  const std::string& m = choice.method;
+  if (m == "ours") return virtual_vertex_operators(mesh, VirtualVertexRule::SquaredArea, with_gradient);
+  if (m == "centroid") return virtual_vertex_operators(mesh, VirtualVertexRule::Centroid, with_gradient);
+  if (m == "abs-area") return virtual_vertex_operators(mesh, VirtualVertexRule::AbsArea, with_gradient);
+  if (m == "convex") return virtual_vertex_operators(mesh, VirtualVertexRule::Convex, with_gradient);
+  if (m == "trace-min") return virtual_vertex_operators(mesh, VirtualVertexRule::TraceMin, with_gradient);
+  if (m == "triangulated-minarea")
+    return triangulated_operators(mesh, TriangulationRule::MinSquaredArea, with_gradient);
+  if (m == "triangulated-maxminangle")
+    return triangulated_operators(mesh, TriangulationRule::MaxMinAngle, with_gradient);
+  if (m == "refined") return refined_operators(mesh, with_gradient);
+  if (m == "intrinsic-delaunay") return intrinsic_delaunay_operators(mesh, with_gradient);
+  if (m == "aw11") return aw11_operators(mesh, choice.parameter, with_gradient);
+  if (m == "degoes20") return degoes20_operators(mesh, choice.parameter, with_gradient);
+  throw std::invalid_argument("unknown Laplacian '" + m + "'");
+}
+
 }  // namespace
 
 OperatorSet build_operators(const Mesh& mesh, const LaplacianChoice& choice, bool with_gradient) {
-  OperatorSet ops;
-  const std::string& m = choice.method;
-  if (m == "ours")
-    ops = virtual_vertex_operators(mesh, VirtualVertexRule::SquaredArea, with_gradient);
-  else if (m == "centroid")
-    ops = virtual_vertex_operators(mesh, VirtualVertexRule::Centroid, with_gradient);
-  else if (m == "abs-area")
-    ops = virtual_vertex_operators(mesh, VirtualVertexRule::AbsArea, with_gradient);
-  else if (m == "convex")
-    ops = virtual_vertex_operators(mesh, VirtualVertexRule::Convex, with_gradient);
-  else if (m == "trace-min")
-    ops = virtual_vertex_operators(mesh, VirtualVertexRule::TraceMin, with_gradient);
-  else if (m == "triangulated-minarea")
-    ops = triangulated_operators(mesh, TriangulationRule::MinSquaredArea, with_gradient);
-  else if (m == "triangulated-maxminangle")
-    ops = triangulated_operators(mesh, TriangulationRule::MaxMinAngle, with_gradient);
-  else if (m == "refined")
-    ops = refined_operators(mesh, with_gradient);
-  else if (m == "intrinsic-delaunay")
-    ops = intrinsic_delaunay_operators(mesh, with_gradient);
-  else if (m == "aw11")
-    ops = aw11_operators(mesh, choice.parameter, with_gradient);
-  else if (m == "degoes20")
-    ops = degoes20_operators(mesh, choice.parameter, with_gradient);
-  else
-    throw std::invalid_argument("unknown Laplacian '" + m + "'");
+  OperatorSet ops = operators_by_name(mesh, choice, with_gradient);
   ops.name = choice.canonical_name();
   if (ops.mean_edge_length == 0.0) ops.mean_edge_length = mesh.mean_edge_length();
   return ops;
