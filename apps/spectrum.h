@@ -3,8 +3,9 @@
 // (operators/cholesky.h) to apply (-S - sigma M)^-1.
 // Lumped (diagonal) M: the equivalent standard problem for z = M^1/2 x, whose shift-inverted
 // operator M^1/2 (-S - sigma M)^-1 M^1/2 is symmetric, by our thick-restart Lanczos (full
-// reorthogonalization, restarts by one matrix product). Galerkin M: Spectra's generalized
-// shift-invert solver (SymGEigsShiftSolver).
+// reorthogonalization, restarts by one matrix product): Spectra's SymEigsSolver on the same
+// operator measured no faster than its generalized solver (docs/benchmarks.md, Spectrum), ours
+// 1.6x. Galerkin M: Spectra's generalized shift-invert solver (SymGEigsShiftSolver).
 //
 // Conventions: S negative semi-definite (operators/laplacian.h), so the eigenvalues are
 // lambda >= 0 (0 once per connected component); eigenvectors are M-orthonormal
