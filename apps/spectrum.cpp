@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -21,29 +22,40 @@ namespace polydec {
 
 namespace {
 
-// Spectra's shift-invert operator: y = (A - sigma B)^-1 x by our sparse Cholesky, refactored
-// whenever the shift changes.
-class CholeskyShiftInvert {
+// Spectra's shift-invert operator: y = (A - sigma B)^-1 x, refactored whenever the shift changes,
+// by our SparseCholesky or (the reference route) by Eigen's SimplicialLDLT.
+class ShiftInvert {
  public:
   using Scalar = double;
-  CholeskyShiftInvert(const SparseMatrix& A, const SparseMatrix& B) : A_(A), B_(B) {}
+  ShiftInvert(const SparseMatrix& A, const SparseMatrix& B, bool reference) : A_(A), B_(B), reference_(reference) {}
   Eigen::Index rows() const { return A_.rows(); }
   Eigen::Index cols() const { return A_.cols(); }
   void set_shift(double sigma) {
     const SparseMatrix K = A_ - sigma * B_;
-    if (chol_)
+    if (reference_) {
+      ldlt_.compute(K);
+      if (ldlt_.info() != Eigen::Success)
+        throw SolverError("spectrum: Eigen's SimplicialLDLT failed on -S - sigma M (reference route)");
+    } else if (chol_) {
       chol_->refactor(K);
-    else
+    } else {
       chol_ = std::make_unique<SparseCholesky>(K, "-S - sigma M (spectrum shift-invert)");
+    }
   }
   void perform_op(const double* x_in, double* y_out) const {
-    Eigen::Map<Eigen::VectorXd>(y_out, rows()) =
-        chol_->solve(Eigen::Map<const Eigen::VectorXd>(x_in, rows()).eval());
+    const Eigen::Map<const Eigen::VectorXd> x(x_in, rows());
+    Eigen::Map<Eigen::VectorXd> y(y_out, rows());
+    if (reference_)
+      y = ldlt_.solve(x);
+    else
+      y = chol_->solve(x.eval());
   }
 
  private:
   const SparseMatrix& A_;
   const SparseMatrix& B_;
+  bool reference_;
+  Eigen::SimplicialLDLT<SparseMatrix> ldlt_;
   std::unique_ptr<SparseCholesky> chol_;
 };
 
@@ -200,7 +212,7 @@ Spectrum laplacian_spectrum(const OperatorSet& ops, const SpectrumOptions& optio
   result.shift = -options.shift_factor / area;
   const int ncv = options.krylov_size > 0 ? std::clamp(options.krylov_size, options.k + 1, n)
                                           : spectrum_krylov_size(options.k, n);
-  if (options.lumped_mass) {
+  if (options.lumped_mass && !options.reference) {
     // Standard problem for z = M^1/2 x: (M^-1/2 A M^-1/2 - sigma I)^-1 = M^1/2 (A - sigma M)^-1 M^1/2,
     // symmetric positive definite; its largest eigenvalues theta give lambda = sigma + 1 / theta.
     // CHOLMOD's default supernodes: a few hundred solves follow one factorization.
@@ -235,16 +247,17 @@ Spectrum laplacian_spectrum(const OperatorSet& ops, const SpectrumOptions& optio
         else z[v] = 0;
     }
   } else {
-    CholeskyShiftInvert op(A, B);
+    ShiftInvert op(A, B, options.reference);
     Spectra::SparseSymMatProd<double> Bop(B);
-    Spectra::SymGEigsShiftSolver<CholeskyShiftInvert, Spectra::SparseSymMatProd<double>,
+    Spectra::SymGEigsShiftSolver<ShiftInvert, Spectra::SparseSymMatProd<double>,
                                  Spectra::GEigsMode::ShiftInvert>
         solver(op, Bop, options.k, ncv, result.shift);
     solver.init();
     result.n_converged = int(solver.compute(Spectra::SortRule::LargestMagn, options.max_iterations,
                                             options.tolerance, Spectra::SortRule::SmallestAlge));
     result.n_solves = int(solver.num_operations());
-    result.method = "Spectra SymGEigsShiftSolver";
+    result.method = options.reference ? "Spectra SymGEigsShiftSolver + Eigen SimplicialLDLT (reference)"
+                                      : "Spectra SymGEigsShiftSolver";
     if (solver.info() != Spectra::CompInfo::Successful)
       throw SolverError(
           fmt::format("spectrum: Spectra did not converge ({} of {} eigenpairs after {} restarts)",

@@ -26,6 +26,9 @@ struct SpectrumOptions {
                               // <= tolerance * |Ritz value| of the shift-inverted operator)
   int max_iterations = 1000;  // restarts
   int krylov_size = 0;        // Krylov subspace dimension; 0: spectrum_krylov_size(k, n)
+  bool reference = false;     // the reference route, for either mass: Spectra's generalized solver
+                              // driven by Eigen's SimplicialLDLT (neither our Lanczos nor CHOLMOD),
+                              // the independent check of tests and the benchmark's baseline
 };
 
 struct Spectrum {

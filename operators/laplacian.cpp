@@ -1,26 +1,26 @@
 // operators/laplacian.cpp — face-by-face assembly of S, M and lumped M into a precomputed
 // pattern. Per face, the compact rank-structured local matrices (operators/local_matrices.h)
 // are computed without allocation and expanded column by column straight into the value
-// arrays. With several threads, faces are processed in blocks: the local matrices of a block
-// are computed in parallel (split by faces), then scattered in parallel split by column
-// ranges, each thread walking the block's faces in ascending order; so every entry receives
-// its contributions in the same order as on one thread, and results are bitwise identical.
+// arrays. With T threads, the faces are split into T patches (ranges of a breadth-first order);
+// a vertex all of whose faces lie in one patch has its column summed by that patch's thread, the
+// other vertices' columns (on the seams between patches) by a serial pass over their faces. Each entry is a
+// sum over the faces around one vertex, taken in ascending face order either way, so results are bitwise
+// identical to one thread.
 #include "operators/laplacian.h"
 
-#include "dec/huge_pages.h"
-#include "dec/threads.h"
-#include "operators/local_matrices.h"
-
 #include <algorithm>
-#include <barrier>
 #include <memory>
 #include <stdexcept>
 #include <type_traits>
 #include <utility>
 
+#include "dec/huge_pages.h"
+#include "dec/threads.h"
+#include "operators/local_matrices.h"
+
 namespace polydec {
 
-FacePattern face_pattern(const Mesh& mesh) {
+FacePattern face_pattern(const Mesh& mesh, int threads) {
   const int nv = mesh.n_vertices(), nf = mesh.n_faces();
   const int* offsets = mesh.face_offsets().data();
   const int* indices = mesh.face_indices().data();
@@ -94,25 +94,55 @@ FacePattern face_pattern(const Mesh& mesh) {
     }
   }
   std::fill(fp.pattern.valuePtr(), fp.pattern.valuePtr() + nnz, 0.0);
+  // Breadth-first order over faces sharing a vertex, one component after another: contiguous
+  // ranks form compact patches whatever the file's face order, so the threads' face sets share
+  // few vertices (with file order, half of FINE SPHERE's faces touched a vertex of both halves).
+  if (resolve_threads(threads) <= 1) return fp;
+  fp.face_rank.assign(size_t(nf), -1);
+  std::vector<int> queue;
+  queue.reserve(size_t(nf));
+  for (int seed = 0; seed < nf; ++seed) {
+    if (fp.face_rank[size_t(seed)] >= 0) continue;
+    fp.face_rank[size_t(seed)] = int(queue.size());
+    queue.push_back(seed);
+    for (size_t q = queue.size() - 1; q < queue.size(); ++q) {
+      const int f = queue[q];
+      for (int h = offsets[f]; h < offsets[f + 1]; ++h)
+        for (int g : mesh.vertex_faces(indices[h]))
+          if (fp.face_rank[size_t(g)] < 0) {
+            fp.face_rank[size_t(g)] = int(queue.size());
+            queue.push_back(g);
+          }
+    }
+  }
   return fp;
 }
 
 namespace {
 
-// Faces per block in the threaded path: about this many halfedges (the block's compact local
-// matrices, 6 doubles per halfedge, stay in the second-level cache).
-constexpr int kBlockHalfedges = 8192;
+// Below this many halfedges per thread, threads cost more than they save.
+constexpr int kHalfedgesPerThread = 8192;
 
 // Calls f with std::integral_constant<int, n> for the common face sizes, else with 0 (any
 // size), so that the per-face loops are unrolled for triangles, quads, pentagons and hexagons.
 template <class F>
 inline void with_size(int n, F&& f) {
   switch (n) {
-    case 3: f(std::integral_constant<int, 3>{}); break;
-    case 4: f(std::integral_constant<int, 4>{}); break;
-    case 5: f(std::integral_constant<int, 5>{}); break;
-    case 6: f(std::integral_constant<int, 6>{}); break;
-    default: f(std::integral_constant<int, 0>{}); break;
+    case 3:
+      f(std::integral_constant<int, 3>{});
+      break;
+    case 4:
+      f(std::integral_constant<int, 4>{});
+      break;
+    case 5:
+      f(std::integral_constant<int, 5>{});
+      break;
+    case 6:
+      f(std::integral_constant<int, 6>{});
+      break;
+    default:
+      f(std::integral_constant<int, 0>{});
+      break;
   }
 }
 
@@ -121,8 +151,8 @@ struct Assembler {
   const Refinement& r;
   const FacePattern& fp;
   const int* outer;  // the pattern's column starts
-  double* sv;  // stiffness values or null
-  double* mv;  // mass values or null
+  double* sv;        // stiffness values or null
+  double* mv;        // mass values or null
   const int* offsets = mesh.face_offsets().data();
   const int* indices = mesh.face_indices().data();
 
@@ -142,18 +172,14 @@ struct Assembler {
     detail::polygon_compact<N>(x, n, r.weights.data() + h0, xf, r.fan.data() + h0, cs, cm);
   }
 
-  // Adds face f's columns (all, or with Filter those whose vertex lies in [lo, hi)) to the
-  // value arrays.
-  template <int N, bool Filter>
-  void scatter(int f, const double* cs, const double* cm, int lo, int hi, double* col) const {
+  // Adds face f's columns whose vertex v passes keep(v) to the value arrays.
+  template <int N, class Keep>
+  void scatter(int f, const double* cs, const double* cm, Keep keep, double* col) const {
     const int h0 = offsets[f], n = N > 0 ? N : offsets[f + 1] - h0;
     const double* w = r.weights.data() + h0;
     const int* slot = fp.slots.data() + fp.local_offsets[f];
     for (int b = 0; b < n; ++b) {
-      if (Filter) {
-        const int v = indices[h0 + b];
-        if (v < lo || v >= hi) continue;
-      }
+      if (!keep(indices[h0 + b])) continue;
       if (sv) {
         detail::expand_column<N>(n, b, w, cs, col);
         for (int a = 0; a < n; ++a) sv[slot[a * n + b]] += col[a];
@@ -187,78 +213,72 @@ struct Assembler {
     for (int f = 0; f < mesh.n_faces(); ++f)
       with_size(offsets[f + 1] - offsets[f], [&](auto N) {
         compact<decltype(N)::value>(f, x, want_s, want_m);
-        scatter<decltype(N)::value, false>(f, cs, cm, 0, nv, col);
+        scatter<decltype(N)::value>(
+            f, cs, cm, [](int) { return true; }, col);
       });
     if (lumped) lump(*lumped, 0, nv);
   }
 
   void run_parallel(int T, Eigen::VectorXd* lumped) const {
     const int nf = mesh.n_faces(), nv = mesh.n_vertices(), nmax = mesh.max_face_size();
-    // Blocks of whole faces with about kBlockHalfedges halfedges.
-    std::vector<int> block{0};
-    for (int f = 0; f < nf;) {
-      const int h_end = offsets[f] + kBlockHalfedges;
-      while (f < nf && (offsets[f + 1] <= h_end || offsets[f] == offsets[block.back()])) ++f;
-      block.push_back(f);
-    }
-    const int nb = int(block.size()) - 1;
-    // Column ranges with about equal numbers of non-zeros.
-    const long nnz = outer[nv];
-    std::vector<int> col_lo(T + 1);
-    for (int t = 0; t <= T; ++t)
-      col_lo[t] = t == T ? nv : int(std::lower_bound(outer, outer + nv + 1, long(nnz * t / T)) - outer);
-    // Double-buffered compact matrices: block s is computed while block s - 1 is scattered.
-    std::vector<double> store[2];
-    size_t max_block_h = 0;
-    for (int s = 0; s < nb; ++s) max_block_h = std::max(max_block_h, size_t(offsets[block[s + 1]] - offsets[block[s]]));
-    for (auto& st : store) st.resize(6 * max_block_h);
-    std::barrier sync(T);
-    auto work = [&](int t) {
-      std::vector<double> scratch(4 * size_t(nmax));
-      double* x = scratch.data();
-      double* col = x + 3 * nmax;
-      for (int s = 0; s <= nb; ++s) {
-        if (s < nb) {
-          // This thread's share of block s: faces starting in its part of the halfedges.
-          double* st = store[s % 2].data();
-          const int f0 = block[s], f1 = block[s + 1], hb = offsets[f0], hn = offsets[f1] - hb;
-          const int fa = int(std::lower_bound(offsets + f0, offsets + f1 + 1, hb + int(long(hn) * t / T)) - offsets);
-          const int fe = int(std::lower_bound(offsets + f0, offsets + f1 + 1, hb + int(long(hn) * (t + 1) / T)) - offsets);
-          for (int f = fa; f < fe; ++f) {
-            const long h = offsets[f] - hb;
-            const int n = offsets[f + 1] - offsets[f];
-            with_size(n, [&](auto N) { compact<decltype(N)::value>(f, x, sv ? st + 6 * h : nullptr, mv ? st + 6 * h + 3 * n : nullptr); });
-          }
-        }
-        if (s > 0) {
-          const double* st = store[(s - 1) % 2].data();
-          const int f0 = block[s - 1], f1 = block[s], hb = offsets[f0];
-          for (int f = f0; f < f1; ++f) {
-            const long h = offsets[f] - hb;
-            const int n = offsets[f + 1] - offsets[f];
-            with_size(n, [&](auto N) {
-              scatter<decltype(N)::value, true>(f, st + 6 * h, st + 6 * h + 3 * n, col_lo[t], col_lo[t + 1], col);
-            });
-          }
-        }
-        sync.arrive_and_wait();
+    // Thread of face f: its breadth-first rank (FacePattern::face_rank) split into T equal ranges.
+    const std::vector<int>& rank = fp.face_rank;
+    auto thread_of = [&](int f) { return int(long(rank.empty() ? f : rank[size_t(f)]) * T / nf); };
+    // owner[v]: the thread holding every face around v, or kSeam.
+    constexpr int kNone = -2, kSeam = -1;
+    std::vector<int> owner(nv, kNone);
+    for (int f = 0; f < nf; ++f) {
+      const int t = thread_of(f);
+      for (int h = offsets[f]; h < offsets[f + 1]; ++h) {
+        int& o = owner[indices[h]];
+        o = (o == kNone || o == t) ? t : kSeam;
       }
-      if (lumped) lump(*lumped, col_lo[t], col_lo[t + 1]);
+    }
+    // Faces in ascending order: those of thread t (t >= 0), or those touching a seam vertex (t < 0).
+    auto faces = [&](int t, auto keep) {
+      std::vector<double> scratch(10 * size_t(nmax));
+      double* x = scratch.data();
+      double* cs = x + 3 * nmax;
+      double* cm = cs + 3 * nmax;
+      double* col = cm + 3 * nmax;
+      for (int f = 0; f < nf; ++f) {
+        if (t >= 0 ? thread_of(f) != t
+                   : std::none_of(indices + offsets[f], indices + offsets[f + 1],
+                                  [&](int v) { return owner[v] == kSeam; }))
+          continue;
+        with_size(offsets[f + 1] - offsets[f], [&](auto N) {
+          compact<decltype(N)::value>(f, x, sv ? cs : nullptr, mv ? cm : nullptr);
+          scatter<decltype(N)::value>(f, cs, cm, keep, col);
+        });
+      }
     };
-    run_on_threads(T, work);
+    run_on_threads(T, [&](int t) { faces(t, [&](int v) { return owner[v] == t; }); });
+    faces(-1, [&](int v) { return owner[v] == kSeam; });
+    if (lumped) {
+      // Column ranges with about equal numbers of non-zeros.
+      const long nnz = outer[nv];
+      run_on_threads(T, [&](int t) {
+        const int lo = int(std::lower_bound(outer, outer + nv + 1, long(nnz * t / T)) - outer);
+        const int hi =
+            t + 1 == T ? nv : int(std::lower_bound(outer, outer + nv + 1, long(nnz * (t + 1) / T)) - outer);
+        lump(*lumped, lo, hi);
+      });
+    }
   }
 };
 
 int thread_count(const AssemblyOptions& options, const Mesh& mesh) {
-  // Below a few blocks, threads cost more than they save (results do not depend on T).
-  return mesh.n_halfedges() < 4 * kBlockHalfedges ? 1 : resolve_threads(options.threads);
+  // Results do not depend on T.
+  return std::max(1, std::min(resolve_threads(options.threads), mesh.n_halfedges() / kHalfedgesPerThread));
 }
 
 // Assembles into L with the slots of `fp` and the sparsity structure `structure` (fp.pattern,
 // or a matrix that took over its storage).
-void assemble_into(const Mesh& mesh, const Refinement& refinement, const FacePattern& fp, const SparseMatrix& structure,
-                   LaplacianParts parts, Laplacian& L, const AssemblyOptions& options) {
-  if (long(refinement.weights.size()) != mesh.n_halfedges() || refinement.virtual_points.rows() != mesh.n_faces())
+void assemble_into(const Mesh& mesh, const Refinement& refinement, const FacePattern& fp,
+                   const SparseMatrix& structure, LaplacianParts parts, Laplacian& L,
+                   const AssemblyOptions& options) {
+  if (long(refinement.weights.size()) != mesh.n_halfedges() ||
+      refinement.virtual_points.rows() != mesh.n_faces())
     throw std::invalid_argument("assemble_laplacian: the refinement does not belong to this mesh");
   if (structure.rows() != mesh.n_vertices() || long(fp.local_offsets.size()) != mesh.n_faces() + 1)
     throw std::invalid_argument("assemble_laplacian: the face pattern does not belong to this mesh");
@@ -269,7 +289,8 @@ void assemble_into(const Mesh& mesh, const Refinement& refinement, const FacePat
       A.resizeNonZeros(nnz);
       advise_huge_pages(A.innerIndexPtr(), sizeof(int) * nnz);
       advise_huge_pages(A.valuePtr(), sizeof(double) * nnz);
-      std::copy(structure.outerIndexPtr(), structure.outerIndexPtr() + structure.outerSize() + 1, A.outerIndexPtr());
+      std::copy(structure.outerIndexPtr(), structure.outerIndexPtr() + structure.outerSize() + 1,
+                A.outerIndexPtr());
       std::copy(structure.innerIndexPtr(), structure.innerIndexPtr() + nnz, A.innerIndexPtr());
     }
     std::fill(A.valuePtr(), A.valuePtr() + nnz, 0.0);
@@ -291,7 +312,8 @@ void assemble_into(const Mesh& mesh, const Refinement& refinement, const FacePat
     L.M_lumped.resize(mesh.n_vertices());
     advise_huge_pages(L.M_lumped.data(), sizeof(double) * mesh.n_vertices());
   }
-  const Assembler as{mesh, refinement, fp, structure.outerIndexPtr(), parts.stiffness ? L.S.valuePtr() : nullptr, mv};
+  const Assembler as{
+      mesh, refinement, fp, structure.outerIndexPtr(), parts.stiffness ? L.S.valuePtr() : nullptr, mv};
   Eigen::VectorXd* lumped = parts.lumped_mass ? &L.M_lumped : nullptr;
   const int T = thread_count(options, mesh);
   if (T == 1)
@@ -314,7 +336,7 @@ Laplacian assemble_laplacian(const Mesh& mesh, const Refinement& refinement, Lap
     reassemble_laplacian(mesh, refinement, *pattern, parts, L, options);
     return L;
   }
-  FacePattern own = face_pattern(mesh);
+  FacePattern own = face_pattern(mesh, thread_count(options, mesh));
   // The pattern's storage becomes S's (or M's) instead of being copied (swap: Eigen 3.4's
   // SparseMatrix has no move assignment, std::move would copy).
   SparseMatrix* host = parts.stiffness ? &L.S : parts.mass ? &L.M : nullptr;

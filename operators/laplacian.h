@@ -25,8 +25,14 @@ struct FacePattern {
   std::vector<long>
       local_offsets;       // |F| + 1: face f's slots are slots[local_offsets[f] ..], n*n, row-major (a, b)
   std::vector<int> slots;  // index into pattern.valuePtr()
+  std::vector<int> face_rank;  // |F|: position of each face in a breadth-first order of the faces
+                               // (ranges of it are connected patches: the threads' shares); empty
+                               // (threads <= 1): the file's order
 };
-FacePattern face_pattern(const Mesh& mesh);
+// The pattern; with threads > 1 (0: all cores) also face_rank, for threaded (re-)assembly: its
+// breadth-first pass costs about as much as the pattern itself, and without it the threads split
+// the faces in file order, which parallelizes poorly when that order is not spatially coherent.
+FacePattern face_pattern(const Mesh& mesh, int threads = 1);
 
 // What assemble_laplacian computes.
 struct LaplacianParts {

@@ -44,7 +44,7 @@ void run_timing(const Options& o, const Mesh& mesh, const RefinementOptions& rop
     L.M_lumped.swap(fresh.M_lumped);
     full.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
   }
-  const FacePattern fp = face_pattern(mesh);
+  const FacePattern fp = face_pattern(mesh, aopt.threads);
   for (int i = 0; i < o.repeat; ++i) {
     const auto t0 = Clock::now();
     const Refinement r = refine(mesh, ropt);

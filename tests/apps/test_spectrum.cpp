@@ -4,9 +4,6 @@
 #include <unistd.h>
 
 #include <Eigen/Eigenvalues>
-#include <Eigen/SparseCholesky>
-#include <Spectra/MatOp/SparseSymMatProd.h>
-#include <Spectra/SymGEigsShiftSolver.h>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -32,37 +29,6 @@ SparseMatrix mass_of(const OperatorSet& ops, bool lumped) {
   M.setIdentity();
   M.diagonal() = ops.M_lumped;
   return M;
-}
-
-// Independent route for the lumped problem: Spectra's generalized shift-invert Lanczos
-// (SymGEigsShiftSolver) on Eigen's SimplicialLDLT of (-S - sigma M), same shift and tolerance.
-class LdltShiftInvert {
- public:
-  using Scalar = double;
-  LdltShiftInvert(const SparseMatrix& A, const SparseMatrix& B) : A_(A), B_(B) {}
-  Eigen::Index rows() const { return A_.rows(); }
-  Eigen::Index cols() const { return A_.cols(); }
-  void set_shift(double sigma) { ldlt_.compute(A_ - sigma * B_); }
-  void perform_op(const double* x, double* y) const {
-    Eigen::Map<Eigen::VectorXd>(y, rows()) = ldlt_.solve(Eigen::Map<const Eigen::VectorXd>(x, rows()));
-  }
-
- private:
-  const SparseMatrix& A_;
-  const SparseMatrix& B_;
-  Eigen::SimplicialLDLT<SparseMatrix> ldlt_;
-};
-
-Eigen::VectorXd spectra_ldlt_eigenvalues(const OperatorSet& ops, const SpectrumOptions& o) {
-  const SparseMatrix A = -ops.S, B = mass_of(ops, true);
-  LdltShiftInvert op(A, B);
-  Spectra::SparseSymMatProd<double> Bop(B);
-  Spectra::SymGEigsShiftSolver<LdltShiftInvert, Spectra::SparseSymMatProd<double>, Spectra::GEigsMode::ShiftInvert>
-      solver(op, Bop, o.k, spectrum_krylov_size(o.k, int(A.rows())), -o.shift_factor / ops.M_lumped.sum());
-  solver.init();
-  solver.compute(Spectra::SortRule::LargestMagn, o.max_iterations, o.tolerance, Spectra::SortRule::SmallestAlge);
-  REQUIRE(solver.info() == Spectra::CompInfo::Successful);
-  return solver.eigenvalues();
 }
 
 // Largest |a_i - b_i| / max(|b_i|, b_1) (the zero eigenvalue relative to the first non-zero one).
@@ -93,7 +59,12 @@ TEST_CASE("spectrum: thick-restart Lanczos equals Spectra + SimplicialLDLT and a
   REQUIRE(dense.info() == Eigen::Success);
   SpectrumOptions o;
   o.k = 50;
-  const Eigen::VectorXd spectra = spectra_ldlt_eigenvalues(ops, o);
+  SpectrumOptions ref = o;
+  ref.reference = true;  // Spectra's generalized solver on Eigen's SimplicialLDLT
+  const Spectrum reference = laplacian_spectrum(ops, ref);
+  REQUIRE(reference.method == "Spectra SymGEigsShiftSolver + Eigen SimplicialLDLT (reference)");
+  check_eigenpairs(ops, reference);
+  const Eigen::VectorXd& spectra = reference.eigenvalues;
   // Default Krylov size (101), a small one (many thick restarts) and a large one.
   for (int m : {0, 56, 200}) {
     o.krylov_size = m;

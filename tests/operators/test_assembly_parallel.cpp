@@ -2,6 +2,14 @@
 // for any thread count, re-assembly equal to a fresh assembly, S and M equal to the refined
 // cotangent route P^T S_tri P (an independent construction), the allocation-free weights equal
 // to the least-norm solution of eq. (38), and the CHOLMOD and Eigen Cholesky backends agreeing.
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <nlohmann/json.hpp>
+#include <random>
+
 #include "dec/generators.h"
 #include "dec/io.h"
 #include "dec/prolongation.h"
@@ -10,13 +18,6 @@
 #include "operators/laplacian.h"
 #include "tests/plain_cotan.h"
 #include "tests/support.h"
-
-#include <Eigen/Dense>
-#include <cmath>
-#include <cstring>
-#include <cstdio>
-#include <nlohmann/json.hpp>
-#include <random>
 
 using namespace polydec;
 
@@ -35,9 +36,24 @@ bool bitwise_equal(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), sizeof(double) * a.size()) == 0;
 }
 
-// Meshes large enough for the threaded path (several blocks), with mixed face sizes.
+// The same surface with its faces in a random order: most vertices then have faces in several
+// of the threads' face ranges (the serial seam pass of the threaded assembly does most work).
+Mesh shuffle_faces(const Mesh& mesh, unsigned seed) {
+  std::vector<int> order(size_t(mesh.n_faces()));
+  for (int f = 0; f < mesh.n_faces(); ++f) order[size_t(f)] = f;
+  std::mt19937 rng(seed);
+  std::shuffle(order.begin(), order.end(), rng);
+  PolygonSoup soup;
+  soup.positions = mesh.positions();
+  for (int f : order) soup.add_face(mesh.face(f));
+  return Mesh(std::move(soup));
+}
+
+// Meshes large enough for the threaded path (at least 8192 halfedges per thread for 4 threads),
+// with mixed face sizes, in coherent and in random face order.
 std::vector<std::pair<std::string, Mesh>> threaded_meshes() {
   return {{"cube sphere (quads)", cube_sphere(48)},
+          {"cube sphere, faces shuffled", shuffle_faces(cube_sphere(48), 11)},
           {"noisy hexagon sphere (5-, 6-gons)", add_noise(hex_sphere(5), 0.2, 7)},
           {"uv sphere (triangles and quads)", uv_sphere(120, 160)}};
 }
@@ -62,7 +78,8 @@ TEST_CASE("assembly is bitwise identical for any thread count", "[perf]") {
       options.threads = T;
       const Refinement rT = refine(mesh, options);
       CHECK(std::memcmp(r.weights.data(), rT.weights.data(), sizeof(double) * r.weights.size()) == 0);
-      CHECK(std::memcmp(r.virtual_points.data(), rT.virtual_points.data(), sizeof(double) * r.virtual_points.size()) == 0);
+      CHECK(std::memcmp(r.virtual_points.data(), rT.virtual_points.data(),
+                        sizeof(double) * r.virtual_points.size()) == 0);
       CHECK(r.fan == rT.fan);
       CHECK(r.quality.n_degenerate == rT.quality.n_degenerate);
       CHECK(r.quality.n_inverted == rT.quality.n_inverted);
@@ -79,25 +96,31 @@ TEST_CASE("assembly is bitwise identical for any thread count", "[perf]") {
 TEST_CASE("re-assembly on moved vertices equals a fresh assembly", "[perf]") {
   const Mesh mesh = add_noise(cube_sphere(40), 0.1, 3);
   const Mesh moved = add_noise(mesh, 0.3, 11);
-  const FacePattern fp = face_pattern(mesh);
-  for (int T : {1, 2}) {
-    INFO("threads " << T);
-    Laplacian L = assemble_laplacian(mesh, refine(mesh), {}, &fp, {T});
-    const double* s_storage = L.S.valuePtr();
-    const Refinement r2 = refine(moved);
-    reassemble_laplacian(moved, r2, fp, {}, L, {T});
-    const Laplacian fresh = assemble_laplacian(moved, r2, {}, nullptr, {1});
-    CHECK(L.S.valuePtr() == s_storage);  // storage reused
-    CHECK(bitwise_equal(L.S, fresh.S));
-    CHECK(bitwise_equal(L.M, fresh.M));
-    CHECK(bitwise_equal(L.M_lumped, fresh.M_lumped));
-    // Only the mass parts: S untouched, M and lumped M as fresh.
-    Laplacian Lm;
-    reassemble_laplacian(moved, r2, fp, {false, true, true}, Lm, {T});
-    CHECK(Lm.S.nonZeros() == 0);
-    CHECK(bitwise_equal(Lm.M, fresh.M));
-    CHECK(bitwise_equal(Lm.M_lumped, fresh.M_lumped));
-  }
+  const FacePattern fp = face_pattern(mesh), fp_patches = face_pattern(mesh, 2);
+  REQUIRE(fp.face_rank.empty());
+  REQUIRE(fp_patches.face_rank.size() == size_t(mesh.n_faces()));
+  std::vector<int> sorted = fp_patches.face_rank;  // a permutation of the faces
+  std::sort(sorted.begin(), sorted.end());
+  for (int f = 0; f < mesh.n_faces(); ++f) REQUIRE(sorted[size_t(f)] == f);
+  for (int T : {1, 2, 3})
+    for (const FacePattern* p : {&fp, &fp_patches}) {
+      INFO("threads " << T << (p == &fp ? ", file order" : ", breadth-first patches"));
+      Laplacian L = assemble_laplacian(mesh, refine(mesh), {}, p, {T});
+      const double* s_storage = L.S.valuePtr();
+      const Refinement r2 = refine(moved);
+      reassemble_laplacian(moved, r2, *p, {}, L, {T});
+      const Laplacian fresh = assemble_laplacian(moved, r2, {}, nullptr, {1});
+      CHECK(L.S.valuePtr() == s_storage);  // storage reused
+      CHECK(bitwise_equal(L.S, fresh.S));
+      CHECK(bitwise_equal(L.M, fresh.M));
+      CHECK(bitwise_equal(L.M_lumped, fresh.M_lumped));
+      // Only the mass parts: S untouched, M and lumped M as fresh.
+      Laplacian Lm;
+      reassemble_laplacian(moved, r2, *p, {false, true, true}, Lm, {T});
+      CHECK(Lm.S.nonZeros() == 0);
+      CHECK(bitwise_equal(Lm.M, fresh.M));
+      CHECK(bitwise_equal(Lm.M_lumped, fresh.M_lumped));
+    }
 }
 
 TEST_CASE("fast S and M equal the refined cotangent route P^T S_tri P", "[perf]") {
@@ -112,7 +135,8 @@ TEST_CASE("fast S and M equal the refined cotangent route P^T S_tri P", "[perf]"
     const SparseMatrix S = P.transpose() * fine.S * P, M = P.transpose() * fine.M * P;
     CHECK(test::relative_difference(L.S, S) < 1e-13);
     CHECK(test::relative_difference(L.M, M) < 1e-13);
-    CHECK((L.S * Eigen::VectorXd::Ones(mesh.n_vertices())).cwiseAbs().maxCoeff() < 1e-12 * L.S.diagonal().cwiseAbs().maxCoeff());
+    CHECK((L.S * Eigen::VectorXd::Ones(mesh.n_vertices())).cwiseAbs().maxCoeff() <
+          1e-12 * L.S.diagonal().cwiseAbs().maxCoeff());
   }
 }
 
@@ -207,7 +231,8 @@ TEST_CASE("CHOLMOD and Eigen Cholesky backends agree; refactorization reuses the
     WARN("CHOLMOD not compiled in: only the Eigen backend tested");
     return;
   }
-  for (auto ordering : {CholeskyOrdering::Automatic, CholeskyOrdering::Metis, CholeskyOrdering::NestedDissection}) {
+  for (auto ordering :
+       {CholeskyOrdering::Automatic, CholeskyOrdering::Metis, CholeskyOrdering::NestedDissection}) {
     SparseCholesky chol(A, "M - t S", {CholeskyBackend::Cholmod, ordering});
     INFO("ordering " << chol.ordering());
     CHECK(chol.backend() == "cholmod-supernodal");
@@ -224,12 +249,14 @@ TEST_CASE("CHOLMOD and Eigen Cholesky backends agree; refactorization reuses the
     CHECK((chol.solve(b) - eig2.solve(b)).norm() < 1e-10 * eig2.solve(b).norm());
   }
   CHECK_THROWS_AS(SparseCholesky(L.S, "S", {CholeskyBackend::Cholmod}), SolverError);
-  CHECK_THROWS_WITH(SparseCholesky(L.S, "stiffness S", {CholeskyBackend::Cholmod}), Catch::Contains("stiffness S"));
+  CHECK_THROWS_WITH(SparseCholesky(L.S, "stiffness S", {CholeskyBackend::Cholmod}),
+                    Catch::Contains("stiffness S"));
 }
 
 TEST_CASE("polydec operators --repeat --threads --json times the assembly without writing files", "[perf]") {
   POLYDEC_SHARED_MESH(path, "quad-sphere.off");
-  const std::string cmd = std::string(POLYDEC_CLI_PATH) + " operators " + path + " --repeat 3 --threads 2 --json";
+  const std::string cmd =
+      std::string(POLYDEC_CLI_PATH) + " operators " + path + " --repeat 3 --threads 2 --json";
   FILE* p = popen(cmd.c_str(), "r");
   REQUIRE(p);
   std::string out;
@@ -241,7 +268,8 @@ TEST_CASE("polydec operators --repeat --threads --json times the assembly withou
   CHECK(j.at("repeat").get<int>() == 3);
   CHECK(j.at("median_ms").get<double>() > 0);
   CHECK(j.at("faces").get<int>() == 512);
-  CHECK(j.at("S_nonzeros").get<long>() == assemble_laplacian(read_mesh(path), refine(read_mesh(path))).S.nonZeros());
+  CHECK(j.at("S_nonzeros").get<long>() ==
+        assemble_laplacian(read_mesh(path), refine(read_mesh(path))).S.nonZeros());
 }
 
 }  // namespace test_assembly_parallel
