@@ -29,9 +29,10 @@ struct FacePattern {
                                // (ranges of it are connected patches: the threads' shares); empty
                                // (threads <= 1): the file's order
 };
-// The pattern; with threads > 1 (0: all cores) also face_rank, for threaded (re-)assembly: its
-// breadth-first pass costs about as much as the pattern itself, and without it the threads split
-// the faces in file order, which parallelizes poorly when that order is not spatially coherent.
+// The pattern; with threads > 1 (0: all cores) also face_rank, for threaded re-assembly: without
+// it the threads split the faces in file order, which parallelizes poorly when that order is not
+// spatially coherent (FINE SPHERE: values on 2 threads 1.0x in file order, 1.45x with patches).
+// The breadth-first pass is serial and costs about as much as the pattern itself.
 FacePattern face_pattern(const Mesh& mesh, int threads = 1);
 
 // What assemble_laplacian computes.
