@@ -44,42 +44,6 @@ std::vector<int> vertex_components(const SparseMatrix& S) {
   return comp;
 }
 
-// A with the rows and columns of pinned vertices replaced by the identity, written column by
-// column (A's columns are sorted; a pinned column keeps only its diagonal 1). Triplets and
-// setFromTriplets took seconds on the 1.5M-quad mesh; the result is the same matrix.
-SparseMatrix pin(const SparseMatrix& A, const std::vector<unsigned char>& pinned) {
-  const int n = int(A.cols());
-  SparseMatrix B(A.rows(), A.cols());
-  int* outer = B.outerIndexPtr();
-  for (int j = 0; j < n; ++j) {
-    int count = 1;
-    if (!pinned[j]) {
-      count = 0;
-      for (SparseMatrix::InnerIterator it(A, j); it; ++it) count += !pinned[it.row()];
-    }
-    outer[j + 1] = outer[j] + count;
-  }
-  B.resizeNonZeros(outer[n]);
-  advise_huge_pages(B.valuePtr(), sizeof(double) * size_t(outer[n]));
-  advise_huge_pages(B.innerIndexPtr(), sizeof(int) * size_t(outer[n]));
-  int* inner = B.innerIndexPtr();
-  double* value = B.valuePtr();
-  for (int j = 0; j < n; ++j) {
-    int at = outer[j];
-    if (pinned[j]) {
-      inner[at] = j;
-      value[at] = 1.0;
-      continue;
-    }
-    for (SparseMatrix::InnerIterator it(A, j); it; ++it)
-      if (!pinned[it.row()]) {
-        inner[at] = int(it.row());
-        value[at++] = it.value();
-      }
-  }
-  return B;
-}
-
 // `src` moved into a new set without copying its sparse matrices: Eigen 3.4's SparseMatrix has
 // no move constructor, so std::move(OperatorSet) deep-copies S, M, G and D (~0.3 s on FINE SPHERE).
 OperatorSet take(OperatorSet& src) {
@@ -132,7 +96,7 @@ HeatGeodesics::HeatGeodesics(OperatorSet operators, double mean_edge_length, con
   // factorization (docs/benchmarks.md).
   CholeskyOptions copt;
   copt.relaxed_supernodes = false;
-  heat_ = std::make_unique<SparseCholesky>(pin(heat, pinned_), "heat operator M - t S", copt);
+  heat_ = std::make_unique<SparseCholesky>(pin_to_identity(heat, pinned_), "heat operator M - t S", copt);
 
   // Poisson operator -S with one vertex pinned per component (S has constants per component in
   // its null space; the right-hand side D g sums to zero on each, so pinning loses nothing).
@@ -143,7 +107,7 @@ HeatGeodesics::HeatGeodesics(OperatorSet operators, double mean_edge_length, con
       seen[component_[v]] = 1;
       pinned_[v] = 1;
     }
-  poisson_ = std::make_unique<SparseCholesky>(pin(-ops_.S, pinned_), "Poisson operator -S", copt);
+  poisson_ = std::make_unique<SparseCholesky>(pin_to_identity(-ops_.S, pinned_), "Poisson operator -S", copt);
 }
 
 Eigen::VectorXd HeatGeodesics::distance(std::span<const int> sources) const {

@@ -161,16 +161,7 @@ HodgeDecomposer::HodgeDecomposer(const Mesh& mesh, const RefinementOptions& opti
     if (c >= 0) has_pin[c] = 1;
   }
   const Eigen::SparseMatrix<double> A = d0_.transpose() * star1_ * d0_;
-  std::vector<Eigen::Triplet<double>> t;
-  t.reserve(A.nonZeros());
-  for (int j = 0; j < A.outerSize(); ++j)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(A, j); it; ++it)
-      if (!pinned_[it.row()] && !pinned_[it.col()]) t.emplace_back(it.row(), it.col(), it.value());
-  for (int v = 0; v < mesh.n_vertices(); ++v)
-    if (pinned_[v]) t.emplace_back(v, v, 1.0);
-  Eigen::SparseMatrix<double> Ap(A.rows(), A.cols());
-  Ap.setFromTriplets(t.begin(), t.end());
-  poisson_ = std::make_unique<SparseCholesky>(Ap, "Poisson matrix d0^T star1 d0 (pinned)");
+  poisson_ = std::make_unique<SparseCholesky>(pin_to_identity(A, pinned_), "Poisson matrix d0^T star1 d0 (pinned)");
 
   // Harmonic basis: generators minus their exact parts, star1-orthonormalised.
   const Eigen::MatrixXd Gen = cohomology_generators(mesh, complex_);

@@ -59,13 +59,7 @@ PoissonBlock poisson_free_block(const OperatorSet& ops, const std::vector<int>& 
   int n = 0;
   for (int v = 0; v < nv; ++v)
     if (!is_fixed[v] && ops.M_lumped[v] > 0) block.index[v] = n++;
-  std::vector<Eigen::Triplet<double>> t;
-  for (int j = 0; j < ops.S.outerSize(); ++j)
-    if (block.index[j] >= 0)
-      for (SparseMatrix::InnerIterator it(ops.S, j); it; ++it)
-        if (block.index[it.row()] >= 0) t.emplace_back(block.index[it.row()], block.index[j], -it.value());
-  block.A.resize(n, n);
-  block.A.setFromTriplets(t.begin(), t.end());
+  block.A = -principal_submatrix(ops.S, block.index);
   return block;
 }
 

@@ -48,7 +48,7 @@ class ShiftInvert {
     if (reference_)
       y = ldlt_.solve(x);
     else
-      y = chol_->solve(x.eval());
+      chol_->solve(x_in, y_out, 1);
   }
 
  private:
@@ -58,21 +58,6 @@ class ShiftInvert {
   Eigen::SimplicialLDLT<SparseMatrix> ldlt_;
   std::unique_ptr<SparseCholesky> chol_;
 };
-
-// Restricts a square matrix to the rows/columns listed in `keep` (ascending).
-SparseMatrix restrict_to(const SparseMatrix& A, const std::vector<int>& keep, int n) {
-  if (int(keep.size()) == n) return A;
-  std::vector<int> map(n, -1);
-  for (size_t i = 0; i < keep.size(); ++i) map[keep[i]] = int(i);
-  std::vector<Eigen::Triplet<double>> t;
-  t.reserve(A.nonZeros());
-  for (int j = 0; j < A.outerSize(); ++j)
-    for (SparseMatrix::InnerIterator it(A, j); it; ++it)
-      if (map[it.row()] >= 0 && map[it.col()] >= 0) t.emplace_back(map[it.row()], map[it.col()], it.value());
-  SparseMatrix B(Eigen::Index(keep.size()), Eigen::Index(keep.size()));
-  B.setFromTriplets(t.begin(), t.end());
-  return B;
-}
 
 // w -= V h with h = V^T w, repeated once when the first pass cancelled more than 30% of w
 // (Daniel-Gragg-Kaufman-Stewart: "twice is enough"); returns the accumulated h.
@@ -203,8 +188,10 @@ Spectrum laplacian_spectrum(const OperatorSet& ops, const SpectrumOptions& optio
   } else {
     M = ops.M;
   }
-  const SparseMatrix A = restrict_to(-ops.S, keep, nv);
-  const SparseMatrix B = restrict_to(M, keep, nv);
+  std::vector<int> index(size_t(nv), -1);
+  for (int i = 0; i < n; ++i) index[size_t(keep[size_t(i)])] = i;
+  const SparseMatrix A = principal_submatrix(-ops.S, index);
+  const SparseMatrix B = principal_submatrix(M, index);
   const double area = ops.M_lumped.sum();
   if (!(area > 0)) throw SolverError("spectrum: the mesh has zero area");
 

@@ -1,6 +1,8 @@
 // operators/cholesky.cpp — SparseCholesky on CHOLMOD (supernodal) or Eigen's SimplicialLDLT.
 #include "operators/cholesky.h"
 
+#include "dec/huge_pages.h"
+
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
@@ -217,6 +219,68 @@ bool SparseCholesky::cholmod_available() {
 #else
   return false;
 #endif
+}
+
+Eigen::SparseMatrix<double> pin_to_identity(const Eigen::SparseMatrix<double>& A, const std::vector<unsigned char>& pinned) {
+  using SparseMatrix = Eigen::SparseMatrix<double>;
+  const int n = int(A.cols());
+  SparseMatrix B(A.rows(), A.cols());
+  int* outer = B.outerIndexPtr();
+  for (int j = 0; j < n; ++j) {
+    int count = 1;
+    if (!pinned[j]) {
+      count = 0;
+      for (SparseMatrix::InnerIterator it(A, j); it; ++it) count += !pinned[it.row()];
+    }
+    outer[j + 1] = outer[j] + count;
+  }
+  B.resizeNonZeros(outer[n]);
+  advise_huge_pages(B.valuePtr(), sizeof(double) * size_t(outer[n]));
+  advise_huge_pages(B.innerIndexPtr(), sizeof(int) * size_t(outer[n]));
+  int* inner = B.innerIndexPtr();
+  double* value = B.valuePtr();
+  for (int j = 0; j < n; ++j) {
+    int at = outer[j];
+    if (pinned[j]) {
+      inner[at] = j;
+      value[at] = 1.0;
+      continue;
+    }
+    for (SparseMatrix::InnerIterator it(A, j); it; ++it)
+      if (!pinned[it.row()]) {
+        inner[at] = int(it.row());
+        value[at++] = it.value();
+      }
+  }
+  return B;
+}
+
+
+Eigen::SparseMatrix<double> principal_submatrix(const Eigen::SparseMatrix<double>& A, const std::vector<int>& index) {
+  using SparseMatrix = Eigen::SparseMatrix<double>;
+  const int n = int(std::count_if(index.begin(), index.end(), [](int i) { return i >= 0; }));
+  SparseMatrix B(n, n);
+  int* outer = B.outerIndexPtr();
+  for (int j = 0; j < int(A.cols()); ++j)
+    if (index[size_t(j)] >= 0) {
+      int count = 0;
+      for (SparseMatrix::InnerIterator it(A, j); it; ++it) count += index[size_t(it.row())] >= 0;
+      outer[index[size_t(j)] + 1] = count;
+    }
+  for (int c = 0; c < n; ++c) outer[c + 1] += outer[c];
+  B.resizeNonZeros(outer[n]);
+  advise_huge_pages(B.valuePtr(), sizeof(double) * size_t(outer[n]));
+  advise_huge_pages(B.innerIndexPtr(), sizeof(int) * size_t(outer[n]));
+  for (int j = 0; j < int(A.cols()); ++j) {
+    if (index[size_t(j)] < 0) continue;
+    int at = outer[index[size_t(j)]];
+    for (SparseMatrix::InnerIterator it(A, j); it; ++it)
+      if (index[size_t(it.row())] >= 0) {
+        B.innerIndexPtr()[at] = index[size_t(it.row())];
+        B.valuePtr()[at++] = it.value();
+      }
+  }
+  return B;
 }
 
 }  // namespace polydec

@@ -9,6 +9,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace polydec {
 
@@ -38,6 +39,14 @@ struct CholeskyOptions {
   // is slower (14 vs 10 ms). false: CHOLMOD's defaults, for many solves per factorization.
   bool relaxed_supernodes = true;
 };
+
+// The matrices the solvers are given, written column by column into compressed storage (no
+// triplet lists: on the 1.5M-quad mesh those took seconds).
+// A with the rows and columns of the pinned vertices replaced by the identity.
+Eigen::SparseMatrix<double> pin_to_identity(const Eigen::SparseMatrix<double>& A, const std::vector<unsigned char>& pinned);
+// The principal submatrix of A on the vertices v with index[v] >= 0, vertex v becoming row and
+// column index[v]; index must increase with v on those vertices.
+Eigen::SparseMatrix<double> principal_submatrix(const Eigen::SparseMatrix<double>& A, const std::vector<int>& index);
 
 class SparseCholesky {
  public:
