@@ -7,15 +7,15 @@
 //   polydec_bench [--big N] [--no-big] [--quick] [--reps K] [--blas-threads N] [--no-big-geodesics]
 //                 [--only spectrum|feec|geodesics|cholesky]   (one section on FINE SPHERE)
 //   polydec_bench --memory-child N      (internal: peak memory of one assembly, fresh process)
-#include "apps/geodesics.h"
-#include "apps/spectrum.h"
+#include "polydec/apps/applications/geodesics.h"
+#include "polydec/apps/applications/spectrum.h"
 #include "bench/plain_reference.h"
-#include "dec/complex.h"
-#include "dec/generators.h"
-#include "dec/hodge_star.h"
-#include "dec/io.h"
-#include "operators/cholesky.h"
-#include "operators/laplacian.h"
+#include "polydec/dec/complex.h"
+#include "polydec/dec/generators.h"
+#include "polydec/dec/hodge_star.h"
+#include "polydec/dec/io.h"
+#include "polydec/operators/cholesky.h"
+#include "polydec/operators/laplacian.h"
 
 #include <Eigen/SparseCholesky>
 #include <algorithm>

@@ -1,5 +1,5 @@
 // dec/complex.cpp — coarse cell lists, face-local cell ids, and d0, d1 on both complexes.
-#include "dec/complex.h"
+#include "polydec/dec/complex.h"
 
 #include <algorithm>
 #include <array>

@@ -24,7 +24,7 @@
 #include <Eigen/Sparse>
 #include <vector>
 
-#include "dec/mesh.h"
+#include "polydec/dec/mesh.h"
 
 namespace polydec {
 

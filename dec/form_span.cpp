@@ -1,12 +1,12 @@
 // dec/form_span.cpp — reduced bases of the Whitney 1- and 2-forms by blockwise pivoted QR.
-#include "dec/form_span.h"
+#include "polydec/dec/form_span.h"
 
 #include <Eigen/QR>
 #include <algorithm>
 #include <numeric>
 #include <stdexcept>
 
-#include "dec/prolongation.h"
+#include "polydec/dec/prolongation.h"
 
 namespace polydec {
 

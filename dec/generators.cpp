@@ -1,5 +1,5 @@
 // dec/generators.cpp — sample meshes and mesh transformations.
-#include "dec/generators.h"
+#include "polydec/dec/generators.h"
 
 #include <array>
 #include <cmath>

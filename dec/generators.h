@@ -5,7 +5,7 @@
 // counter-clockwise (outward) faces.
 #pragma once
 
-#include "dec/mesh.h"
+#include "polydec/dec/mesh.h"
 
 #include <cstdint>
 

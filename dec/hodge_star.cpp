@@ -1,12 +1,12 @@
 // dec/hodge_star.cpp — refined Whitney stars and the coarse stars P_k^T star_k^f P_k, assembled
 // face by face into a precomputed sparse pattern.
-#include "dec/hodge_star.h"
+#include "polydec/dec/hodge_star.h"
 
 #include <algorithm>
 #include <stdexcept>
 
-#include "dec/huge_pages.h"
-#include "dec/whitney.h"
+#include "polydec/dec/huge_pages.h"
+#include "polydec/dec/whitney.h"
 
 namespace polydec {
 

@@ -25,8 +25,8 @@
 #include <span>
 #include <vector>
 
-#include "dec/complex.h"
-#include "dec/refinement.h"
+#include "polydec/dec/complex.h"
+#include "polydec/dec/refinement.h"
 
 namespace polydec {
 

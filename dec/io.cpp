@@ -1,7 +1,7 @@
 // dec/io.cpp — FileError, format dispatch by extension, read_mesh (validation errors mapped
 // back to file positions) and write_mesh. The formats live in io_obj.cpp, io_off.cpp,
 // io_ply.cpp and io_matrix_market.cpp.
-#include "dec/io.h"
+#include "polydec/dec/io.h"
 
 #include <fmt/format.h>
 
@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "dec/io_common.h"
+#include "polydec/dec/io_common.h"
 
 namespace polydec {
 

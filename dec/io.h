@@ -9,7 +9,7 @@
 #include <string>
 #include <string_view>
 
-#include "dec/mesh.h"
+#include "polydec/dec/mesh.h"
 
 namespace polydec {
 

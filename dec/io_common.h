@@ -12,7 +12,7 @@
 #include <string_view>
 #include <vector>
 
-#include "dec/io.h"
+#include "polydec/dec/io.h"
 
 namespace polydec::io_detail {
 

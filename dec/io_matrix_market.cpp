@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "dec/io_common.h"
+#include "polydec/dec/io_common.h"
 
 namespace polydec {
 

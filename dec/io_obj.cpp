@@ -4,7 +4,7 @@
 #include <climits>
 #include <cstring>
 
-#include "dec/io_common.h"
+#include "polydec/dec/io_common.h"
 
 namespace polydec::io_detail {
 

@@ -5,7 +5,7 @@
 // int32 valence and int32 indices, no colors).
 #include <climits>
 
-#include "dec/io_common.h"
+#include "polydec/dec/io_common.h"
 
 namespace polydec::io_detail {
 

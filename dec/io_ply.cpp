@@ -3,7 +3,7 @@
 // integer count and index types; every other element and property (lists too) is skipped.
 #include <climits>
 
-#include "dec/io_common.h"
+#include "polydec/dec/io_common.h"
 
 namespace polydec::io_detail {
 

@@ -1,6 +1,6 @@
 // dec/mesh.cpp — validation of a polygon soup and derivation of the mesh connectivity.
-#include "dec/mesh.h"
-#include "dec/union_find.h"
+#include "polydec/dec/mesh.h"
+#include "polydec/dec/union_find.h"
 
 #include <algorithm>
 #include <array>

@@ -1,7 +1,7 @@
 // dec/mesh_checks.cpp — diagnostics of a validated mesh.
-#include "dec/mesh_checks.h"
-#include "dec/face_shape.h"
-#include "dec/union_find.h"
+#include "polydec/dec/mesh_checks.h"
+#include "polydec/dec/face_shape.h"
+#include "polydec/dec/union_find.h"
 
 #include <fmt/format.h>
 

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "dec/mesh.h"
-#include "dec/refinement.h"
+#include "polydec/dec/mesh.h"
+#include "polydec/dec/refinement.h"
 
 namespace polydec {
 

@@ -1,5 +1,5 @@
 // dec/prolongation.cpp — P0 (eq. 11), P1 and P2 (antisymmetrised eq. 25-26).
-#include "dec/prolongation.h"
+#include "polydec/dec/prolongation.h"
 
 namespace polydec {
 

@@ -11,8 +11,8 @@
 
 #include <Eigen/Sparse>
 
-#include "dec/complex.h"
-#include "dec/refinement.h"
+#include "polydec/dec/complex.h"
+#include "polydec/dec/refinement.h"
 
 namespace polydec {
 

@@ -1,8 +1,8 @@
 // dec/refinement.cpp — virtual vertices for every face and fan-triangle classification.
-#include "dec/refinement.h"
+#include "polydec/dec/refinement.h"
 
-#include "dec/huge_pages.h"
-#include "dec/threads.h"
+#include "polydec/dec/huge_pages.h"
+#include "polydec/dec/threads.h"
 
 #include <algorithm>
 #include <cmath>

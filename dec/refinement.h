@@ -4,8 +4,8 @@
 // fast path (refined_mesh() builds it explicitly, for tests and for the "refined" comparison).
 #pragma once
 
-#include "dec/mesh.h"
-#include "dec/virtual_vertex.h"
+#include "polydec/dec/mesh.h"
+#include "polydec/dec/virtual_vertex.h"
 
 #include <cstdint>
 #include <vector>

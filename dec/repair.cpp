@@ -1,7 +1,7 @@
 // dec/repair.cpp — opt-in repair steps on a polygon soup, each reporting what it changed.
-#include "dec/repair.h"
-#include "dec/face_shape.h"
-#include "dec/union_find.h"
+#include "polydec/dec/repair.h"
+#include "polydec/dec/face_shape.h"
+#include "polydec/dec/union_find.h"
 
 #include <fmt/format.h>
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "dec/mesh.h"
+#include "polydec/dec/mesh.h"
 
 namespace polydec {
 

@@ -1,6 +1,6 @@
 // dec/virtual_vertex.cpp — virtual-vertex weights of a single polygon (paper Appendix A, section
 // 4.2 variants, Bunge et al. 2024 trace minimizer).
-#include "dec/virtual_vertex.h"
+#include "polydec/dec/virtual_vertex.h"
 
 #include <Eigen/Dense>
 #include <algorithm>

@@ -1,5 +1,5 @@
 // dec/whitney.cpp — closed-form Whitney-form kernels on one triangle.
-#include "dec/whitney.h"
+#include "polydec/dec/whitney.h"
 
 #include <Eigen/Geometry>
 

@@ -5,11 +5,11 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "dec/io.h"
-#include "dec/prolongation.h"
-#include "dec/refinement.h"
-#include "operators/gradient.h"
-#include "operators/laplacian.h"
+#include "polydec/dec/io.h"
+#include "polydec/dec/prolongation.h"
+#include "polydec/dec/refinement.h"
+#include "polydec/operators/gradient.h"
+#include "polydec/operators/laplacian.h"
 
 namespace {
 

@@ -10,7 +10,7 @@
 #include <cstdlib>
 #include <string_view>
 
-#include "dec/io.h"
+#include "polydec/dec/io.h"
 
 namespace polydec::fuzz {
 

@@ -16,8 +16,10 @@ command -v "$CXX" >/dev/null || { echo "fuzz/run.sh: $CXX not found" >&2; exit 2
 EIGEN=$(pkg-config --cflags-only-I eigen3 2>/dev/null || echo -I/usr/include/eigen3)
 # -include mirrors the main build's precompiled headers (some sources rely on them for Eigen/Geometry).
 CFLAGS=(-std=c++20 -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all
-        -I"$ROOT" ${EIGEN//-I/-isystem } -include Eigen/Dense -include Eigen/Sparse)
-mkdir -p "$OUT/objects" "$OUT/artifacts"
+        -I"$ROOT" -I"$OUT/include" ${EIGEN//-I/-isystem } -include Eigen/Dense -include Eigen/Sparse)
+mkdir -p "$OUT/objects" "$OUT/artifacts" "$OUT/include/polydec"
+# The library's include layout <polydec/dec/...> (CMakeLists.txt): links to the source folders.
+for part in dec operators apps; do ln -sfn "$ROOT/$part" "$OUT/include/polydec/$part"; done
 
 # The library sources the targets need, compiled with coverage instrumentation; a source is
 # rebuilt when it or any library header is newer than its object.

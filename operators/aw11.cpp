@@ -1,5 +1,5 @@
 // operators/aw11.cpp — Alexa & Wardetzky 2011 polygon Laplacian.
-#include "operators/aw11.h"
+#include "polydec/operators/aw11.h"
 
 #include <Eigen/Dense>
 #include <cmath>

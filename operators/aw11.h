@@ -17,7 +17,7 @@
 // as one block (OperatorSet::G_blocks). Conventions as in operators/laplacian.h.
 #pragma once
 
-#include "operators/laplacians.h"
+#include "polydec/operators/laplacians.h"
 
 namespace polydec {
 

@@ -1,7 +1,7 @@
 // operators/cholesky.cpp — SparseCholesky on CHOLMOD (supernodal) or Eigen's SimplicialLDLT.
-#include "operators/cholesky.h"
+#include "polydec/operators/cholesky.h"
 
-#include "dec/huge_pages.h"
+#include "polydec/dec/huge_pages.h"
 
 #include <Eigen/SparseCholesky>
 #include <algorithm>

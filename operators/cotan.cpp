@@ -1,6 +1,6 @@
 // operators/cotan.cpp — cotangent stiffness, Galerkin mass and triangle gradients.
-#include "operators/cotan.h"
-#include "operators/gradient.h"
+#include "polydec/operators/cotan.h"
+#include "polydec/operators/gradient.h"
 
 #include <algorithm>
 #include <cmath>

@@ -12,7 +12,7 @@
 
 #include <vector>
 
-#include "operators/laplacian.h"
+#include "polydec/operators/laplacian.h"
 
 namespace polydec {
 

@@ -1,7 +1,7 @@
 // operators/degoes20.cpp — de Goes, Butts & Desbrun 2020 polygon operators.
-#include "operators/degoes20.h"
+#include "polydec/operators/degoes20.h"
 
-#include "operators/aw11.h"
+#include "polydec/operators/aw11.h"
 
 #include <cmath>
 

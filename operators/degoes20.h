@@ -13,7 +13,7 @@
 // triangle, where S is the cotangent Laplacian). Conventions as in operators/laplacian.h.
 #pragma once
 
-#include "operators/laplacians.h"
+#include "polydec/operators/laplacians.h"
 
 namespace polydec {
 

@@ -1,10 +1,10 @@
 // operators/gradient.cpp — gradient and divergence on the refined fan triangles.
-#include "operators/gradient.h"
+#include "polydec/operators/gradient.h"
 
 #include <algorithm>
 #include <vector>
 
-#include "dec/huge_pages.h"
+#include "polydec/dec/huge_pages.h"
 
 namespace polydec {
 

@@ -8,7 +8,7 @@
 // RefinementOptions) get zero gradient rows. Column-major sparse matrices.
 #pragma once
 
-#include "operators/laplacian.h"
+#include "polydec/operators/laplacian.h"
 
 namespace polydec {
 

@@ -1,5 +1,5 @@
 // operators/intrinsic_delaunay.cpp — intrinsic edge flips on a halfedge structure of lengths.
-#include "operators/intrinsic_delaunay.h"
+#include "polydec/operators/intrinsic_delaunay.h"
 
 #include <fmt/format.h>
 

@@ -8,7 +8,7 @@
 // changes, so a triangle may have two edges to the same vertex pair.
 #pragma once
 
-#include "operators/cotan.h"
+#include "polydec/operators/cotan.h"
 
 namespace polydec {
 

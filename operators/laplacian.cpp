@@ -6,7 +6,7 @@
 // other vertices' columns (on the seams between patches) by a serial pass over their faces. Each entry is a
 // sum over the faces around one vertex, taken in ascending face order either way, so results are bitwise
 // identical to one thread.
-#include "operators/laplacian.h"
+#include "polydec/operators/laplacian.h"
 
 #include <algorithm>
 #include <memory>
@@ -14,9 +14,9 @@
 #include <type_traits>
 #include <utility>
 
-#include "dec/huge_pages.h"
-#include "dec/threads.h"
-#include "operators/local_matrices.h"
+#include "polydec/dec/huge_pages.h"
+#include "polydec/dec/threads.h"
+#include "polydec/operators/local_matrices.h"
 
 namespace polydec {
 

@@ -10,8 +10,8 @@
 
 #include <Eigen/Sparse>
 
-#include "dec/mesh.h"
-#include "dec/refinement.h"
+#include "polydec/dec/mesh.h"
+#include "polydec/dec/refinement.h"
 
 namespace polydec {
 

@@ -1,16 +1,16 @@
 // operators/laplacians.cpp — the named Laplacian registry.
-#include "operators/laplacians.h"
+#include "polydec/operators/laplacians.h"
 
 #include <fmt/format.h>
 
 #include <stdexcept>
 
-#include "operators/aw11.h"
-#include "operators/cotan.h"
-#include "operators/degoes20.h"
-#include "operators/gradient.h"
-#include "operators/intrinsic_delaunay.h"
-#include "operators/triangulation.h"
+#include "polydec/operators/aw11.h"
+#include "polydec/operators/cotan.h"
+#include "polydec/operators/degoes20.h"
+#include "polydec/operators/gradient.h"
+#include "polydec/operators/intrinsic_delaunay.h"
+#include "polydec/operators/triangulation.h"
 
 namespace polydec {
 

@@ -17,8 +17,8 @@
 
 #include <string>
 
-#include "dec/refinement.h"
-#include "operators/laplacian.h"
+#include "polydec/dec/refinement.h"
+#include "polydec/operators/laplacian.h"
 
 namespace polydec {
 

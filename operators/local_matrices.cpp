@@ -1,5 +1,5 @@
 // operators/local_matrices.cpp — coarsened local stiffness and mass of one polygon.
-#include "operators/local_matrices.h"
+#include "polydec/operators/local_matrices.h"
 
 #include <cmath>
 #include <vector>

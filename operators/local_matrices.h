@@ -6,7 +6,7 @@
 #include <Eigen/Core>
 #include <cmath>
 
-#include "dec/refinement.h"
+#include "polydec/dec/refinement.h"
 
 namespace polydec {
 

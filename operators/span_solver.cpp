@@ -1,5 +1,5 @@
 // operators/span_solver.cpp — Cholesky of R^T star R on the reduced basis.
-#include "operators/span_solver.h"
+#include "polydec/operators/span_solver.h"
 
 namespace polydec {
 

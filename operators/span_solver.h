@@ -5,8 +5,8 @@
 #include <memory>
 #include <string>
 
-#include "dec/form_span.h"
-#include "operators/cholesky.h"
+#include "polydec/dec/form_span.h"
+#include "polydec/operators/cholesky.h"
 
 namespace polydec {
 

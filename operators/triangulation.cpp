@@ -1,11 +1,11 @@
 // operators/triangulation.cpp — O(n^3) dynamic programming over polygon diagonals.
-#include "operators/triangulation.h"
+#include "polydec/operators/triangulation.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "dec/refinement.h"
+#include "polydec/dec/refinement.h"
 
 namespace polydec {
 

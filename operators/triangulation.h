@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "dec/mesh.h"
-#include "dec/virtual_vertex.h"
+#include "polydec/dec/mesh.h"
+#include "polydec/dec/virtual_vertex.h"
 
 namespace polydec {
 

@@ -2,7 +2,7 @@
 // mesh (eq. 2-3), written independently of operators/ to serve as a test oracle.
 #pragma once
 
-#include "dec/mesh.h"
+#include "polydec/dec/mesh.h"
 
 #include <Eigen/Sparse>
 

@@ -1,10 +1,10 @@
 // apps/cli/command.cpp — shared CLI helpers: loading a mesh with the opt-in `--repair`.
-#include "apps/cli/command.h"
+#include "polydec/apps/cli/command.h"
 
 #include <fmt/format.h>
 
-#include "dec/io.h"
-#include "dec/repair.h"
+#include "polydec/dec/io.h"
+#include "polydec/dec/repair.h"
 
 namespace polydec::cli {
 

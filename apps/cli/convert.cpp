@@ -3,9 +3,9 @@
 // N Catmull-Clark steps; with --unit-sphere every vertex is projected to the unit sphere after
 // each of these steps (so `--dual --subdivide 1 --unit-sphere` on unit-sphere.off builds the
 // paper's FINE SPHERE, `--dual --unit-sphere` its HEX SPHERE).
-#include "apps/cli/command.h"
-#include "dec/generators.h"
-#include "dec/io.h"
+#include "polydec/apps/cli/command.h"
+#include "polydec/dec/generators.h"
+#include "polydec/dec/io.h"
 
 #include <fmt/format.h>
 

@@ -1,13 +1,13 @@
 // apps/cli/curvature.cpp — `polydec curvature MESH [--unit-sphere] [--mass unlumped] [--out FILE.ply]`:
 // mean curvature from eq. (29) (paper section 5.2, Table 2).
-#include "apps/curvature.h"
+#include "polydec/apps/applications/curvature.h"
 
 #include <fmt/format.h>
 
-#include "apps/cli/command.h"
-#include "apps/render.h"
-#include "dec/generators.h"
-#include "dec/io.h"
+#include "polydec/apps/cli/command.h"
+#include "polydec/apps/pictures/render.h"
+#include "polydec/dec/generators.h"
+#include "polydec/dec/io.h"
 
 namespace polydec::cli::curvature_command {
 namespace {

@@ -8,11 +8,11 @@
 #include <fstream>
 #include <iostream>
 
-#include "apps/cli/command.h"
-#include "dec/form_span.h"
-#include "dec/hodge_star.h"
-#include "dec/io.h"
-#include "dec/prolongation.h"
+#include "polydec/apps/cli/command.h"
+#include "polydec/dec/form_span.h"
+#include "polydec/dec/hodge_star.h"
+#include "polydec/dec/io.h"
+#include "polydec/dec/prolongation.h"
 
 namespace polydec::cli::dec_command {
 namespace {

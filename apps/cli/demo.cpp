@@ -1,12 +1,12 @@
 // apps/cli/demo.cpp — `polydec demo [--out DIR]`: the main job on a generated polygon mesh (no
 // input file): a hexagon-dominant sphere, its operators with their defining properties checked,
 // and heat-method geodesics compared with the exact great-circle distance, with a picture.
-#include "apps/cli/command.h"
-#include "apps/geodesics.h"
-#include "apps/render.h"
-#include "dec/generators.h"
-#include "dec/io.h"
-#include "operators/laplacian.h"
+#include "polydec/apps/cli/command.h"
+#include "polydec/apps/applications/geodesics.h"
+#include "polydec/apps/pictures/render.h"
+#include "polydec/dec/generators.h"
+#include "polydec/dec/io.h"
+#include "polydec/operators/laplacian.h"
 
 #include <chrono>
 #include <cmath>

@@ -1,9 +1,9 @@
 // apps/cli/geodesics.cpp — `polydec geodesics MESH --source V [...] --out FILE.ply`: heat-method
 // distances (paper section 5.5) written as a per-vertex PLY property and/or a picture (--png).
-#include "apps/cli/command.h"
-#include "apps/geodesics.h"
-#include "apps/render.h"
-#include "dec/io.h"
+#include "polydec/apps/cli/command.h"
+#include "polydec/apps/applications/geodesics.h"
+#include "polydec/apps/pictures/render.h"
+#include "polydec/dec/io.h"
 
 #include <cmath>
 #include <fmt/format.h>

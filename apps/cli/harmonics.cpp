@@ -1,13 +1,13 @@
 // apps/cli/harmonics.cpp — `polydec harmonics MESH`: how far the spherical harmonics are from
 // being eigenvectors of the Laplacian (paper section 5.4, eq. 30, Table 3).
-#include "apps/harmonics.h"
+#include "polydec/apps/applications/harmonics.h"
 
 #include <fmt/format.h>
 
-#include "apps/cli/command.h"
-#include "apps/render.h"
-#include "dec/generators.h"
-#include "dec/io.h"
+#include "polydec/apps/cli/command.h"
+#include "polydec/apps/pictures/render.h"
+#include "polydec/dec/generators.h"
+#include "polydec/dec/io.h"
 
 namespace polydec::cli::harmonics_command {
 namespace {

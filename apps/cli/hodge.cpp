@@ -8,10 +8,10 @@
 #include <iostream>
 #include <random>
 
-#include "apps/cli/command.h"
-#include "apps/hodge_decomposition.h"
-#include "dec/hodge_star.h"
-#include "dec/io.h"
+#include "polydec/apps/cli/command.h"
+#include "polydec/apps/applications/hodge_decomposition.h"
+#include "polydec/dec/hodge_star.h"
+#include "polydec/dec/io.h"
 
 namespace polydec::cli::hodge_command {
 namespace {

@@ -1,8 +1,8 @@
 // apps/cli/info.cpp — `polydec info MESH`: counts, valence histogram, boundary loops, Euler
 // characteristic and genus, planarity and convexity statistics, fan quality.
-#include "apps/cli/command.h"
-#include "apps/mesh_statistics.h"
-#include "dec/io.h"
+#include "polydec/apps/cli/command.h"
+#include "polydec/apps/applications/mesh_statistics.h"
+#include "polydec/dec/io.h"
 
 #include <fmt/format.h>
 

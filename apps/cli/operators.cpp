@@ -2,11 +2,11 @@
 // in Matrix Market, rows and columns in the file's vertex order. With `--repeat N` it instead
 // times N assemblies of S, M and lumped M from the loaded mesh (virtual vertices, sparsity
 // pattern and values; load time excluded) and writes no files.
-#include "apps/cli/command.h"
-#include "dec/io.h"
-#include "dec/threads.h"
-#include "dec/prolongation.h"
-#include "operators/gradient.h"
+#include "polydec/apps/cli/command.h"
+#include "polydec/dec/io.h"
+#include "polydec/dec/threads.h"
+#include "polydec/dec/prolongation.h"
+#include "polydec/operators/gradient.h"
 
 #include <algorithm>
 #include <chrono>

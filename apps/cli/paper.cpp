@@ -9,10 +9,10 @@
 #include <fstream>
 #include <fmt/format.h>
 
-#include "apps/cli/command.h"
-#include "apps/image.h"
-#include "apps/paper.h"
-#include "dec/io.h"
+#include "polydec/apps/cli/command.h"
+#include "polydec/apps/pictures/image.h"
+#include "polydec/apps/paper/paper.h"
+#include "polydec/dec/io.h"
 
 namespace polydec::cli::paper_command {
 namespace {

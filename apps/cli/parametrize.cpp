@@ -2,10 +2,10 @@
 // conformal parametrization (paper section 5.3), written as an OBJ with vt lines.
 #include <fmt/format.h>
 
-#include "apps/cli/command.h"
-#include "apps/parametrization.h"
-#include "apps/render.h"
-#include "dec/io.h"
+#include "polydec/apps/cli/command.h"
+#include "polydec/apps/applications/parametrization.h"
+#include "polydec/apps/pictures/render.h"
+#include "polydec/dec/io.h"
 
 namespace polydec::cli::parametrize_command {
 namespace {

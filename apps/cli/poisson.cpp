@@ -1,13 +1,13 @@
 // apps/cli/poisson.cpp — `polydec poisson`: the convergence study of the paper's section 5.8
 // (Figure 9), Franke's function on triangle, quad and hexagon grids of the unit square.
-#include "apps/poisson.h"
+#include "polydec/apps/applications/poisson.h"
 
 #include <fmt/format.h>
 
-#include "apps/cli/command.h"
-#include "apps/plot.h"
-#include "apps/render.h"
-#include "dec/generators.h"
+#include "polydec/apps/cli/command.h"
+#include "polydec/apps/pictures/plot.h"
+#include "polydec/apps/pictures/render.h"
+#include "polydec/dec/generators.h"
 
 namespace polydec::cli::poisson_command {
 namespace {

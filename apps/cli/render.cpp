@@ -1,13 +1,13 @@
 // apps/cli/render.cpp — `polydec render MESH --png FILE [...]`: a picture of a mesh, plain or
 // with a scalar field (a coordinate, or the heat-method distance from a vertex) colour-mapped,
-// with isolines, polygon edges and a colour bar (apps/render.h).
-#include "apps/render.h"
+// with isolines, polygon edges and a colour bar (apps/pictures/render.h).
+#include "polydec/apps/pictures/render.h"
 
 #include <fmt/format.h>
 
-#include "apps/cli/command.h"
-#include "apps/geodesics.h"
-#include "dec/io.h"
+#include "polydec/apps/cli/command.h"
+#include "polydec/apps/applications/geodesics.h"
+#include "polydec/dec/io.h"
 
 namespace polydec::cli::render_command {
 namespace {

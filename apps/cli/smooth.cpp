@@ -4,11 +4,11 @@
 
 #include <filesystem>
 
-#include "apps/cli/command.h"
-#include "apps/curvature.h"
-#include "apps/render.h"
-#include "apps/smoothing.h"
-#include "dec/io.h"
+#include "polydec/apps/cli/command.h"
+#include "polydec/apps/applications/curvature.h"
+#include "polydec/apps/pictures/render.h"
+#include "polydec/apps/applications/smoothing.h"
+#include "polydec/dec/io.h"
 
 namespace polydec::cli::smooth_command {
 namespace {

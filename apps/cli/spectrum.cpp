@@ -1,15 +1,15 @@
 // apps/cli/spectrum.cpp — `polydec spectrum MESH --k K --out DIR`: the k smallest eigenpairs of
 // -S x = lambda M x (manifold harmonics) with Spectra's shift-invert solver.
-#include "apps/spectrum.h"
+#include "polydec/apps/applications/spectrum.h"
 
 #include <fmt/format.h>
 
 #include <filesystem>
 #include <fstream>
 
-#include "apps/cli/command.h"
-#include "apps/render.h"
-#include "dec/io.h"
+#include "polydec/apps/cli/command.h"
+#include "polydec/apps/pictures/render.h"
+#include "polydec/dec/io.h"
 
 namespace polydec::cli::spectrum_command {
 namespace {

@@ -5,9 +5,9 @@
 
 #include <string>
 
-#include "dec/generators.h"
-#include "dec/io.h"
-#include "operators/laplacians.h"
+#include "polydec/dec/generators.h"
+#include "polydec/dec/io.h"
+#include "polydec/operators/laplacians.h"
 
 namespace polydec::test {
 

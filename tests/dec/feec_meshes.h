@@ -12,9 +12,9 @@
 #include <utility>
 #include <vector>
 
-#include "dec/generators.h"
-#include "dec/io.h"
-#include "dec/mesh.h"
+#include "polydec/dec/generators.h"
+#include "polydec/dec/io.h"
+#include "polydec/dec/mesh.h"
 #include "tests/support.h"
 
 namespace polydec::test {

@@ -2,8 +2,8 @@
 #include <catch2/catch.hpp>
 #include <set>
 
-#include "dec/complex.h"
-#include "dec/refinement.h"
+#include "polydec/dec/complex.h"
+#include "polydec/dec/refinement.h"
 #include "tests/dec/feec_meshes.h"
 
 using namespace polydec;

@@ -7,13 +7,13 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "apps/geodesics.h"
-#include "dec/generators.h"
-#include "dec/io.h"
-#include "dec/mesh_checks.h"
-#include "dec/repair.h"
-#include "operators/gradient.h"
-#include "operators/laplacian.h"
+#include "polydec/apps/applications/geodesics.h"
+#include "polydec/dec/generators.h"
+#include "polydec/dec/io.h"
+#include "polydec/dec/mesh_checks.h"
+#include "polydec/dec/repair.h"
+#include "polydec/operators/gradient.h"
+#include "polydec/operators/laplacian.h"
 #include "tests/support.h"
 
 using namespace polydec;

@@ -1,7 +1,7 @@
 // tests/dec/test_generators.cpp — the sample-mesh generators produce the expected topology and geometry.
-#include "dec/generators.h"
+#include "polydec/dec/generators.h"
 #include "tests/support.h"
-#include "dec/io.h"
+#include "polydec/dec/io.h"
 
 #include <catch2/catch.hpp>
 

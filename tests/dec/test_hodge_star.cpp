@@ -6,12 +6,12 @@
 #include <catch2/catch.hpp>
 #include <random>
 
-#include "dec/form_span.h"
-#include "dec/hodge_star.h"
-#include "dec/prolongation.h"
-#include "dec/whitney.h"
-#include "operators/laplacian.h"
-#include "operators/span_solver.h"
+#include "polydec/dec/form_span.h"
+#include "polydec/dec/hodge_star.h"
+#include "polydec/dec/prolongation.h"
+#include "polydec/dec/whitney.h"
+#include "polydec/operators/laplacian.h"
+#include "polydec/operators/span_solver.h"
 #include "tests/dec/feec_meshes.h"
 
 using namespace polydec;

@@ -9,7 +9,7 @@
 #include <map>
 #include <random>
 
-#include "dec/io.h"
+#include "polydec/dec/io.h"
 #include "tests/support.h"
 
 using namespace polydec;

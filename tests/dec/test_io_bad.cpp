@@ -7,7 +7,7 @@
 #include <fstream>
 #include <set>
 
-#include "dec/io.h"
+#include "polydec/dec/io.h"
 #include "tests/support.h"
 
 using namespace polydec;

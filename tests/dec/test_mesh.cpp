@@ -1,6 +1,6 @@
 // tests/dec/test_mesh.cpp — mesh validation and derived connectivity.
-#include "dec/generators.h"
-#include "dec/mesh.h"
+#include "polydec/dec/generators.h"
+#include "polydec/dec/mesh.h"
 
 #include <catch2/catch.hpp>
 

@@ -4,10 +4,10 @@
 #include <Eigen/SVD>
 #include <catch2/catch.hpp>
 
-#include "dec/form_span.h"
-#include "dec/hodge_star.h"
-#include "dec/prolongation.h"
-#include "dec/whitney.h"
+#include "polydec/dec/form_span.h"
+#include "polydec/dec/hodge_star.h"
+#include "polydec/dec/prolongation.h"
+#include "polydec/dec/whitney.h"
 #include "tests/dec/feec_meshes.h"
 
 using namespace polydec;

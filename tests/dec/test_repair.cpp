@@ -4,8 +4,8 @@
 #include <catch2/catch.hpp>
 #include <random>
 
-#include "dec/mesh_checks.h"
-#include "dec/repair.h"
+#include "polydec/dec/mesh_checks.h"
+#include "polydec/dec/repair.h"
 
 using namespace polydec;
 

@@ -1,5 +1,5 @@
 // tests/dec/test_virtual_vertex.cpp — squared-area virtual vertex (eq. 15-16, Appendix A).
-#include "dec/virtual_vertex.h"
+#include "polydec/dec/virtual_vertex.h"
 #include "tests/support.h"
 
 #include <Eigen/Dense>

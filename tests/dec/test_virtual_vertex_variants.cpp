@@ -1,9 +1,9 @@
 // tests/dec/test_virtual_vertex_variants.cpp — the virtual-vertex variants of section 4.2 / 5.7
 // (abs-area, convex) and the trace minimizer of Bunge et al. 2024 (trace-min), per polygon and on
 // the non-star-shaped polygons of tetris.obj.
-#include "dec/io.h"
-#include "dec/refinement.h"
-#include "dec/virtual_vertex.h"
+#include "polydec/dec/io.h"
+#include "polydec/dec/refinement.h"
+#include "polydec/dec/virtual_vertex.h"
 #include "tests/support.h"
 
 #include <Eigen/Dense>

@@ -10,12 +10,12 @@
 #include <nlohmann/json.hpp>
 #include <random>
 
-#include "dec/generators.h"
-#include "dec/io.h"
-#include "dec/prolongation.h"
-#include "dec/refinement.h"
-#include "operators/cholesky.h"
-#include "operators/laplacian.h"
+#include "polydec/dec/generators.h"
+#include "polydec/dec/io.h"
+#include "polydec/dec/prolongation.h"
+#include "polydec/dec/refinement.h"
+#include "polydec/operators/cholesky.h"
+#include "polydec/operators/laplacian.h"
 #include "tests/plain_cotan.h"
 #include "tests/support.h"
 

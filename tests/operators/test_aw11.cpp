@@ -1,9 +1,9 @@
 // tests/operators/test_aw11.cpp — Alexa & Wardetzky 2011 per polygon and on meshes.
-#include "operators/aw11.h"
+#include "polydec/operators/aw11.h"
 
-#include "dec/generators.h"
-#include "dec/io.h"
-#include "dec/refinement.h"
+#include "polydec/dec/generators.h"
+#include "polydec/dec/io.h"
+#include "polydec/dec/refinement.h"
 #include "tests/plain_cotan.h"
 #include "tests/support.h"
 

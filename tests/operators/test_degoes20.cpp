@@ -1,9 +1,9 @@
 // tests/operators/test_degoes20.cpp — de Goes, Butts & Desbrun 2020 per polygon and on meshes.
-#include "operators/degoes20.h"
+#include "polydec/operators/degoes20.h"
 
-#include "dec/generators.h"
-#include "dec/io.h"
-#include "dec/refinement.h"
+#include "polydec/dec/generators.h"
+#include "polydec/dec/io.h"
+#include "polydec/dec/refinement.h"
 #include "tests/plain_cotan.h"
 #include "tests/support.h"
 

@@ -1,10 +1,10 @@
 // tests/operators/test_intrinsic_delaunay.cpp — intrinsic Delaunay flips (Bobenko & Springborn 2007).
-#include "operators/intrinsic_delaunay.h"
+#include "polydec/operators/intrinsic_delaunay.h"
 
-#include "dec/generators.h"
-#include "dec/io.h"
-#include "operators/laplacians.h"
-#include "operators/triangulation.h"
+#include "polydec/dec/generators.h"
+#include "polydec/dec/io.h"
+#include "polydec/operators/laplacians.h"
+#include "polydec/operators/triangulation.h"
 #include "tests/plain_cotan.h"
 #include "tests/support.h"
 

@@ -2,11 +2,11 @@
 // section 4.3): symmetry, constants in the null space, negative semi-definiteness, linear
 // precision, reduction to the cotangent Laplacian on triangles, fast assembly = explicit
 // P^T S^f P, S = D G, lumped mass = fan area, invariance under rigid motion, relabeling, scale.
-#include "dec/generators.h"
-#include "dec/io.h"
-#include "dec/prolongation.h"
-#include "operators/gradient.h"
-#include "operators/laplacian.h"
+#include "polydec/dec/generators.h"
+#include "polydec/dec/io.h"
+#include "polydec/dec/prolongation.h"
+#include "polydec/operators/gradient.h"
+#include "polydec/operators/laplacian.h"
 #include "tests/plain_cotan.h"
 #include "tests/support.h"
 

@@ -2,11 +2,11 @@
 // space, negative semi-definiteness, scale invariance, linear precision on planar meshes,
 // equality with the cotangent Laplacian on triangle meshes, S = D G where the method has it, and
 // the geodesic errors of the paper's Tables 4 and 6.
-#include "operators/laplacians.h"
+#include "polydec/operators/laplacians.h"
 
-#include "apps/geodesics.h"
-#include "dec/generators.h"
-#include "dec/io.h"
+#include "polydec/apps/applications/geodesics.h"
+#include "polydec/dec/generators.h"
+#include "polydec/dec/io.h"
 #include "tests/plain_cotan.h"
 #include "tests/support.h"
 

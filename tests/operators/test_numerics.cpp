@@ -9,11 +9,11 @@
 #include <catch2/catch.hpp>
 #include <random>
 
-#include "dec/generators.h"
-#include "dec/io.h"
-#include "dec/refinement.h"
-#include "operators/cholesky.h"
-#include "operators/laplacian.h"
+#include "polydec/dec/generators.h"
+#include "polydec/dec/io.h"
+#include "polydec/dec/refinement.h"
+#include "polydec/operators/cholesky.h"
+#include "polydec/operators/laplacian.h"
 #include "tests/support.h"
 
 using namespace polydec;

@@ -1,9 +1,9 @@
 // tests/operators/test_triangulation.cpp — the O(n^3) polygon triangulation DP against brute
 // force enumeration of all triangulations.
-#include "operators/triangulation.h"
+#include "polydec/operators/triangulation.h"
 
-#include "dec/generators.h"
-#include "dec/io.h"
+#include "polydec/dec/generators.h"
+#include "polydec/dec/io.h"
 #include "tests/support.h"
 
 #include <catch2/catch.hpp>

@@ -1,0 +1,72 @@
+// apps/applications/hodge_decomposition.h — Hodge decomposition of a coarse 1-cochain on a polygon mesh,
+// omega = d0 alpha + delta beta + h (exact + co-exact + harmonic), orthogonal in the star1
+// inner product of the coarsened Whitney 1-forms (paper section 4.6; docs/feec.md).
+//
+// The inner product <x, y> = x^T star1 y is only semi-definite (star1 is singular on faces with
+// 5 or more corners): it is an inner product on Whitney forms, i.e. on 1-cochains modulo
+// ker P1. The decomposition is one of Whitney forms; parts are returned as coarse 1-cochains,
+// each determined up to ker P1 (norms and orthogonality do not depend on the choice).
+//   exact:    d0 alpha, with -S alpha = d0^T star1 omega (S = -d0^T star1 d0, one vertex
+//             pinned per connected component; alpha is 0 there);
+//   harmonic: the star1-orthogonal projection onto H = span{g - d0 a_g}, g running over
+//             closed, non-exact cellular cochains (tree-cotree generators of the first
+//             cohomology, extended from mesh edges to diagonals by face potentials, so that
+//             d1 g = 0 exactly); dim H = 2 genus (+ boundary loops - 1 per component with
+//             boundary);
+//   co-exact: the rest, omega - exact - harmonic, which is star1-orthogonal to every closed
+//             form (ker d1 = exact + harmonic), hence in the range of delta = star1^+ d1^T star2.
+// Assumes a manifold mesh in which no polygon diagonal is shared by two faces (then the coarse
+// complex has the surface's cohomology).
+#pragma once
+
+#include <Eigen/Sparse>
+#include <memory>
+
+#include "polydec/dec/complex.h"
+#include "polydec/dec/refinement.h"
+#include "polydec/operators/cholesky.h"
+
+namespace polydec {
+
+struct HodgeParts {
+  Eigen::VectorXd exact, coexact, harmonic;  // |C1| each; exact + coexact + harmonic = omega
+  Eigen::VectorXd potential;                 // alpha, |V|, exact = d0 alpha
+  double norm = 0, norm_exact = 0, norm_coexact = 0, norm_harmonic = 0;  // sqrt(x^T star1 x)
+};
+
+class HodgeDecomposer {
+ public:
+  // Builds the complex, d0, star1, factors d0^T star1 d0 (pinned) and the harmonic basis.
+  explicit HodgeDecomposer(const Mesh& mesh, const RefinementOptions& options = {});
+
+  // omega: one value per coarse 1-cell (throws std::invalid_argument on a size mismatch or
+  // non-finite values).
+  HodgeParts decompose(const Eigen::VectorXd& omega) const;
+
+  const CoarseComplex& complex() const { return complex_; }
+  const Eigen::SparseMatrix<double>& d0() const { return d0_; }
+  const Eigen::SparseMatrix<double>& star1() const { return star1_; }
+  // star1-orthonormal basis of the harmonic 1-forms, |C1| x dim.
+  const Eigen::MatrixXd& harmonic_basis() const { return H_; }
+  int harmonic_dimension() const { return int(H_.cols()); }
+
+ private:
+  Eigen::VectorXd exact_potential(const Eigen::VectorXd& rhs) const;
+
+  CoarseComplex complex_;
+  Eigen::SparseMatrix<double> d0_, star1_;
+  std::vector<unsigned char> pinned_;
+  std::unique_ptr<SparseCholesky> poisson_;
+  Eigen::MatrixXd H_;
+};
+
+// Closed, non-exact 1-cochains on the coarse complex generating its first cohomology (tree-cotree
+// on the polygon mesh, one per edge left over by a primal spanning forest and a dual spanning
+// forest whose roots are one exterior node per bordered component), |C1| x b1. Integer-valued;
+// d1 g = 0 exactly.
+Eigen::MatrixXd cohomology_generators(const Mesh& mesh, const CoarseComplex& complex);
+
+// One-shot: HodgeDecomposer(mesh).decompose(omega).
+HodgeParts hodge_decomposition(const Mesh& mesh, const Eigen::VectorXd& omega);
+
+}  // namespace polydec
