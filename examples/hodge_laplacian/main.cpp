@@ -1,7 +1,7 @@
 // examples/hodge_laplacian/main.cpp — the Hodge Laplacian of 1-forms, composed from d0, d1 and the
 // Hodge stars (docs/feec.md), applied to a field:
 //   K = d1^T star2 d1 + star1 d0 M0^-1 d0^T star1     (the weak form; M0 the lumped star0),
-// on a mesh file (argument) or a generated hexagon-dominant torus. Checks two identities the
+// on a mesh file (argument) or a generated sphere of hexagons and pentagons. Checks two identities the
 // composition must satisfy and exits 1 when one fails:
 //   K d0 f = star1 d0 M0^-1 (-S f)     (d1 d0 = 0, and -d0^T star1 d0 = -S: paper eq. 19, 27),
 //   the energy (d0 f)^T K (d0 f) = (S f)^T M0^-1 (S f).
@@ -18,7 +18,7 @@
 using namespace polydec;
 
 int main(int argc, char** argv) try {
-  const Mesh mesh = argc > 1 ? read_mesh(argv[1]) : dual(torus(24, 12));
+  const Mesh mesh = argc > 1 ? read_mesh(argv[1]) : hex_sphere(2);
   const Refinement r = refine(mesh);
   const CoarseComplex K(mesh);
   const HodgeStars H = hodge_stars(mesh, r, K);
