@@ -65,6 +65,9 @@ PYBIND11_MODULE(_polydec, m) {
       new_exception(m, "FileError", file_bases.ptr(),
                     "A mesh or matrix file that cannot be read or written. An OSError and a ValueError; "
                     "attributes filename, line (1-based, 0 when unknown), byte_offset (-1 when unknown), reason.");
+  // str() is the message "FILE:LINE: REASON" (OSError's own would print "[Errno None] ..." once
+  // filename is set).
+  py::setattr(file_error, "__str__", py::module_::import("builtins").attr("BaseException").attr("__str__"));
   static PyObject* mesh_error = new_exception(
       m, "InvalidMeshError", PyExc_ValueError,
       "Arrays that are not a valid polygon mesh (a ValueError); attributes element ('face', 'vertex', "

@@ -16,7 +16,23 @@ PAPER_MESHES = ["quad-sphere.off", "noisy-sphere.off", "L-plane.obj", "tetris.ob
 
 
 def mmread(path):
-    return scipy.sparse.csc_matrix(scipy.io.mmread(str(path)))
+    """A Matrix Market "coordinate real general" file as csc_matrix: header by hand, the entries
+    by numpy's C parser (scipy.io.mmread, used on the small files, is pure Python and too slow
+    for HEX SPHERE's matrices)."""
+    with open(path) as f:
+        header = f.readline()
+        line = f.readline()
+        while line.startswith("%"):
+            line = f.readline()
+        rows, cols, nnz = map(int, line.split())
+        body = np.array(f.read().split(), dtype=np.float64)
+    assert header.split()[1:4] == ["matrix", "coordinate", "real"] and body.size == 3 * nnz, path
+    t = body.reshape(-1, 3)
+    A = scipy.sparse.coo_matrix((t[:, 2], (t[:, 0].astype(np.int64) - 1, t[:, 1].astype(np.int64) - 1)),
+                                shape=(rows, cols))
+    if nnz < 20000:
+        assert (A.tocsc() != scipy.sparse.csc_matrix(scipy.io.mmread(str(path)))).nnz == 0, path
+    return A.tocsc()
 
 
 def assert_same(A, path, what):
@@ -157,7 +173,8 @@ def test_variants_differ_and_parameters_matter():
         polydec.stiffness(V, F, laplacian="no-such-method")
     with pytest.raises(ValueError, match="no Galerkin mass"):
         polydec.mass(V, F, laplacian="aw11:0.5")
-    assert "ours" in polydec.laplacian_names() and "aw11" in polydec.laplacian_names()
+    names = polydec.laplacian_names()
+    assert "ours" in names and any(n.startswith("aw11") for n in names)
 
 
 def test_refined_lives_on_the_refined_mesh():
