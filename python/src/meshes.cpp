@@ -1,7 +1,6 @@
 // python/src/meshes.cpp — bindings of reading, writing, generating and transforming meshes
 // (dec/io.h, dec/generators.h). Meshes travel as (positions, indices, offsets).
 #include "bindings.h"
-
 #include "polydec/dec/generators.h"
 #include "polydec/dec/io.h"
 
@@ -23,14 +22,15 @@ py::tuple generate(F&& make) {
 
 void register_meshes(py::module_& m) {
   m.def("read_mesh", [](const std::string& path) { return generate([&] { return read_mesh(path); }); });
-  m.def("write_mesh", [](const std::string& path, const PositionArray& V, const IndexArray& I, const IndexArray& O,
-                         const std::map<std::string, Eigen::VectorXd>& scalars, bool binary) {
-    const Mesh mesh = mesh_from_arrays(V, I, O);
-    py::gil_scoped_release release;
-    WriteOptions options;
-    options.binary = binary;
-    write_mesh(path, mesh, scalars, options);
-  });
+  m.def("write_mesh",
+        [](const std::string& path, const PositionArray& V, const IndexArray& I, const IndexArray& O,
+           const std::map<std::string, Eigen::VectorXd>& scalars, bool binary) {
+          const Mesh mesh = mesh_from_arrays(V, I, O);
+          py::gil_scoped_release release;
+          WriteOptions options;
+          options.binary = binary;
+          write_mesh(path, mesh, scalars, options);
+        });
   m.def("validate", [](const PositionArray& V, const IndexArray& I, const IndexArray& O) {
     const Mesh mesh = mesh_from_arrays(V, I, O);
     py::dict d;

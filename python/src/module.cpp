@@ -2,14 +2,14 @@
 // (FileError is both OSError and ValueError; InvalidMeshError a ValueError naming the element;
 // SolverError a RuntimeError), the array <-> mesh helpers and the registration of the bindings.
 #include "bindings.h"
-
 #include "polydec/dec/io.h"
 #include "polydec/operators/cholesky.h"
 
 namespace polydec::python {
 
 PolygonSoup soup_from_arrays(const PositionArray& V, const IndexArray& indices, const IndexArray& offsets) {
-  if (V.ndim() != 2 || V.shape(1) != 3) throw std::invalid_argument("positions must be an array of shape (|V|, 3)");
+  if (V.ndim() != 2 || V.shape(1) != 3)
+    throw std::invalid_argument("positions must be an array of shape (|V|, 3)");
   if (indices.ndim() != 1 || offsets.ndim() != 1 || offsets.size() < 1)
     throw std::invalid_argument("faces must be flat 1-D indices and offsets (|F| + 1 entries)");
   PolygonSoup soup;
@@ -37,7 +37,8 @@ py::tuple mesh_to_arrays(const Mesh& mesh) {
     for (int c = 0; c < 3; ++c) v[3 * i + c] = mesh.positions()(i, c);
   const auto& I = mesh.face_indices();
   const auto& O = mesh.face_offsets();
-  return py::make_tuple(V, py::array_t<int>(long(I.size()), I.data()), py::array_t<int>(long(O.size()), O.data()));
+  return py::make_tuple(V, py::array_t<int>(long(I.size()), I.data()),
+                        py::array_t<int>(long(O.size()), O.data()));
 }
 
 namespace {
@@ -61,10 +62,10 @@ PYBIND11_MODULE(_polydec, m) {
   m.doc() = "polydec's C++ core (use the package polydec, which converts inputs and documents the API)";
 
   py::tuple file_bases = py::make_tuple(py::handle(PyExc_OSError), py::handle(PyExc_ValueError));
-  static PyObject* file_error =
-      new_exception(m, "FileError", file_bases.ptr(),
-                    "A mesh or matrix file that cannot be read or written. An OSError and a ValueError; "
-                    "attributes filename, line (1-based, 0 when unknown), byte_offset (-1 when unknown), reason.");
+  static PyObject* file_error = new_exception(
+      m, "FileError", file_bases.ptr(),
+      "A mesh or matrix file that cannot be read or written. An OSError and a ValueError; "
+      "attributes filename, line (1-based, 0 when unknown), byte_offset (-1 when unknown), reason.");
   // str() is the message "FILE:LINE: REASON" (OSError's own would print "[Errno None] ..." once
   // filename is set).
   py::setattr(file_error, "__str__", py::module_::import("builtins").attr("BaseException").attr("__str__"));

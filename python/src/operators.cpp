@@ -2,10 +2,9 @@
 // operators/gradient.h, operators/laplacians.h) and of the DEC pieces (dec/complex.h,
 // dec/hodge_star.h, dec/prolongation.h). Sparse results are Eigen column-major matrices, which
 // pybind11 hands over as scipy.sparse.csc_matrix.
-#include "bindings.h"
-
 #include <set>
 
+#include "bindings.h"
 #include "polydec/dec/complex.h"
 #include "polydec/dec/hodge_star.h"
 #include "polydec/dec/prolongation.h"
@@ -68,10 +67,11 @@ Assembled assemble(const Mesh& mesh, const std::string& spec, const Parts& parts
 
 void register_operators(py::module_& m) {
   m.def("laplacian_names", &laplacian_names);
-  m.def("canonical_laplacian", [](const std::string& spec) { return parse_laplacian(spec).canonical_name(); });
+  m.def("canonical_laplacian",
+        [](const std::string& spec) { return parse_laplacian(spec).canonical_name(); });
 
-  m.def("operators", [](const PositionArray& V, const IndexArray& I, const IndexArray& O, const std::string& spec,
-                        const Parts& parts, int threads) {
+  m.def("operators", [](const PositionArray& V, const IndexArray& I, const IndexArray& O,
+                        const std::string& spec, const Parts& parts, int threads) {
     const Mesh mesh = mesh_from_arrays(V, I, O);
     Assembled a;
     {

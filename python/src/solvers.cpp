@@ -2,7 +2,6 @@
 // factor once (HeatGeodesics, HodgeDecomposer, CurvatureFlow) and one-shot functions (spectrum,
 // mean curvature, conformal parametrization). Factorizations and solves run without the GIL.
 #include "bindings.h"
-
 #include "polydec/apps/applications/curvature.h"
 #include "polydec/apps/applications/geodesics.h"
 #include "polydec/apps/applications/hodge_decomposition.h"
@@ -14,17 +13,18 @@ namespace polydec::python {
 
 void register_solvers(py::module_& m) {
   py::class_<HeatGeodesics>(m, "HeatGeodesics")
-      .def(py::init([](const PositionArray& V, const IndexArray& I, const IndexArray& O, const std::string& spec,
-                       double time_step_factor, bool lumped_mass, bool mass_weighted_source) {
-             const Mesh mesh = mesh_from_arrays(V, I, O);
-             py::gil_scoped_release release;
-             HeatGeodesicsOptions options;
-             options.time_step_factor = time_step_factor;
-             options.lumped_mass = lumped_mass;
-             options.mass_weighted_source = mass_weighted_source;
-             return std::make_unique<HeatGeodesics>(build_operators(mesh, parse_laplacian(spec), true),
-                                                    mesh.mean_edge_length(), options);
-           }))
+      .def(py::init([](const PositionArray& V, const IndexArray& I, const IndexArray& O,
+                       const std::string& spec, double time_step_factor, bool lumped_mass,
+                       bool mass_weighted_source) {
+        const Mesh mesh = mesh_from_arrays(V, I, O);
+        py::gil_scoped_release release;
+        HeatGeodesicsOptions options;
+        options.time_step_factor = time_step_factor;
+        options.lumped_mass = lumped_mass;
+        options.mass_weighted_source = mass_weighted_source;
+        return std::make_unique<HeatGeodesics>(build_operators(mesh, parse_laplacian(spec), true),
+                                               mesh.mean_edge_length(), options);
+      }))
       .def("distance",
            [](const HeatGeodesics& h, const std::vector<int>& sources) {
              py::gil_scoped_release release;
@@ -33,8 +33,8 @@ void register_solvers(py::module_& m) {
       .def_property_readonly("time_step", &HeatGeodesics::time_step)
       .def_property_readonly("laplacian", [](const HeatGeodesics& h) { return h.operators().name; });
 
-  m.def("spectrum", [](const PositionArray& V, const IndexArray& I, const IndexArray& O, int k, const std::string& spec,
-                       bool lumped_mass, double tolerance, int max_iterations) {
+  m.def("spectrum", [](const PositionArray& V, const IndexArray& I, const IndexArray& O, int k,
+                       const std::string& spec, bool lumped_mass, double tolerance, int max_iterations) {
     const Mesh mesh = mesh_from_arrays(V, I, O);
     Spectrum s;
     {
@@ -55,13 +55,14 @@ void register_solvers(py::module_& m) {
   });
 
   py::class_<HodgeDecomposer>(m, "HodgeDecomposer")
-      .def(py::init([](const PositionArray& V, const IndexArray& I, const IndexArray& O, const std::string& rule) {
-        const Mesh mesh = mesh_from_arrays(V, I, O);
-        py::gil_scoped_release release;
-        RefinementOptions options;
-        options.rule = parse_virtual_vertex_rule(rule);
-        return std::make_unique<HodgeDecomposer>(mesh, options);
-      }))
+      .def(py::init(
+          [](const PositionArray& V, const IndexArray& I, const IndexArray& O, const std::string& rule) {
+            const Mesh mesh = mesh_from_arrays(V, I, O);
+            py::gil_scoped_release release;
+            RefinementOptions options;
+            options.rule = parse_virtual_vertex_rule(rule);
+            return std::make_unique<HodgeDecomposer>(mesh, options);
+          }))
       .def("decompose",
            [](const HodgeDecomposer& h, const Eigen::VectorXd& omega) {
              HodgeParts p;
@@ -80,13 +81,14 @@ void register_solvers(py::module_& m) {
              d["norm_harmonic"] = p.norm_harmonic;
              return d;
            })
-      .def_property_readonly("pairs", [](const HodgeDecomposer& h) { return Eigen::MatrixX2i(h.complex().pairs()); })
+      .def_property_readonly("pairs",
+                             [](const HodgeDecomposer& h) { return Eigen::MatrixX2i(h.complex().pairs()); })
       .def_property_readonly("d0", [](const HodgeDecomposer& h) { return h.d0(); })
       .def_property_readonly("star1", [](const HodgeDecomposer& h) { return h.star1(); })
       .def_property_readonly("harmonic_basis", [](const HodgeDecomposer& h) { return h.harmonic_basis(); });
 
-  m.def("mean_curvature", [](const PositionArray& V, const IndexArray& I, const IndexArray& O, const std::string& spec,
-                             bool lumped_mass) {
+  m.def("mean_curvature", [](const PositionArray& V, const IndexArray& I, const IndexArray& O,
+                             const std::string& spec, bool lumped_mass) {
     const Mesh mesh = mesh_from_arrays(V, I, O);
     py::gil_scoped_release release;
     CurvatureOptions options;
@@ -118,20 +120,21 @@ void register_solvers(py::module_& m) {
              }
              return X;
            })
-      .def_property_readonly("positions", [](const CurvatureFlow& f) { return Eigen::MatrixX3d(f.mesh().positions()); })
+      .def_property_readonly("positions",
+                             [](const CurvatureFlow& f) { return Eigen::MatrixX3d(f.mesh().positions()); })
       .def_property_readonly("time_step", &CurvatureFlow::time_step)
       .def_property_readonly("area", &CurvatureFlow::area);
 
-  m.def("conformal_parametrization", [](const PositionArray& V, const IndexArray& I, const IndexArray& O,
-                                        const std::string& spec) {
-    const Mesh mesh = mesh_from_arrays(V, I, O);
-    ConformalParametrization p;
-    {
-      py::gil_scoped_release release;
-      p = spectral_conformal_parametrization(build_operators(mesh, parse_laplacian(spec), false));
-    }
-    return py::make_tuple(p.uv, p.eigenvalue);
-  });
+  m.def("conformal_parametrization",
+        [](const PositionArray& V, const IndexArray& I, const IndexArray& O, const std::string& spec) {
+          const Mesh mesh = mesh_from_arrays(V, I, O);
+          ConformalParametrization p;
+          {
+            py::gil_scoped_release release;
+            p = spectral_conformal_parametrization(build_operators(mesh, parse_laplacian(spec), false));
+          }
+          return py::make_tuple(p.uv, p.eigenvalue);
+        });
   m.def("conformal_distortion",
         [](const PositionArray& V, const IndexArray& I, const IndexArray& O, const Eigen::MatrixX2d& uv) {
           const Mesh mesh = mesh_from_arrays(V, I, O);
