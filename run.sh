@@ -48,7 +48,8 @@ else
   targets=()
 fi
 echo "run.sh: configuring build/ (Release) and building ${targets[*]:-everything} on $jobs cores"
-cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release "${options[@]}" >/dev/null
+# Shared libraries (symbol table: namespace polydec only), as installed; .ci/run installs this build.
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DBUILD_SHARED_LIBS=ON "${options[@]}" >/dev/null
 ninja -C build -j "$jobs" "${targets[@]}"
 
 case "$what" in

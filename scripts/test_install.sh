@@ -1,21 +1,26 @@
 #!/usr/bin/env bash
-# scripts/test_install.sh — the installed package as a consumer sees it: builds polydec's libraries
-# as SHARED libraries in their own directory (build-install/), installs them into a temporary
-# prefix, checks that the installed headers compile on their own and that the shared libraries
-# export nothing outside namespace polydec, then configures, builds and runs the three examples/
+# scripts/test_install.sh — the installed package as a consumer sees it: takes the shared-library
+# build of `bash run.sh test` (build/) or, when BUILD_DIR is not a shared build, configures and
+# builds one there (default build-install/), installs it into a temporary prefix, checks that the
+# installed headers compile on their own and that the shared libraries export nothing outside
+# namespace polydec, then configures, builds and runs the three examples/
 # out of tree with find_package(polydec 0.2 CONFIG), and checks pkg-config. Exits non-zero on any
-# failure. Usage: scripts/test_install.sh [BUILD_DIR]
+# failure. Usage: scripts/test_install.sh [BUILD_DIR] (default: build/ when it is a shared build,
+# else build-install/).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-build=${1:-"$root/build-install"}
+build=${1:-"$root/build"}
+if ! grep -q '^BUILD_SHARED_LIBS:BOOL=ON' "$build/CMakeCache.txt" 2>/dev/null; then
+  [ $# -ge 1 ] || build="$root/build-install"
+  cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DBUILD_SHARED_LIBS=ON \
+    -DPOLYDEC_BUILD_TESTS=OFF -DPOLYDEC_BUILD_BENCH=OFF -DPOLYDEC_BUILD_PYTHON=OFF -DPOLYDEC_WITH_PETSC=OFF >/dev/null
+fi
 prefix=$(mktemp -d /tmp/polydec-prefix.XXXXXX)
 work=$(mktemp -d /tmp/polydec-consumer.XXXXXX)
 trap 'rm -rf "$prefix" "$work"' EXIT
 jobs=$(nproc 2>/dev/null || echo 2)
 
-echo "test_install.sh: shared libraries in $build, installed into $prefix"
-cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DBUILD_SHARED_LIBS=ON \
-  -DPOLYDEC_BUILD_TESTS=OFF -DPOLYDEC_BUILD_BENCH=OFF -DPOLYDEC_BUILD_PYTHON=OFF -DPOLYDEC_WITH_PETSC=OFF >/dev/null
+echo "test_install.sh: shared libraries of $build, installed into $prefix"
 ninja -C "$build" -j "$jobs" polydec_operators polydec_apps polydec_cli
 cmake --install "$build" --prefix "$prefix" >/dev/null
 
