@@ -6,7 +6,8 @@ so its count during the call is compared with its count alone over as long; robu
 machine. (2) The wall-time check: two threads assembling concurrently finish in clearly less
 than twice one thread's time (median of a few repetitions, < 1.6x). It needs two free cores, so
 it first times a control that certainly runs in parallel (hashlib releases the GIL) and is
-skipped, saying so, when even the control gets no parallelism (a machine busy with other work)."""
+skipped, saying so, when the control takes more than 1.3x (no two free cores: a machine busy with
+other work). CTest runs this file with RUN_SERIAL for that reason."""
 
 import hashlib
 import os
@@ -114,7 +115,7 @@ def test_two_threads_assemble_in_parallel(big_mesh):
             hashlib.sha256(data).digest()
 
     control_ratio, _ = _ratio_two_threads(control, 3)
-    if control_ratio > 1.6:
+    if control_ratio > 1.3:
         pytest.skip(f"no two free cores now: two hashing threads (GIL released) took {control_ratio:.2f}x "
                     "one thread's time; the spinner tests above still check the GIL")
     X, idx, off = big_mesh
