@@ -1,0 +1,428 @@
+"""polydec — discrete exterior calculus on polygon meshes ("Polygon Laplacian Made Simple",
+Bunge, Herholz, Kazhdan, Botsch, EG 2020), from Python.
+
+Conventions (docs/python.md):
+  * V is a (|V|, 3) float64 array; F is a list of lists, an (|F|, k) integer array, or the flat
+    tuple (indices, offsets) of two 1-D integer numpy arrays. Any integer dtype; positions of
+    other real dtypes are converted exactly (never silently rounded).
+  * The stiffness S is symmetric NEGATIVE semi-definite (S @ 1 = 0, x^T S x <= 0), as libigl's
+    cotmatrix; the Laplacian is L = M^-1 S. The mass M is the Galerkin (consistent) mass; the
+    lumped mass is its row sums (a diagonal matrix). Sparse results are
+    scipy.sparse.csc_matrix of float64, rows and columns in the given vertex order.
+  * Laplacian variants by name, as on the command line: "ours" (default), "centroid",
+    "abs-area", "convex", "trace-min", "triangulated-minarea", "triangulated-maxminangle",
+    "refined", "intrinsic-delaunay", "aw11:LAMBDA", "degoes20:LAMBDA" (laplacian_names()).
+  * The GIL is released during validation, assembly, factorization and solves.
+  * Errors: InvalidMeshError (a ValueError naming the face, vertex or edge), FileError (an
+    OSError and a ValueError with the file and line), SolverError (a RuntimeError).
+"""
+
+import os
+
+import numpy as np
+
+from . import _convert, _polydec
+from ._polydec import FileError, InvalidMeshError, SolverError
+
+__version__ = "0.2.0"
+
+__all__ = [
+    "FileError", "InvalidMeshError", "SolverError",
+    "read_mesh", "write_mesh", "mesh_info",
+    "quad_grid", "triangle_grid", "hex_grid", "uv_sphere", "cube_sphere", "hex_sphere", "torus", "genus2",
+    "catmull_clark", "dual", "project_to_unit_sphere", "add_noise",
+    "laplacian_names", "stiffness", "mass", "lumped_mass", "laplacian", "gradient", "divergence",
+    "prolongation", "d0", "d1", "star0", "star1", "star2", "P0", "P1", "P2", "cells", "dec_operators",
+    "HeatGeodesics", "spectrum", "HodgeDecomposer", "HodgeParts", "hodge_decomposition",
+    "mean_curvature", "vertex_normals", "CurvatureFlow", "curvature_flow",
+    "conformal_parametrization", "conformal_distortion",
+]
+
+
+# ----------------------------------------------------------------------------------------- meshes
+
+def _mesh_result(arrays, faces):
+    X, idx, off = arrays
+    return np.ascontiguousarray(X), _convert.faces_out(idx, off, faces)
+
+
+def read_mesh(path, faces="auto"):
+    """Reads an OBJ, OFF or PLY file (by extension) -> (V, F), in the file's vertex order.
+
+    V: (|V|, 3) float64. F: with faces="auto" an (|F|, k) int64 array when every face has k
+    vertices, else the flat tuple (indices, offsets); "array", "flat" or "list" force a form.
+    Raises FileError (OSError and ValueError) naming the file and line (or byte offset) for a
+    missing, unreadable or malformed file or an invalid mesh in it.
+    """
+    return _mesh_result(_polydec.read_mesh(os.fspath(path)), faces)
+
+
+def write_mesh(path, V, F, scalars=None, binary=False):
+    """Writes (V, F) as OBJ, OFF or PLY (by extension), positions with 17 significant digits.
+
+    scalars: optional {name: (|V|,) array}, written as PLY vertex properties (PLY only).
+    binary: binary PLY (bit-exact) or OFF BINARY (float32, lossy). Raises FileError.
+    """
+    s = {str(k): np.asarray(v, dtype=np.float64).reshape(-1) for k, v in (scalars or {}).items()}
+    _polydec.write_mesh(os.fspath(path), *_convert.mesh(V, F), s, bool(binary))
+
+
+def mesh_info(V, F):
+    """Validates (V, F) and returns counts: vertices, faces, edges, halfedges, boundary_loops,
+    components, unreferenced_vertices, euler_characteristic, and edge_list (|E|, 2) int32 with
+    rows (i, j), i < j, in lexicographic order (the numbering of the edges everywhere).
+    Raises InvalidMeshError (ValueError) for an invalid mesh."""
+    return _polydec.validate(*_convert.mesh(V, F))
+
+
+def quad_grid(nx, ny, faces="auto"):
+    """Planar nx x ny quad grid on [0,1]^2 (z = 0) -> (V, F)."""
+    return _mesh_result(_polydec.quad_grid(int(nx), int(ny)), faces)
+
+
+def triangle_grid(nx, ny, faces="auto"):
+    """Planar nx x ny grid on [0,1]^2, each cell split into two triangles -> (V, F)."""
+    return _mesh_result(_polydec.triangle_grid(int(nx), int(ny)), faces)
+
+
+def hex_grid(nx, ny, faces="auto"):
+    """Hexagon-dominant tiling of [0,1]^2 (dual of triangle_grid, boundary faces cut) -> (V, F)."""
+    return _mesh_result(_polydec.hex_grid(int(nx), int(ny)), faces)
+
+
+def uv_sphere(n_lat, n_lon, faces="auto"):
+    """Unit UV sphere, polar axis z: quads, triangles at the poles -> (V, F)."""
+    return _mesh_result(_polydec.uv_sphere(int(n_lat), int(n_lon)), faces)
+
+
+def cube_sphere(n, faces="auto"):
+    """Unit quad sphere: a cube with n x n quads per side projected to the sphere -> (V, F)."""
+    return _mesh_result(_polydec.cube_sphere(int(n)), faces)
+
+
+def hex_sphere(level, faces="auto"):
+    """Hexagon-dominant unit sphere (12 pentagons): dual of an icosahedron subdivided `level`
+    times -> (V, F)."""
+    return _mesh_result(_polydec.hex_sphere(int(level)), faces)
+
+
+def torus(n_major, n_minor, R=1.0, r=0.4, faces="auto"):
+    """Quad torus around the z axis, radii R > r > 0 -> (V, F)."""
+    return _mesh_result(_polydec.torus(int(n_major), int(n_minor), float(R), float(r)), faces)
+
+
+def genus2(subdivisions=1, faces="auto"):
+    """Closed genus-2 quad surface, smoothed by `subdivisions` Catmull-Clark steps -> (V, F)."""
+    return _mesh_result(_polydec.genus2(int(subdivisions)), faces)
+
+
+def catmull_clark(V, F, faces="auto"):
+    """One Catmull-Clark step -> (V, F): old vertices first (same indices), then edge points,
+    then face points."""
+    return _mesh_result(_polydec.catmull_clark(*_convert.mesh(V, F)), faces)
+
+
+def dual(V, F, faces="auto"):
+    """Dual mesh -> (V, F): one vertex per face (centroid), one face per vertex (with boundary:
+    boundary edge midpoints and boundary vertices added)."""
+    return _mesh_result(_polydec.dual(*_convert.mesh(V, F)), faces)
+
+
+def project_to_unit_sphere(V, F, faces="auto"):
+    """Every vertex moved to p / |p| -> (V, F). InvalidMeshError for a vertex at the origin."""
+    return _mesh_result(_polydec.project_to_unit_sphere(*_convert.mesh(V, F)), faces)
+
+
+def add_noise(V, F, amplitude, seed=1, faces="auto"):
+    """Every vertex moved by a uniform random vector of length up to amplitude * mean edge length
+    (deterministic for a seed) -> (V, F)."""
+    return _mesh_result(_polydec.add_noise(*_convert.mesh(V, F), float(amplitude), int(seed)), faces)
+
+
+# -------------------------------------------------------------------------------------- operators
+
+def laplacian_names():
+    """The Laplacian methods accepted by laplacian=... (parameters follow a colon: "aw11:0.5")."""
+    return list(_polydec.laplacian_names())
+
+
+def _operators(V, F, laplacian, parts, threads=1):
+    d = _polydec.operators(*_convert.mesh(V, F), str(laplacian), set(parts), int(threads))
+    if "M" in parts and not d["has_M"]:
+        raise ValueError(f"the Laplacian {d['name']!r} defines no Galerkin mass; use lumped_mass")
+    if ("G" in parts or "D" in parts) and not d["has_G"]:
+        raise ValueError(f"the Laplacian {d['name']!r} defines no gradient")
+    return d
+
+
+def _diagonal(v):
+    import scipy.sparse
+
+    n = v.shape[0]
+    return scipy.sparse.csc_matrix((np.asarray(v, dtype=np.float64), np.arange(n, dtype=np.int32),
+                                    np.arange(n + 1, dtype=np.int32)), shape=(n, n))
+
+
+def stiffness(V, F, laplacian="ours", threads=1):
+    """Stiffness matrix S (paper eq. 12), (|V|, |V|) scipy.sparse.csc_matrix, float64.
+
+    Symmetric NEGATIVE semi-definite: S @ ones = 0 and x @ S @ x <= 0 (libigl's cotmatrix sign;
+    robust_laplacian and potpourri3d return -S). Rows and columns in the given vertex order;
+    unreferenced vertices get empty rows. laplacian: the method's name ("ours", "aw11:0.5", ...);
+    for "refined" the matrix is on the refined mesh, |V| + |F| square, input vertices first.
+    threads: assembly threads for "ours" (0: all; the result does not depend on it).
+    """
+    return _operators(V, F, laplacian, {"S"}, threads)["S"]
+
+
+def mass(V, F, laplacian="ours", threads=1):
+    """Galerkin (consistent, unlumped) mass matrix M (paper eq. 13), (|V|, |V|) csc_matrix,
+    symmetric positive semi-definite, summing to the surface area. ValueError for a method
+    without one ("aw11" and "degoes20" define only lumped masses)."""
+    return _operators(V, F, laplacian, {"M"}, threads)["M"]
+
+
+def lumped_mass(V, F, laplacian="ours", threads=1):
+    """Lumped mass (paper eq. 14): the row sums of the Galerkin mass, as a diagonal (|V|, |V|)
+    csc_matrix (its .diagonal() is the vector of vertex areas), positive at referenced vertices."""
+    return _diagonal(_operators(V, F, laplacian, {"M_lumped"}, threads)["M_lumped"])
+
+
+def laplacian(V, F, laplacian="ours", mass="lumped", threads=1):
+    """(S, M): the stiffness S (NEGATIVE semi-definite, S @ 1 = 0) and the mass M, both
+    (|V|, |V|) csc_matrix; the Laplace-Beltrami operator is L = M^-1 S (so L x = lambda x has
+    lambda <= 0). mass="lumped" (default, diagonal) or "galerkin". One assembly for both."""
+    lumped = _convert.lumped_flag(mass)
+    d = _operators(V, F, laplacian, {"S", "M_lumped" if lumped else "M"}, threads)
+    return d["S"], _diagonal(d["M_lumped"]) if lumped else d["M"]
+
+
+def gradient(V, F, laplacian="ours"):
+    """Gradient G (paper eq. 17), (3 |H|, |V|) csc_matrix, |H| = number of face corners: rows
+    3h, 3h+1, 3h+2 are the x, y, z components of the constant gradient on fan triangle h
+    (corner h, the next corner of its face and the face's virtual vertex). S = D @ G."""
+    return _operators(V, F, laplacian, {"G"})["G"]
+
+
+def divergence(V, F, laplacian="ours"):
+    """Divergence D = -G^T W (paper eq. 18), (|V|, 3 |H|) csc_matrix, W the fan-triangle areas
+    (each repeated three times); S = D @ G, so D is the negative adjoint of G."""
+    return _operators(V, F, laplacian, {"D"})["D"]
+
+
+def _dec(V, F, parts, virtual_vertex="squared-area"):
+    return _polydec.dec(*_convert.mesh(V, F), set(parts), str(virtual_vertex))
+
+
+def prolongation(V, F, virtual_vertex="squared-area"):
+    """Prolongation P = P0 (paper eq. 11), (|V| + |F|, |V|) csc_matrix: the identity on the
+    vertices, row |V| + f the virtual-vertex weights of face f (summing to 1). S = P^T S^f P."""
+    return _dec(V, F, {"P0"}, virtual_vertex)["P0"]
+
+
+def P0(V, F, virtual_vertex="squared-area"):
+    """P0 (paper eq. 24), the prolongation of 0-forms: same as prolongation()."""
+    return prolongation(V, F, virtual_vertex)
+
+
+def P1(V, F, virtual_vertex="squared-area"):
+    """P1 (paper eq. 25), (|E| + |H|, |C1|) csc_matrix from the coarse 1-cells (cells()[0]) to
+    the refined edges (mesh edges, then one spoke per face corner)."""
+    return _dec(V, F, {"P1"}, virtual_vertex)["P1"]
+
+
+def P2(V, F, virtual_vertex="squared-area"):
+    """P2 (paper eq. 26), (|H|, |C2|) csc_matrix from the coarse 2-cells (cells()[1]) to the fan
+    triangles."""
+    return _dec(V, F, {"P2"}, virtual_vertex)["P2"]
+
+
+def d0(V, F):
+    """Coboundary d0 (paper eq. 19), (|C1|, |V|) csc_matrix with entries -1 (row's i) and +1
+    (row's j) for coarse 1-cell (i, j), i < j (cells()[0]: edges and diagonals)."""
+    return _dec(V, F, {"d0"})["d0"]
+
+
+def d1(V, F):
+    """Coboundary d1 (paper eq. 19), (|C2|, |C1|) csc_matrix: (d1 c)_ijk = c_ij + c_jk - c_ik.
+    d1 @ d0 = 0 exactly."""
+    return _dec(V, F, {"d1"})["d1"]
+
+
+def star0(V, F, lumped=False, virtual_vertex="squared-area"):
+    """Hodge star of 0-forms (paper eq. 20, 27), (|V|, |V|) csc_matrix, positive semi-definite:
+    the Galerkin mass (lumped=True: its row sums, diagonal)."""
+    if lumped:
+        return _diagonal(_dec(V, F, {"star0_lumped"}, virtual_vertex)["star0_lumped"])
+    return _dec(V, F, {"star0"}, virtual_vertex)["star0"]
+
+
+def star1(V, F, virtual_vertex="squared-area"):
+    """Hodge star of 1-forms (paper eq. 21, 27), (|C1|, |C1|) csc_matrix, symmetric positive
+    SEMI-definite (singular on faces with 5 or more corners). S = -d0^T star1 d0."""
+    return _dec(V, F, {"star1"}, virtual_vertex)["star1"]
+
+
+def star2(V, F, virtual_vertex="squared-area"):
+    """Hodge star of 2-forms (paper eq. 22, 27), (|C2|, |C2|) csc_matrix, positive semi-definite."""
+    return _dec(V, F, {"star2"}, virtual_vertex)["star2"]
+
+
+def cells(V, F):
+    """The coarse cell lists (paper section 4.6): (pairs (|C1|, 2), triples (|C2|, 3)) int32,
+    vertex indices increasing in each row, rows in lexicographic order — all vertex pairs and
+    triples sharing a face (polygon edges and diagonals). The numbering of d0, d1, star1, star2."""
+    d = _dec(V, F, {"pairs", "triples"})
+    return d["pairs"], d["triples"]
+
+
+def dec_operators(V, F, virtual_vertex="squared-area"):
+    """All DEC pieces from one refinement: a dict with d0, d1, star0, star0_lumped (vector),
+    star1, star2, P0, P1, P2 (csc_matrix), pairs, triples (int32 cell lists) and is_edge (bool
+    per pair: a mesh edge rather than a diagonal)."""
+    return _dec(V, F, {"d0", "d1", "star0", "star0_lumped", "star1", "star2", "P0", "P1", "P2", "pairs",
+                       "triples", "is_edge"}, virtual_vertex)
+
+
+# ---------------------------------------------------------------------------------------- solvers
+
+class HeatGeodesics:
+    """Geodesic distance by the heat method (paper section 5.5, eq. 31-33), factored once.
+
+    HeatGeodesics(V, F, laplacian="ours", time_step_factor=1.0, mass="lumped") factors
+    M - t S and the Poisson matrix -S (t = factor * mean edge length^2); each
+    distance(sources) then costs two back-substitutions. Distances: (|V|,) float64, >= 0, 0 at
+    the nearest source, +inf at vertices no source reaches (other components, unreferenced).
+    """
+
+    def __init__(self, V, F, laplacian="ours", time_step_factor=1.0, mass="lumped", mass_weighted_source=True):
+        X, idx, off = _convert.mesh(V, F)
+        self._n = X.shape[0]
+        self._solver = _polydec.HeatGeodesics(X, idx, off, str(laplacian), float(time_step_factor),
+                                              _convert.lumped_flag(mass), bool(mass_weighted_source))
+
+    def distance(self, sources):
+        """Distances from a vertex index or a sequence of them -> (|V|,) float64.
+        ValueError for a source outside [0, |V|)."""
+        return self._solver.distance(_convert.sources(sources, self._n))
+
+    @property
+    def time_step(self):
+        """The heat time step t."""
+        return self._solver.time_step
+
+
+def spectrum(V, F, k, laplacian="ours", mass="lumped", tolerance=1e-10, max_iterations=1000, return_info=False):
+    """The k smallest eigenpairs of -S x = lambda M x (manifold harmonics, paper section 5.4).
+
+    Returns (evals, evecs): evals (k,) ascending, >= 0 (one 0 per connected component, since S
+    is negative semi-definite); evecs (|V|, k), M-orthonormal (evecs.T @ M @ evecs = I), with
+    S @ evecs + M @ evecs @ diag(evals) = 0. mass="lumped" (default) or "galerkin".
+    return_info=True adds a dict (shift, n_converged, n_solves, method). SolverError when the
+    solver does not converge.
+    """
+    evals, evecs, info = _polydec.spectrum(*_convert.mesh(V, F), int(k), str(laplacian), _convert.lumped_flag(mass),
+                                           float(tolerance), int(max_iterations))
+    return (evals, evecs, info) if return_info else (evals, evecs)
+
+
+class HodgeParts:
+    """Result of a Hodge decomposition: exact, coexact, harmonic (|C1|,) with
+    exact + coexact + harmonic = omega, potential (|V|,) with exact = d0 @ potential, and the
+    star1 norms norm, norm_exact, norm_coexact, norm_harmonic."""
+
+    def __init__(self, d):
+        self.__dict__.update(d)
+
+    def __repr__(self):
+        return (f"HodgeParts(norm={self.norm:.6g}, exact={self.norm_exact:.6g}, coexact={self.norm_coexact:.6g}, "
+                f"harmonic={self.norm_harmonic:.6g})")
+
+
+class HodgeDecomposer:
+    """Hodge decomposition of coarse 1-cochains, omega = d0 alpha + delta beta + h, orthogonal in
+    the star1 inner product (paper section 4.6), factored once.
+
+    HodgeDecomposer(V, F) builds the coarse complex, d0, star1, factors d0^T star1 d0 and the
+    harmonic basis; decompose(omega) with omega (|C1|,), one value per pair of cells()[0] (the
+    integral of the 1-form from i to j), returns HodgeParts. Attributes: pairs (|C1|, 2), d0,
+    star1 (csc_matrix), harmonic_basis (|C1|, 2 genus + ...), star1-orthonormal.
+    """
+
+    def __init__(self, V, F, virtual_vertex="squared-area"):
+        self._h = _polydec.HodgeDecomposer(*_convert.mesh(V, F), str(virtual_vertex))
+        self.pairs = self._h.pairs
+        self.d0 = self._h.d0
+        self.star1 = self._h.star1
+        self.harmonic_basis = self._h.harmonic_basis
+
+    def decompose(self, omega):
+        """HodgeParts of omega ((|C1|,) float64; ValueError for a wrong size or non-finite values)."""
+        w = np.asarray(omega, dtype=np.float64).reshape(-1)
+        return HodgeParts(self._h.decompose(w))
+
+
+def hodge_decomposition(V, F, omega):
+    """One-shot HodgeDecomposer(V, F).decompose(omega) -> HodgeParts."""
+    return HodgeDecomposer(V, F).decompose(omega)
+
+
+def mean_curvature(V, F, laplacian="ours", mass="lumped"):
+    """Mean curvature per vertex (paper section 5.2, eq. 29), (|V|,) float64:
+    H_i = 1/2 |(L X)_i| sign<-(L X)_i, n_i>, L = M^-1 S, n the outward normal, so a sphere of
+    radius r has H = 1/r > 0. 0 at vertices without mass."""
+    return _polydec.mean_curvature(*_convert.mesh(V, F), str(laplacian), _convert.lumped_flag(mass))
+
+
+def vertex_normals(V, F):
+    """Angle-weighted unit vertex normals, (|V|, 3) float64, oriented by the faces."""
+    return _polydec.vertex_normals(*_convert.mesh(V, F))
+
+
+class CurvatureFlow:
+    """Conformalized mean curvature flow (paper section 5.1, eq. 28): S^0 of the input kept, M^t
+    re-assembled on the current positions, each step solves (M^t - eps S^0) X' = M^t X, then
+    re-centres (area centroid at the origin) and re-scales to the input's area.
+
+    CurvatureFlow(V, F, time_step=0 (eps = 1e-3 * area), mass="lumped", laplacian="ours");
+    step() -> the new positions (|V|, 3); attributes positions, time_step, area.
+    """
+
+    def __init__(self, V, F, time_step=0.0, mass="lumped", laplacian="ours"):
+        self._flow = _polydec.CurvatureFlow(*_convert.mesh(V, F), float(time_step), _convert.lumped_flag(mass),
+                                            str(laplacian))
+
+    def step(self):
+        """One step -> positions (|V|, 3) float64."""
+        return self._flow.step()
+
+    @property
+    def positions(self):
+        return self._flow.positions
+
+    @property
+    def time_step(self):
+        return self._flow.time_step
+
+    @property
+    def area(self):
+        return self._flow.area
+
+
+def curvature_flow(V, F, steps, time_step=0.0, mass="lumped", laplacian="ours"):
+    """`steps` steps of CurvatureFlow -> list of steps + 1 position arrays (the input first)."""
+    flow = CurvatureFlow(V, F, time_step, mass, laplacian)
+    return [flow.positions] + [flow.step() for _ in range(int(steps))]
+
+
+def conformal_parametrization(V, F, laplacian="ours", return_eigenvalue=False):
+    """Spectral free-boundary conformal parametrization (paper section 5.3) -> uv (|V|, 2)
+    float64 scaled into [0,1]^2; with return_eigenvalue=True also the eigenvalue (the conformal
+    energy up to scale). ValueError when a connected component has no boundary."""
+    uv, ev = _polydec.conformal_parametrization(*_convert.mesh(V, F), str(laplacian))
+    return (uv, ev) if return_eigenvalue else uv
+
+
+def conformal_distortion(V, F, uv):
+    """Area-weighted RMS difference (radians) between the corner angles in 3D and in uv (|V|, 2)."""
+    return _polydec.conformal_distortion(*_convert.mesh(V, F), np.asarray(uv, dtype=np.float64))

@@ -1,0 +1,167 @@
+"""polydec._convert — the input forms the package accepts, converted exactly to what the C++ core
+takes: positions as a C-contiguous (|V|, 3) float64 array, faces as flat int32 (indices, offsets).
+Nothing is truncated or rounded silently: a conversion that would change a value raises."""
+
+import numbers
+
+import numpy as np
+
+from . import _polydec
+
+_INT32_MAX = np.iinfo(np.int32).max
+
+
+def positions(V):
+    """(|V|, 3) float64 C-contiguous copy-or-view of V; (|V|, 2) gets z = 0.
+
+    Integer and float16/32 positions are converted exactly; a value that float64 cannot hold
+    exactly (huge integers, long double) raises ValueError; complex, bool, strings raise TypeError.
+    """
+    a = np.asarray(V)
+    if a.dtype.kind not in "iuf":
+        raise TypeError(f"positions must be real numbers, got an array of dtype {a.dtype}")
+    if a.ndim != 2 or a.shape[1] not in (2, 3):
+        raise ValueError(f"positions must have shape (|V|, 3) (or (|V|, 2) for z = 0), got {a.shape}")
+    if a.dtype != np.float64:
+        b = a.astype(np.float64)
+        if a.dtype.kind in "iu":
+            exact = a.size == 0 or int(np.abs(a.astype(object)).max()) <= 2**53
+        else:
+            exact = np.array_equal(b.astype(a.dtype), a, equal_nan=True)
+        if not exact:
+            bad = int(np.argwhere(b.astype(a.dtype) != a)[0][0]) if a.dtype.kind == "f" else _first_big_int(a)
+            raise ValueError(
+                f"positions of dtype {a.dtype} are not exactly representable in float64 (vertex {bad}); "
+                "convert them explicitly if rounding is intended"
+            )
+        a = b
+    if a.shape[1] == 2:
+        a = np.hstack([a, np.zeros((a.shape[0], 1))])
+    return np.ascontiguousarray(a, dtype=np.float64)
+
+
+def _first_big_int(a):
+    big = np.abs(a.astype(object)) > 2**53
+    return int(np.argwhere(big)[0][0])
+
+
+def _integers(a, what):
+    a = np.asarray(a)
+    if a.size == 0:
+        return np.zeros(0, dtype=np.int64)
+    if a.dtype.kind not in "iu":
+        raise TypeError(f"{what} must be integers, got dtype {a.dtype}")
+    return a
+
+
+def _is_flat(faces):
+    return (
+        isinstance(faces, tuple)
+        and len(faces) == 2
+        and all(isinstance(x, np.ndarray) and x.ndim == 1 for x in faces)
+    )
+
+
+def _mesh_error(element, index, message):
+    err = _polydec.InvalidMeshError(message)
+    err.element = element
+    err.index = int(index)
+    return err
+
+
+def faces(F, n_vertices):
+    """Flat int32 (indices, offsets) of F, checked against n_vertices.
+
+    Accepted forms: a sequence of faces (each a sequence of vertex indices; valences may differ),
+    an (|F|, k) integer array, or the flat form: a tuple of two 1-D integer numpy arrays
+    (indices, offsets) with offsets[0] = 0, offsets[-1] = len(indices), face f =
+    indices[offsets[f]:offsets[f+1]]. Any integer dtype. Raises InvalidMeshError (a ValueError)
+    naming the face for an index outside [0, n_vertices).
+    """
+    if _is_flat(F):
+        idx = _integers(F[0], "face indices")
+        off = _integers(F[1], "face offsets")
+        if off.size == 0 or off[0] != 0 or off[-1] != idx.size:
+            raise ValueError("flat faces: offsets must start at 0 and end at len(indices)")
+        steps = np.diff(off.astype(np.int64))
+        if np.any(steps < 0):
+            f = int(np.argmax(steps < 0))
+            raise _mesh_error("face", f, f"face {f} has negative size (offsets decrease)")
+    elif isinstance(F, np.ndarray):
+        if F.ndim != 2:
+            raise ValueError(f"a face array must have shape (|F|, k), got {F.shape}; use a list of lists or "
+                             "(indices, offsets) for mixed valences")
+        idx = _integers(F, "faces").reshape(-1)
+        off = np.arange(F.shape[0] + 1, dtype=np.int64) * F.shape[1]
+    else:
+        try:
+            F = list(F)
+            sizes = [len(f) for f in F]
+        except TypeError:
+            raise TypeError("faces must be a list of lists, an (|F|, k) integer array or (indices, offsets)") from None
+        flat = [v for f in F for v in f]
+        if not all(isinstance(v, (numbers.Integral, np.integer)) and not isinstance(v, bool) for v in flat):
+            raise TypeError("faces must hold integer vertex indices")
+        if any(abs(int(v)) > 2**62 for v in flat):
+            raise ValueError("face index too large")
+        idx = np.array(flat, dtype=np.int64)
+        off = np.concatenate([[0], np.cumsum(sizes, dtype=np.int64)])
+    if off.size - 1 > _INT32_MAX or idx.size > _INT32_MAX:
+        raise ValueError("too many faces for polydec (32-bit indices)")
+    if idx.size:
+        bad = (idx < 0) | (idx >= n_vertices)
+        if np.any(bad):
+            pos = int(np.argmax(bad))
+            f = int(np.searchsorted(off, pos, side="right") - 1)
+            raise _mesh_error(
+                "face", f, f"face {f} refers to vertex {int(idx[pos])}, outside [0, {n_vertices})"
+            )
+    return np.ascontiguousarray(idx, dtype=np.int32), np.ascontiguousarray(off, dtype=np.int32)
+
+
+def mesh(V, F):
+    """(positions, indices, offsets) for the C++ core."""
+    X = positions(V)
+    idx, off = faces(F, X.shape[0])
+    return X, idx, off
+
+
+def faces_out(indices, offsets, form):
+    """The faces of a returned mesh: form "auto" (an (|F|, k) int64 array when every face has k
+    vertices, else the flat tuple), "array", "flat" or "list"."""
+    idx = np.asarray(indices, dtype=np.int64)
+    off = np.asarray(offsets, dtype=np.int64)
+    sizes = np.diff(off)
+    uniform = sizes.size > 0 and np.all(sizes == sizes[0])
+    if form == "flat" or (form == "auto" and not uniform):
+        return idx, off
+    if form in ("auto", "array"):
+        if not uniform:
+            raise ValueError("faces='array' needs faces of one valence; use 'flat' or 'list'")
+        return idx.reshape(-1, int(sizes[0]))
+    if form == "list":
+        return [idx[off[f]:off[f + 1]].tolist() for f in range(sizes.size)]
+    raise ValueError(f"faces must be 'auto', 'array', 'flat' or 'list', got {form!r}")
+
+
+def lumped_flag(mass):
+    """True for mass="lumped", False for "galerkin" (or "unlumped", the command line's word)."""
+    if mass == "lumped":
+        return True
+    if mass in ("galerkin", "unlumped"):
+        return False
+    raise ValueError(f"mass must be 'lumped' or 'galerkin', got {mass!r}")
+
+
+def sources(s, n_vertices):
+    """A non-empty list of vertex indices in [0, n_vertices)."""
+    a = np.atleast_1d(np.asarray(s))
+    if a.size == 0:
+        raise ValueError("at least one source vertex is needed")
+    if a.dtype.kind not in "iu" or a.ndim != 1:
+        raise TypeError("sources must be a vertex index or a 1-D sequence of vertex indices")
+    bad = (a < 0) | (a >= n_vertices)
+    if np.any(bad):
+        v = int(a[int(np.argmax(bad))])
+        raise ValueError(f"source vertex {v} outside [0, {n_vertices})")
+    return [int(v) for v in a]

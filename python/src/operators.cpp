@@ -1,0 +1,136 @@
+// python/src/operators.cpp — bindings of the assembled operators (operators/laplacian.h,
+// operators/gradient.h, operators/laplacians.h) and of the DEC pieces (dec/complex.h,
+// dec/hodge_star.h, dec/prolongation.h). Sparse results are Eigen column-major matrices, which
+// pybind11 hands over as scipy.sparse.csc_matrix.
+#include <set>
+
+#include "bindings.h"
+#include "polydec/dec/complex.h"
+#include "polydec/dec/hodge_star.h"
+#include "polydec/dec/prolongation.h"
+#include "polydec/operators/gradient.h"
+#include "polydec/operators/laplacians.h"
+
+namespace polydec::python {
+namespace {
+
+using Parts = std::set<std::string>;
+
+// What `operators` returns, filled with the GIL released, converted to Python afterwards.
+struct Assembled {
+  std::string name;
+  int n_input_vertices = 0, n_domain_vertices = 0;
+  SparseMatrix S, M, G, D;
+  Eigen::VectorXd M_lumped;
+  bool has_M = false, has_G = false;
+};
+
+Assembled assemble(const Mesh& mesh, const std::string& spec, const Parts& parts, int threads) {
+  const LaplacianChoice choice = parse_laplacian(spec);
+  const bool want_G = parts.count("G") || parts.count("D");
+  Assembled a;
+  a.name = choice.canonical_name();
+  if (choice.method == "ours") {
+    // The paper's operator, assembled only in the parts asked for (the CLI's `operators` route).
+    RefinementOptions ropt;
+    ropt.threads = threads;
+    const Refinement r = refine(mesh, ropt);
+    LaplacianParts lp{parts.count("S") > 0, parts.count("M") > 0, parts.count("M_lumped") > 0};
+    AssemblyOptions aopt;
+    aopt.threads = threads;
+    if (lp.stiffness || lp.mass || lp.lumped_mass) {
+      Laplacian L = assemble_laplacian(mesh, r, lp, nullptr, aopt);
+      a.S.swap(L.S);
+      a.M.swap(L.M);
+      a.M_lumped.swap(L.M_lumped);
+    }
+    if (parts.count("G")) a.G = gradient(mesh, r);
+    if (parts.count("D")) a.D = divergence(mesh, r);
+    a.has_M = a.has_G = true;
+    a.n_input_vertices = a.n_domain_vertices = mesh.n_vertices();
+    return a;
+  }
+  OperatorSet ops = build_operators(mesh, choice, want_G);
+  a.S.swap(ops.S);
+  a.M.swap(ops.M);
+  a.M_lumped.swap(ops.M_lumped);
+  a.G.swap(ops.G);
+  a.D.swap(ops.D);
+  a.has_M = a.M.rows() > 0;
+  a.has_G = a.G.rows() > 0;
+  a.n_input_vertices = ops.n_input_vertices;
+  a.n_domain_vertices = ops.domain.n_vertices();
+  return a;
+}
+
+}  // namespace
+
+void register_operators(py::module_& m) {
+  m.def("laplacian_names", &laplacian_names);
+  m.def("canonical_laplacian",
+        [](const std::string& spec) { return parse_laplacian(spec).canonical_name(); });
+
+  m.def("operators", [](const PositionArray& V, const IndexArray& I, const IndexArray& O,
+                        const std::string& spec, const Parts& parts, int threads) {
+    const Mesh mesh = mesh_from_arrays(V, I, O);
+    Assembled a;
+    {
+      py::gil_scoped_release release;
+      a = assemble(mesh, spec, parts, threads);
+    }
+    py::dict d;
+    d["name"] = a.name;
+    d["n_input_vertices"] = a.n_input_vertices;
+    d["n_domain_vertices"] = a.n_domain_vertices;
+    d["has_M"] = a.has_M;
+    d["has_G"] = a.has_G;
+    if (parts.count("S")) d["S"] = a.S;
+    if (parts.count("M") && a.has_M) d["M"] = a.M;
+    if (parts.count("M_lumped")) d["M_lumped"] = a.M_lumped;
+    if (parts.count("G") && a.has_G) d["G"] = a.G;
+    if (parts.count("D") && a.has_G) d["D"] = a.D;
+    return d;
+  });
+
+  m.def("dec", [](const PositionArray& V, const IndexArray& I, const IndexArray& O, const Parts& parts,
+                  const std::string& rule) {
+    const Mesh mesh = mesh_from_arrays(V, I, O);
+    std::map<std::string, SparseMatrix> mats;
+    Eigen::VectorXd star0_lumped;
+    CoarseComplex K;
+    {
+      py::gil_scoped_release release;
+      RefinementOptions ropt;
+      ropt.rule = parse_virtual_vertex_rule(rule);
+      const Refinement r = refine(mesh, ropt);
+      K = CoarseComplex(mesh);
+      if (parts.count("d0")) mats["d0"] = K.d0();
+      if (parts.count("d1")) mats["d1"] = K.d1();
+      if (parts.count("P0")) mats["P0"] = prolongation(mesh, r);
+      if (parts.count("P1")) mats["P1"] = prolongation1(mesh, r, K);
+      if (parts.count("P2")) mats["P2"] = prolongation2(mesh, r, K);
+      HodgeStarParts hp{parts.count("star0") > 0, parts.count("star0_lumped") > 0, parts.count("star1") > 0,
+                        parts.count("star2") > 0};
+      if (hp.star0 || hp.star0_lumped || hp.star1 || hp.star2) {
+        HodgeStars H = hodge_stars(mesh, r, K, hp);
+        if (hp.star0) mats["star0"].swap(H.star0);
+        if (hp.star1) mats["star1"].swap(H.star1);
+        if (hp.star2) mats["star2"].swap(H.star2);
+        star0_lumped.swap(H.star0_lumped);
+      }
+    }
+    py::dict d;
+    for (auto& [name, A] : mats) d[py::str(name)] = A;
+    if (parts.count("star0_lumped")) d["star0_lumped"] = star0_lumped;
+    if (parts.count("pairs")) d["pairs"] = Eigen::MatrixX2i(K.pairs());
+    if (parts.count("triples")) d["triples"] = Eigen::MatrixX3i(K.triples());
+    if (parts.count("is_edge")) {
+      py::array_t<bool> e(K.n_pairs());
+      for (int p = 0; p < K.n_pairs(); ++p) e.mutable_data()[p] = K.is_edge(p);
+      d["is_edge"] = e;
+    }
+    return d;
+  });
+}
+
+}  // namespace polydec::python

@@ -1,0 +1,146 @@
+// python/src/solvers.cpp — bindings of the applications (apps/applications/): solver classes that
+// factor once (HeatGeodesics, HodgeDecomposer, CurvatureFlow) and one-shot functions (spectrum,
+// mean curvature, conformal parametrization). Factorizations and solves run without the GIL.
+#include "bindings.h"
+#include "polydec/apps/applications/curvature.h"
+#include "polydec/apps/applications/geodesics.h"
+#include "polydec/apps/applications/hodge_decomposition.h"
+#include "polydec/apps/applications/parametrization.h"
+#include "polydec/apps/applications/smoothing.h"
+#include "polydec/apps/applications/spectrum.h"
+
+namespace polydec::python {
+
+void register_solvers(py::module_& m) {
+  py::class_<HeatGeodesics>(m, "HeatGeodesics")
+      .def(py::init([](const PositionArray& V, const IndexArray& I, const IndexArray& O,
+                       const std::string& spec, double time_step_factor, bool lumped_mass,
+                       bool mass_weighted_source) {
+        const Mesh mesh = mesh_from_arrays(V, I, O);
+        py::gil_scoped_release release;
+        HeatGeodesicsOptions options;
+        options.time_step_factor = time_step_factor;
+        options.lumped_mass = lumped_mass;
+        options.mass_weighted_source = mass_weighted_source;
+        return std::make_unique<HeatGeodesics>(build_operators(mesh, parse_laplacian(spec), true),
+                                               mesh.mean_edge_length(), options);
+      }))
+      .def("distance",
+           [](const HeatGeodesics& h, const std::vector<int>& sources) {
+             py::gil_scoped_release release;
+             return h.distance(sources);
+           })
+      .def_property_readonly("time_step", &HeatGeodesics::time_step)
+      .def_property_readonly("laplacian", [](const HeatGeodesics& h) { return h.operators().name; });
+
+  m.def("spectrum", [](const PositionArray& V, const IndexArray& I, const IndexArray& O, int k,
+                       const std::string& spec, bool lumped_mass, double tolerance, int max_iterations) {
+    const Mesh mesh = mesh_from_arrays(V, I, O);
+    Spectrum s;
+    {
+      py::gil_scoped_release release;
+      SpectrumOptions options;
+      options.k = k;
+      options.lumped_mass = lumped_mass;
+      options.tolerance = tolerance;
+      options.max_iterations = max_iterations;
+      s = laplacian_spectrum(build_operators(mesh, parse_laplacian(spec), false), options);
+    }
+    py::dict info;
+    info["shift"] = s.shift;
+    info["n_converged"] = s.n_converged;
+    info["n_solves"] = s.n_solves;
+    info["method"] = s.method;
+    return py::make_tuple(s.eigenvalues, s.eigenvectors, info);
+  });
+
+  py::class_<HodgeDecomposer>(m, "HodgeDecomposer")
+      .def(py::init(
+          [](const PositionArray& V, const IndexArray& I, const IndexArray& O, const std::string& rule) {
+            const Mesh mesh = mesh_from_arrays(V, I, O);
+            py::gil_scoped_release release;
+            RefinementOptions options;
+            options.rule = parse_virtual_vertex_rule(rule);
+            return std::make_unique<HodgeDecomposer>(mesh, options);
+          }))
+      .def("decompose",
+           [](const HodgeDecomposer& h, const Eigen::VectorXd& omega) {
+             HodgeParts p;
+             {
+               py::gil_scoped_release release;
+               p = h.decompose(omega);
+             }
+             py::dict d;
+             d["exact"] = p.exact;
+             d["coexact"] = p.coexact;
+             d["harmonic"] = p.harmonic;
+             d["potential"] = p.potential;
+             d["norm"] = p.norm;
+             d["norm_exact"] = p.norm_exact;
+             d["norm_coexact"] = p.norm_coexact;
+             d["norm_harmonic"] = p.norm_harmonic;
+             return d;
+           })
+      .def_property_readonly("pairs",
+                             [](const HodgeDecomposer& h) { return Eigen::MatrixX2i(h.complex().pairs()); })
+      .def_property_readonly("d0", [](const HodgeDecomposer& h) { return h.d0(); })
+      .def_property_readonly("star1", [](const HodgeDecomposer& h) { return h.star1(); })
+      .def_property_readonly("harmonic_basis", [](const HodgeDecomposer& h) { return h.harmonic_basis(); });
+
+  m.def("mean_curvature", [](const PositionArray& V, const IndexArray& I, const IndexArray& O,
+                             const std::string& spec, bool lumped_mass) {
+    const Mesh mesh = mesh_from_arrays(V, I, O);
+    py::gil_scoped_release release;
+    CurvatureOptions options;
+    options.lumped_mass = lumped_mass;
+    return mean_curvature(build_operators(mesh, parse_laplacian(spec), false), options);
+  });
+  m.def("vertex_normals", [](const PositionArray& V, const IndexArray& I, const IndexArray& O) {
+    const Mesh mesh = mesh_from_arrays(V, I, O);
+    py::gil_scoped_release release;
+    return Eigen::MatrixX3d(vertex_normals(mesh));
+  });
+
+  py::class_<CurvatureFlow>(m, "CurvatureFlow")
+      .def(py::init([](const PositionArray& V, const IndexArray& I, const IndexArray& O, double time_step,
+                       bool lumped_mass, const std::string& spec) {
+        const Mesh mesh = mesh_from_arrays(V, I, O);
+        py::gil_scoped_release release;
+        SmoothingOptions options;
+        options.time_step = time_step;
+        options.lumped_mass = lumped_mass;
+        return std::make_unique<CurvatureFlow>(mesh, options, parse_laplacian(spec));
+      }))
+      .def("step",
+           [](CurvatureFlow& flow) {
+             Eigen::MatrixX3d X;
+             {
+               py::gil_scoped_release release;
+               X = flow.step().positions();
+             }
+             return X;
+           })
+      .def_property_readonly("positions",
+                             [](const CurvatureFlow& f) { return Eigen::MatrixX3d(f.mesh().positions()); })
+      .def_property_readonly("time_step", &CurvatureFlow::time_step)
+      .def_property_readonly("area", &CurvatureFlow::area);
+
+  m.def("conformal_parametrization",
+        [](const PositionArray& V, const IndexArray& I, const IndexArray& O, const std::string& spec) {
+          const Mesh mesh = mesh_from_arrays(V, I, O);
+          ConformalParametrization p;
+          {
+            py::gil_scoped_release release;
+            p = spectral_conformal_parametrization(build_operators(mesh, parse_laplacian(spec), false));
+          }
+          return py::make_tuple(p.uv, p.eigenvalue);
+        });
+  m.def("conformal_distortion",
+        [](const PositionArray& V, const IndexArray& I, const IndexArray& O, const Eigen::MatrixX2d& uv) {
+          const Mesh mesh = mesh_from_arrays(V, I, O);
+          py::gil_scoped_release release;
+          return conformal_distortion(mesh, uv);
+        });
+}
+
+}  // namespace polydec::python

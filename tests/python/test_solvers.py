@@ -1,0 +1,153 @@
+"""tests/python/test_solvers.py — one end-to-end example per solver, each checked against an
+analytic value or an identity: heat geodesics against great-circle distance, the sphere's
+spectrum l(l+1), the Hodge decomposition's orthogonality and harmonic dimension, the sphere's
+mean curvature 1/r, the curvature flow's kept area and rounding, and the conformal
+parametrization of a planar patch (a similarity: zero distortion)."""
+
+import numpy as np
+import pytest
+
+import polydec
+
+
+@pytest.fixture(scope="module")
+def sphere():
+    return polydec.hex_sphere(3)
+
+
+def test_heat_geodesics_on_the_sphere(sphere):
+    V, F = sphere
+    heat = polydec.HeatGeodesics(V, F)
+    info = polydec.mesh_info(V, F)
+    edges = info["edge_list"]
+    h = np.linalg.norm(V[edges[:, 0]] - V[edges[:, 1]], axis=1).mean()
+    assert heat.time_step == pytest.approx(h * h, rel=1e-12)
+    d = heat.distance(0)
+    exact = np.arccos(np.clip(V @ V[0], -1, 1))
+    assert d[0] == 0 and np.all(d >= 0)
+    assert np.sqrt(np.mean((d - exact) ** 2)) < 0.02 * np.pi
+    # Several sources: close to the minimum of the single-source distances.
+    far = int(np.argmax(exact))
+    d2 = heat.distance([0, far])
+    assert np.sqrt(np.mean((d2 - np.minimum(d, heat.distance(far))) ** 2)) < 0.02 * np.pi
+    assert np.array_equal(heat.distance(np.array([0], dtype=np.uint8)), d)
+    with pytest.raises(ValueError, match="source vertex"):
+        heat.distance(V.shape[0])
+    with pytest.raises(ValueError):
+        heat.distance([])
+    # Other variants and the Galerkin mass run through the same class.
+    for kwargs in [dict(laplacian="aw11:0.5"), dict(mass="galerkin")]:
+        dv = polydec.HeatGeodesics(V, F, **kwargs).distance(0)
+        assert np.sqrt(np.mean((dv - exact) ** 2)) < 0.05 * np.pi, kwargs
+
+
+def test_heat_geodesics_unreachable_is_infinite():
+    V1, F1 = polydec.quad_grid(3, 3)
+    V = np.vstack([V1, V1 + [5, 0, 0]])
+    F = np.vstack([F1, F1 + V1.shape[0]])
+    d = polydec.HeatGeodesics(V, F).distance(0)
+    n = V1.shape[0]
+    assert np.all(np.isfinite(d[:n])) and np.all(np.isinf(d[n:]))
+
+
+def test_spectrum_of_the_sphere(sphere):
+    V, F = sphere
+    evals, evecs = polydec.spectrum(V, F, 4)
+    assert np.all(np.diff(evals) >= 0)
+    assert abs(evals[0]) < 1e-8 and np.abs(evals[1:] - 2).max() < 0.01 * 2     # l (l + 1), l = 0, 1
+    S, M = polydec.laplacian(V, F)
+    assert np.abs(evecs.T @ (M @ evecs) - np.eye(4)).max() < 1e-8              # M-orthonormal
+    residual = S @ evecs + (M @ evecs) * evals
+    assert np.abs(residual).max() < 1e-6 * abs(S).max()
+    ev_g, _, info = polydec.spectrum(V, F, 4, mass="galerkin", return_info=True)
+    assert info["n_converged"] >= 4 and np.abs(ev_g[1:] - 2).max() < 0.01 * 2
+    with pytest.raises(ValueError):
+        polydec.spectrum(V, F, 0)
+
+
+def test_spectrum_equals_scipy_on_a_noisy_sphere():
+    # An independent route: scipy's ARPACK shift-invert on the same S and M.
+    import scipy.sparse.linalg
+
+    V, F = polydec.add_noise(*polydec.hex_sphere(3), 0.2, seed=7)
+    S, M = polydec.laplacian(V, F)
+    evals, _ = polydec.spectrum(V, F, 12)
+    ref = np.sort(scipy.sparse.linalg.eigsh(-S, 12, M, sigma=-0.01, which="LM")[0])
+    assert np.abs(evals - ref).max() < 1e-8 * ref[-1]
+
+
+@pytest.mark.xfail(strict=True, reason="the C++ spectrum (Lanczos and Spectra alike) misses one of the 5-fold "
+                                       "l = 2 eigenvalues of hex_sphere(3) at k = 9 and returns an l = 3 one")
+def test_spectrum_keeps_exact_multiplicities(sphere):
+    V, F = sphere
+    evals, _ = polydec.spectrum(V, F, 9)
+    assert np.abs(evals[4:] - 6).max() < 0.01 * 6
+
+
+def test_hodge_decomposition_on_the_torus():
+    V, F = polydec.torus(16, 10)
+    hd = polydec.HodgeDecomposer(V, F)
+    assert hd.harmonic_basis.shape[1] == 2                                    # 2 genus
+    pairs = hd.pairs
+    rng = np.random.default_rng(1)
+    alpha = np.sin(3 * V[:, 0]) + V[:, 2]
+    omega = hd.d0 @ alpha + 0.7 * hd.harmonic_basis[:, 0] + 0.05 * rng.standard_normal(pairs.shape[0])
+    p = hd.decompose(omega)
+    scale = np.abs(omega).max()
+    assert np.abs(p.exact + p.coexact + p.harmonic - omega).max() < 1e-12 * scale
+    assert np.abs(hd.d0 @ p.potential - p.exact).max() < 1e-10 * scale
+    inner = lambda a, b: a @ (hd.star1 @ b)                                   # noqa: E731
+    norm2 = p.norm ** 2
+    for a, b in [(p.exact, p.coexact), (p.exact, p.harmonic), (p.coexact, p.harmonic)]:
+        assert abs(inner(a, b)) < 1e-9 * norm2
+    assert abs(p.norm_exact ** 2 + p.norm_coexact ** 2 + p.norm_harmonic ** 2 - norm2) < 1e-9 * norm2
+    # The harmonic part carries the harmonic field that was put in (and little else).
+    coeff = hd.harmonic_basis.T @ (hd.star1 @ p.harmonic)
+    assert coeff[0] == pytest.approx(0.7, rel=0.1)
+    one_shot = polydec.hodge_decomposition(V, F, omega)
+    assert np.array_equal(one_shot.exact, p.exact)
+    with pytest.raises(ValueError):
+        hd.decompose(omega[:-1])
+
+
+def test_mean_curvature_of_spheres(sphere):
+    V, F = sphere
+    H = polydec.mean_curvature(V, F)
+    assert np.sqrt(np.mean((H - 1) ** 2)) < 0.01
+    H2 = polydec.mean_curvature(2 * V, F, mass="galerkin")
+    assert np.sqrt(np.mean((H2 - 0.5) ** 2)) < 0.01 * 0.5
+    N = polydec.vertex_normals(V, F)
+    assert np.abs(np.einsum("ij,ij->i", N, V) - 1).max() < 0.01              # outward, unit
+
+
+def test_curvature_flow_rounds_a_noisy_sphere():
+    V, F = polydec.add_noise(*polydec.cube_sphere(8), 0.3, seed=2)
+    flow = polydec.CurvatureFlow(V, F)
+    area0 = flow.area
+    r0 = np.linalg.norm(V - V.mean(axis=0), axis=1)
+    X = [flow.step() for _ in range(5)][-1]
+    r = np.linalg.norm(X - X.mean(axis=0), axis=1)
+    assert np.std(r) / np.mean(r) < 0.5 * np.std(r0) / np.mean(r0)
+    assert polydec.lumped_mass(X, F).sum() == pytest.approx(area0, rel=1e-9)
+    assert np.abs((polydec.lumped_mass(X, F).diagonal() @ X)).max() < 1e-9 * np.sqrt(area0)  # centred
+    steps = polydec.curvature_flow(V, F, 2, time_step=flow.time_step)
+    assert len(steps) == 3 and np.array_equal(steps[0], V)
+    assert np.abs(steps[1] - polydec.CurvatureFlow(V, F).step()).max() == 0
+
+
+def test_conformal_parametrization_of_a_planar_patch_is_a_similarity():
+    V, F = polydec.hex_grid(6, 6)
+    rng = np.random.default_rng(4)
+    inside = np.all((V[:, :2] > 1e-9) & (V[:, :2] < 1 - 1e-9), axis=1)
+    V = V.copy()
+    V[inside, :2] += 0.02 * rng.uniform(-1, 1, size=(inside.sum(), 2))
+    uv, ev = polydec.conformal_parametrization(V, F, return_eigenvalue=True)
+    assert uv.shape == (V.shape[0], 2) and uv.min() >= -1e-12 and uv.max() <= 1 + 1e-12
+    assert polydec.conformal_distortion(V, F, uv) < 1e-6
+    # A bent patch: some distortion, still far from a random map's.
+    W = V.copy()
+    W[:, 2] = 0.5 * (W[:, 0] - 0.5) ** 2
+    uvb = polydec.conformal_parametrization(W, F)
+    assert 1e-6 < polydec.conformal_distortion(W, F, uvb) < 0.1
+    with pytest.raises(ValueError, match="boundary"):
+        polydec.conformal_parametrization(*polydec.cube_sphere(2))
