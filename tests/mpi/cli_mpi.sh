@@ -14,16 +14,27 @@ mpi() { timeout 90 "$MPIEXEC" --oversubscribe "$@"; }
 # A non-manifold mesh: edge (0, 1) shared by three triangles.
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n' > "$TMP/nonmanifold.obj"
 
-# Ranks 0 .. N-2 read GOOD, rank N-1 reads $1; expects exit 3 and N identical error lines with $2.
+# One rank's run: its stderr and exit code in files of its own (mpirun would interleave the ranks'
+# stderr, and kill the other ranks as soon as one exits non-zero, perhaps before they print).
+cat > "$TMP/rank.sh" <<RANK
+#!/usr/bin/env bash
+"$POLYDEC" geodesics "\$1" --source 0 --engine petsc > /dev/null 2> "$TMP/err.\$OMPI_COMM_WORLD_RANK"
+echo \$? > "$TMP/rc.\$OMPI_COMM_WORLD_RANK"
+RANK
+
+# Ranks 0 .. N-2 read GOOD, rank N-1 reads $1; expects exit code 3 on every rank and N identical
+# error lines containing $2.
 bad_last_rank() {
   local bad=$1 expect=$2
-  mpi -n $((N - 1)) "$POLYDEC" geodesics "$GOOD" --source 0 --engine petsc : \
-      -n 1 "$POLYDEC" geodesics "$bad" --source 0 --engine petsc > "$TMP/out" 2> "$TMP/err"
+  rm -f "$TMP"/err.* "$TMP"/rc.*
+  mpi -n $((N - 1)) bash "$TMP/rank.sh" "$GOOD" : -n 1 bash "$TMP/rank.sh" "$bad"
   local rc=$?
   [ "$rc" -ne 124 ] || fail "$bad: timed out (hang)"
-  [ "$rc" -eq 3 ] || { cat "$TMP/err"; fail "$bad: exit code $rc, expected 3"; }
+  for r in $(seq 0 $((N - 1))); do
+    [ "$(cat "$TMP/rc.$r" 2> /dev/null)" = 3 ] || { cat "$TMP"/err.*; fail "$bad: rank $r exit code $(cat "$TMP/rc.$r"), expected 3"; }
+  done
   local lines
-  lines=$(grep '^polydec: bad input: ' "$TMP/err" | sort | uniq -c)
+  lines=$(cat "$TMP"/err.* | grep '^polydec: bad input: ' | sort | uniq -c)
   [ "$(echo "$lines" | wc -l)" -eq 1 ] || { echo "$lines"; fail "$bad: the ranks reported different errors"; }
   [ "$(echo "$lines" | awk '{print $1}')" -eq "$N" ] || { echo "$lines"; fail "$bad: not every rank reported"; }
   echo "$lines" | grep -q -- "$expect" || { echo "$lines"; fail "$bad: message lacks '$expect'"; }
