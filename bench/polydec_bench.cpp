@@ -451,7 +451,11 @@ int main(int argc, char** argv) {
     return 0;
   }
   Mesh quad_big;
-  if (with_big) quad_big = cube_sphere(big);
+  if (with_big) {
+    std::fprintf(stderr, "generating the big mesh cube_sphere(%d) (%.1fM quads; the big rows take minutes, each row is printed when done)...\n",
+                 big, 6.0 * big * big / 1e6);
+    quad_big = cube_sphere(big);
+  }
   const std::string big_name = fmt::format("QUAD {}k", quad_big.n_faces() / 1000);
 
   std::fprintf(stderr, "assembly vs plain reference...\n");

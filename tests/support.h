@@ -13,6 +13,16 @@
 
 namespace polydec::test {
 
+// Paths fixed at configure time (tests/support.cpp, the one file compiled with them, so that the
+// other test files' compile commands do not depend on the build folder): ../shared/data, tests/data
+// and the built `polydec` program.
+const char* shared_data_dir();
+const char* test_data_dir();
+const char* cli_path();
+#define POLYDEC_SHARED_DATA (::polydec::test::shared_data_dir())
+#define POLYDEC_TEST_DATA (::polydec::test::test_data_dir())
+#define POLYDEC_CLI_PATH (::polydec::test::cli_path())
+
 // Path of ../shared/data/NAME, or "" when the folder is missing (then FAILs if the
 // environment requires the shared data).
 inline std::string shared_path(const std::string& name) {

@@ -155,7 +155,7 @@ TEST_CASE("accepted variants: BOM, CRLF, tabs, comments, COFF/NOFF, i/t/n, mixed
   for (const char* f : {"obj/bom_crlf_tabs.obj", "off/bom.off", "off/crlf_tabs_comments.off", "off/coff.off",
                         "off/noff.off", "ply/bom_crlf_tabs.ply", "ply/mixed_types_big_endian.ply"}) {
     INFO(f);
-    require_square(read_polygon_soup(std::string(POLYDEC_TEST_DATA "/bad/") + f));
+    require_square(read_polygon_soup((std::string(POLYDEC_TEST_DATA) + "/bad/") + f));
   }
 }
 

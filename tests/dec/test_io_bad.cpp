@@ -26,7 +26,7 @@ struct Case {
   const char* reason;  // substring of FileError::reason
 };
 
-const std::string kDir = POLYDEC_TEST_DATA "/bad/";
+const std::string kDir = std::string(POLYDEC_TEST_DATA) + "/bad/";
 
 // Binary offsets in PLY files are given relative to the first byte after "end_header\n".
 long ply_data_start(const std::string& path) {

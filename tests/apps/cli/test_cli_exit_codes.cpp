@@ -12,6 +12,7 @@
 
 #include "polydec/dec/generators.h"
 #include "polydec/dec/io.h"
+#include "tests/support.h"
 
 using namespace polydec;
 namespace fs = std::filesystem;
