@@ -9,7 +9,7 @@ GOOD=$DATA/suzanne-half.obj
 TMP=$(mktemp -d)
 trap 'rm -rf "$TMP"' EXIT
 fail() { echo "FAIL: $*"; exit 1; }
-mpi() { timeout 90 "$MPIEXEC" --oversubscribe "$@"; }
+mpi() { timeout 90 "$MPIEXEC" --oversubscribe --mca mpi_yield_when_idle 1 "$@"; }
 
 # A non-manifold mesh: edge (0, 1) shared by three triangles.
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n' > "$TMP/nonmanifold.obj"
