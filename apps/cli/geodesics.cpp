@@ -2,6 +2,7 @@
 // distances (paper section 5.5) written as a per-vertex PLY property and/or a picture (--png).
 #include "polydec/apps/cli/command.h"
 #include "polydec/apps/applications/geodesics.h"
+#include "polydec/apps/cli/engine.h"
 #include "polydec/apps/pictures/render.h"
 #include "polydec/dec/io.h"
 
@@ -17,9 +18,31 @@ struct Options {
   std::vector<int> sources;
   bool json = false, euclidean = false, delta_source = false;
   std::string mass = "lumped", laplacian = "ours", time_step_edges = "input";
+  EngineOptions engine;  // --engine, --solver, --petsc-options
 };
 
+void report(const Options& o, const Mesh& mesh, const std::vector<int>& sources, const Eigen::VectorXd& d,
+            const std::string& laplacian, double time_step, const FanQuality& quality, const nlohmann::json* engine);
+
+// --engine petsc: the distributed run (apps/cli/engine.h); rank 0 reports as the serial run does.
+void run_petsc(const Options& o) {
+  if (o.laplacian != "ours") throw UsageError("--engine petsc computes the paper's Laplacian only (--laplacian ours)");
+  if (o.mass != "lumped" && o.mass != "unlumped") throw UsageError("--mass must be lumped or unlumped");
+  if (o.time_step_edges != "input" && o.time_step_edges != "operator")
+    throw UsageError("--time-step-edges must be input or operator");
+#ifdef POLYDEC_HAVE_PETSC
+  petsc_geodesics(o.mesh, o.repair, o.sources, o.mass == "lumped", !o.delta_source, o.engine,
+                  [&](const EngineGeodesics& r) {
+                    report(o, r.mesh, r.sources, r.distance, "ours", r.time_step, r.quality, &r.summary);
+                  });
+#else
+  throw UsageError("--engine petsc: this polydec was built without PETSc (configure with -DPOLYDEC_WITH_PETSC=ON)");
+#endif
+}
+
 void run(const Options& o) {
+  if (o.engine.engine == "petsc") return run_petsc(o);
+  if (o.engine.engine != "serial") throw UsageError("--engine must be serial or petsc");
   std::vector<int> vertex_map;
   const Mesh mesh = load_mesh(o.mesh, o.repair, &vertex_map);
   // Sources are file vertices; --repair may renumber or remove them.
@@ -41,6 +64,12 @@ void run(const Options& o) {
   const double h = o.time_step_edges == "input" ? mesh.mean_edge_length() : ops.mean_edge_length;
   const HeatGeodesics heat(std::move(ops), h, hopt);
   const Eigen::VectorXd d = heat.distance(sources);
+  report(o, mesh, sources, d, heat.operators().name, heat.time_step(), heat.operators().quality, nullptr);
+}
+
+// The outputs of both engines: text or JSON (with the engine's summary), the PLY, the picture.
+void report(const Options& o, const Mesh& mesh, const std::vector<int>& sources, const Eigen::VectorXd& d,
+            const std::string& laplacian, double time_step, const FanQuality& quality, const nlohmann::json* engine) {
   double mn = INFINITY, mx = -INFINITY, sum = 0;
   int finite = 0;
   for (int v = 0; v < d.size(); ++v)
@@ -50,10 +79,11 @@ void run(const Options& o) {
       sum += d[v];
       ++finite;
     }
-  nlohmann::json j = {{"mesh", o.mesh}, {"laplacian", heat.operators().name}, {"sources", o.sources},       {"time_step", heat.time_step()},
+  nlohmann::json j = {{"mesh", o.mesh}, {"laplacian", laplacian}, {"sources", o.sources},       {"time_step", time_step},
                       {"min", mn},              {"max", mx},                  {"mean", finite ? sum / finite : 0.0},
-                      {"unreached", int(d.size()) - finite}, {"fan_degenerate", heat.operators().quality.n_degenerate},
-                      {"fan_inverted", heat.operators().quality.n_inverted}};
+                      {"unreached", int(d.size()) - finite}, {"fan_degenerate", quality.n_degenerate},
+                      {"fan_inverted", quality.n_inverted}};
+  if (engine) j["engine"] = *engine;
   if (o.euclidean) {
     // Error against the Euclidean distance from the first source, shifted to minimum 0 (planar meshes).
     Eigen::VectorXd e(mesh.n_vertices());
@@ -68,7 +98,7 @@ void run(const Options& o) {
     RenderOptions ropt;
     ropt.isolines = 15;
     ropt.scalar_label = "distance";
-    ropt.title = fmt::format("heat geodesics ({})", heat.operators().name);
+    ropt.title = fmt::format("heat geodesics ({})", laplacian);
     ropt.view_direction = view_facing_vertex(mesh, sources[0]);
     render_png(o.png, mesh, d, ropt);
     j["png"] = o.png;
@@ -77,8 +107,10 @@ void run(const Options& o) {
     print_json(j);
     return;
   }
-  fmt::print("{}: {} vertices, {} faces, time step {:.6g}\n", o.mesh, mesh.n_vertices(), mesh.n_faces(),
-             heat.time_step());
+  fmt::print("{}: {} vertices, {} faces, time step {:.6g}\n", o.mesh, mesh.n_vertices(), mesh.n_faces(), time_step);
+  if (engine)
+    fmt::print("engine petsc: {} ranks, solver {}\n", (*engine)["ranks"].get<int>(),
+               (*engine)["solver"].get<std::string>());
   fmt::print("distance: min {:.6g}, max {:.6g}, mean {:.6g}\n", mn, mx, finite ? sum / finite : 0.0);
   if (o.euclidean) fmt::print("RMSE against Euclidean distance: {:.6g}\n", j["rmse_vs_euclidean"].get<double>());
   if (!o.out.empty()) fmt::print("wrote {} (property 'distance')\n", o.out);
@@ -101,6 +133,7 @@ const RegisterCommand reg("geodesics", "Geodesic distances by the heat method (p
   app.add_flag("--euclidean", o->euclidean, "also report the RMSE against the Euclidean distance (planar meshes)");
   app.add_flag("--json", o->json, "print one JSON object instead of text");
   add_repair_flag(app, o->repair);
+  add_engine_options(app, o->engine);
   app.callback([o] { run(*o); });
 });
 

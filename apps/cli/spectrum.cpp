@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "polydec/apps/cli/command.h"
+#include "polydec/apps/cli/engine.h"
 #include "polydec/apps/pictures/render.h"
 #include "polydec/dec/io.h"
 
@@ -19,6 +20,7 @@ struct Options {
   std::string mesh, out, png, mass = "lumped", laplacian = "ours";
   int k = 10, png_index = 1;
   bool json = false;
+  EngineOptions engine;  // --engine, --solver, --petsc-options
 };
 
 // Dense Matrix Market ("array real general", column by column), 17 significant digits.
@@ -31,20 +33,43 @@ void write_dense_matrix_market(const std::string& path, const Eigen::MatrixXd& A
   if (!out) throw FileError(path, 0, -1, "write failed");
 }
 
+void report(const Options& o, const Mesh& mesh, const std::string& laplacian, int n_in, const Spectrum& sp,
+            const nlohmann::json* engine);
+
 void run(const Options& o) {
   if (o.mass != "lumped" && o.mass != "unlumped") throw UsageError("--mass must be lumped or unlumped");
+  if (o.engine.engine == "petsc") {
+    // The distributed run (apps/cli/engine.h); rank 0 reports as the serial run does.
+    if (o.laplacian != "ours") throw UsageError("--engine petsc computes the paper's Laplacian only (--laplacian ours)");
+    if (!o.png.empty() && (o.png_index < 0 || o.png_index >= o.k)) throw UsageError("--png-index must lie in [0, k)");
+#ifdef POLYDEC_HAVE_PETSC
+    petsc_spectrum(o.mesh, o.repair, o.k, o.mass == "lumped", o.engine, [&](const EngineSpectrum& r) {
+      report(o, r.mesh, "ours", r.mesh.n_vertices(), r.spectrum, &r.summary);
+    });
+    return;
+#else
+    throw UsageError("--engine petsc: this polydec was built without PETSc (configure with -DPOLYDEC_WITH_PETSC=ON)");
+#endif
+  }
+  if (o.engine.engine != "serial") throw UsageError("--engine must be serial or petsc");
   const Mesh mesh = load_mesh(o.mesh, o.repair);
   const OperatorSet ops = build_operators(mesh, parse_laplacian(o.laplacian), false);
   SpectrumOptions sopt;
   sopt.k = o.k;
   sopt.lumped_mass = o.mass == "lumped";
   const Spectrum sp = laplacian_spectrum(ops, sopt);
-  const int n_in = ops.n_input_vertices;
+  report(o, mesh, ops.name, ops.n_input_vertices, sp, nullptr);
+}
+
+// The outputs of both engines: text or JSON (with the engine's summary), the files, the picture.
+void report(const Options& o, const Mesh& mesh, const std::string& laplacian, int n_in, const Spectrum& sp,
+            const nlohmann::json* engine) {
   std::vector<double> ev(sp.eigenvalues.data(), sp.eigenvalues.data() + sp.eigenvalues.size());
-  nlohmann::json j = {{"mesh", o.mesh},          {"laplacian", ops.name},
+  nlohmann::json j = {{"mesh", o.mesh},          {"laplacian", laplacian},
                       {"mass", o.mass},          {"vertices", mesh.n_vertices()},
                       {"faces", mesh.n_faces()}, {"k", o.k},
                       {"shift", sp.shift},       {"eigenvalues", ev}};
+  if (engine) j["engine"] = *engine;
   if (!o.out.empty()) {
     std::filesystem::create_directories(o.out);
     {
@@ -68,7 +93,7 @@ void run(const Options& o) {
     ropt.isolines = 10;
     ropt.colormap = Colormap::turbo;
     ropt.scalar_label = fmt::format("u{}", o.png_index);
-    ropt.title = fmt::format("eigenfunction {}, lambda = {:.4g} ({}, {} mass)", o.png_index, ev[o.png_index], ops.name,
+    ropt.title = fmt::format("eigenfunction {}, lambda = {:.4g} ({}, {} mass)", o.png_index, ev[o.png_index], laplacian,
                              o.mass);
     ropt.smooth_shading = true;
     render_png(o.png, mesh, sp.eigenvectors.col(o.png_index).head(n_in), ropt);
@@ -79,7 +104,8 @@ void run(const Options& o) {
     return;
   }
   fmt::print("{}: {} vertices, {} faces; Laplacian {}, {} mass, shift {:.6g}\n", o.mesh, mesh.n_vertices(),
-             mesh.n_faces(), ops.name, o.mass, sp.shift);
+             mesh.n_faces(), laplacian, o.mass, sp.shift);
+  if (engine) fmt::print("engine petsc: {} ranks, {}\n", (*engine)["ranks"].get<int>(), sp.method);
   fmt::print("{} smallest eigenvalues of -S x = lambda M x:\n", o.k);
   for (int i = 0; i < o.k; ++i) fmt::print("  {:4d}  {:.10g}\n", i, ev[i]);
   if (!o.png.empty()) fmt::print("wrote {}\n", o.png);
@@ -103,6 +129,7 @@ const RegisterCommand reg(
       app.add_option("--png-index", o->png_index, "which eigenfunction to draw (default 1)");
       app.add_flag("--json", o->json, "print one JSON object instead of text");
       add_repair_flag(app, o->repair);
+      add_engine_options(app, o->engine);
       app.callback([o] { run(*o); });
     });
 

@@ -1,0 +1,173 @@
+// apps/cli/petsc/engine.cpp — `polydec geodesics|spectrum MESH --engine petsc` under mpirun: every rank
+// reads the mesh (errors and the mesh itself agreed across ranks), the distributed operators and
+// solvers of operators/petsc/, and a JSON summary with every rank's timings and peak memory; rank 0
+// writes the outputs through the command's own code.
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+
+#include "polydec/apps/cli/command.h"
+#include "polydec/apps/cli/engine.h"
+#include "polydec/dec/io.h"
+#include "polydec/operators/petsc/petsc.h"
+
+namespace polydec::cli {
+namespace engine_petsc {
+namespace {
+
+// Seconds since the previous lap.
+struct Laps {
+  std::chrono::steady_clock::time_point last = std::chrono::steady_clock::now();
+  double lap() {
+    const auto now = std::chrono::steady_clock::now();
+    const double s = std::chrono::duration<double>(now - last).count();
+    last = now;
+    return s;
+  }
+};
+
+// The mesh, read on every rank; a rank that cannot read it, or that reads another mesh than the
+// others (the ranks must see the same file), ends every rank with the same error.
+Mesh read_everywhere(MPI_Comm comm, const std::string& path, bool repair, std::vector<int>* vertex_map) {
+  Mesh mesh;
+  petsc::agree(comm, [&] { mesh = load_mesh(path, repair, vertex_map); });
+  double fp[3] = {double(mesh.n_vertices()), double(mesh.n_faces()), 0.0};
+  const Eigen::MatrixX3d& X = mesh.positions();
+  for (Eigen::Index v = 0; v < X.rows(); ++v) fp[2] += (X(v, 0) + 2 * X(v, 1) + 3 * X(v, 2)) * double(v % 101 + 1);
+  const std::vector<int>& idx = mesh.face_indices();
+  for (size_t h = 0; h < idx.size(); ++h) fp[2] += double(idx[h]) * double(h % 97 + 1);
+  double lo[3], hi[3];
+  MPI_Allreduce(fp, lo, 3, MPI_DOUBLE, MPI_MIN, comm);
+  MPI_Allreduce(fp, hi, 3, MPI_DOUBLE, MPI_MAX, comm);
+  petsc::agree(comm, [&] {
+    for (int i = 0; i < 3; ++i)
+      if (lo[i] != hi[i])
+        throw InvalidMeshError("mesh", 0,
+                               fmt::format("{}: the ranks read different meshes ({} to {} vertices, {} to {} faces); "
+                                           "every rank must read the same file",
+                                           path, lo[0], hi[0], lo[1], hi[1]));
+  });
+  return mesh;
+}
+
+// Per-rank figures: [faces, local vertices, owned vertices, COO entries, read, partition, assembly,
+// set-up, solve seconds, peak RSS MB] gathered on rank 0 as JSON.
+nlohmann::json per_rank(MPI_Comm comm, const std::vector<double>& v) {
+  nlohmann::json out = nlohmann::json::array();
+  const auto rows = petsc::gather_per_rank(comm, v);
+  for (size_t r = 0; r < rows.size(); ++r) {
+    const auto& x = rows[r];
+    out.push_back({{"rank", r},
+                   {"faces", long(x[0])},
+                   {"local_vertices", long(x[1])},
+                   {"owned_vertices", long(x[2])},
+                   {"coo_entries", long(x[3])},
+                   {"seconds", {{"read", x[4]}, {"partition", x[5]}, {"assembly", x[6]}, {"setup", x[7]}, {"solve", x[8]}}},
+                   {"peak_rss_mb", x[9]}});
+  }
+  return out;
+}
+
+}  // namespace
+}  // namespace engine_petsc
+
+void petsc_geodesics(const std::string& mesh_path, bool repair, const std::vector<int>& file_sources, bool lumped_mass,
+                     bool mass_weighted_source, const EngineOptions& engine,
+                     const std::function<void(const EngineGeodesics&)>& write) {
+  using namespace engine_petsc;
+  petsc::GeodesicsOptions go;
+  go.solver = petsc::parse_linear_solver(engine.solver);
+  go.lumped_mass = lumped_mass;
+  go.mass_weighted_source = mass_weighted_source;
+  const petsc::Session session(engine.petsc_options);
+  const MPI_Comm comm = session.comm();
+  Laps laps;
+  std::vector<int> vertex_map;
+  const Mesh mesh = read_everywhere(comm, mesh_path, repair, &vertex_map);
+  std::vector<int> sources = file_sources;
+  petsc::agree(comm, [&] {
+    for (int& s : sources) {
+      if (s < 0 || s >= int(vertex_map.size()))
+        throw std::out_of_range(fmt::format("source vertex {} is out of range (the mesh has {} vertices)", s,
+                                            vertex_map.size()));
+      if (vertex_map[size_t(s)] < 0) throw std::out_of_range(fmt::format("source vertex {} was removed by --repair", s));
+      s = vertex_map[size_t(s)];
+    }
+  });
+  const double t_read = laps.lap();
+  petsc::Partition part;
+  petsc::agree(comm, [&] { part = petsc::partition_mesh(mesh, session.size()); });
+  const double t_partition = laps.lap();
+  const petsc::DistributedOperators ops = petsc::assemble_operators(comm, mesh, part);
+  const double t_assembly = laps.lap();
+  const petsc::HeatGeodesics heat(comm, part, ops, mesh.mean_edge_length(), go);
+  const double t_setup = laps.lap();
+  const Eigen::VectorXd d = heat.distance(sources);
+  const double t_solve = laps.lap();
+  const int r = session.rank();
+  nlohmann::json summary = {
+      {"engine", "petsc"},
+      {"ranks", session.size()},
+      {"solver", petsc::linear_solver_name(go.solver)},
+      {"heat_iterations", heat.heat_iterations()},
+      {"poisson_iterations", heat.poisson_iterations()},
+      {"per_rank", per_rank(comm, {double(ops.n_local_faces), double(ops.n_local_vertices),
+                                   double(part.vertex_begin[size_t(r) + 1] - part.vertex_begin[size_t(r)]),
+                                   double(ops.n_coo_entries), t_read, t_partition, t_assembly, t_setup, t_solve,
+                                   petsc::peak_rss_mb()})}};
+  petsc::agree(comm, [&] {
+    if (r == 0) write({mesh, sources, d, heat.time_step(), ops.quality, summary});
+  });
+}
+
+void petsc_spectrum(const std::string& mesh_path, bool repair, int k, bool lumped_mass, const EngineOptions& engine,
+                    const std::function<void(const EngineSpectrum&)>& write) {
+  using namespace engine_petsc;
+  petsc::SpectrumOptions so;
+  so.solver = petsc::parse_linear_solver(engine.solver);
+  so.k = k;
+  so.lumped_mass = lumped_mass;
+  const petsc::Session session(engine.petsc_options);
+  const MPI_Comm comm = session.comm();
+  Laps laps;
+  const Mesh mesh = read_everywhere(comm, mesh_path, repair, nullptr);
+  const double t_read = laps.lap();
+  petsc::Partition part;
+  petsc::agree(comm, [&] {
+    part = petsc::partition_mesh(mesh, session.size());
+    if (part.n_global() != mesh.n_vertices())
+      throw InvalidMeshError("vertex", 0,
+                             fmt::format("{}: {} unreferenced vertices; the PETSc spectrum needs every vertex in a face "
+                                         "(polydec repair removes them)",
+                                         mesh_path, mesh.n_vertices() - part.n_global()));
+  });
+  const double t_partition = laps.lap();
+  const petsc::DistributedOperators ops = petsc::assemble_operators(comm, mesh, part, false);
+  const double t_assembly = laps.lap();
+  const petsc::Spectrum ps = petsc::spectrum(comm, part, ops, so);
+  const double t_solve = laps.lap();
+  const int r = session.rank();
+  Spectrum sp;
+  sp.eigenvalues = ps.eigenvalues;
+  sp.eigenvectors = ps.eigenvectors;
+  sp.shift = ps.shift;
+  sp.n_converged = ps.n_converged;
+  sp.method = "SLEPc Krylov-Schur, shift-and-invert (" + petsc::linear_solver_name(so.solver) + ")";
+  nlohmann::json summary = {
+      {"engine", "petsc"},
+      {"ranks", session.size()},
+      {"solver", petsc::linear_solver_name(so.solver)},
+      {"method", sp.method},
+      {"restarts", ps.n_iterations},
+      {"converged", ps.n_converged},
+      {"per_rank", per_rank(comm, {double(ops.n_local_faces), double(ops.n_local_vertices),
+                                   double(part.vertex_begin[size_t(r) + 1] - part.vertex_begin[size_t(r)]),
+                                   double(ops.n_coo_entries), t_read, t_partition, t_assembly, 0.0, t_solve,
+                                   petsc::peak_rss_mb()})}};
+  petsc::agree(comm, [&] {
+    if (r == 0) write({mesh, sp, summary});
+  });
+}
+
+}  // namespace polydec::cli

@@ -1,0 +1,258 @@
+// tests/mpi/test_mpi.cpp — the distributed engine (operators/petsc/) against the serial library, run by
+// ctest under mpirun at 1, 2 and 3 ranks: operators equal, geodesics, eigenpairs and eigenspaces,
+// the partition, and the agreement of errors across ranks. Every rank runs every test case in the
+// same order; compared quantities are computed on rank 0 and broadcast, so every rank checks the
+// same numbers (CHECK, never REQUIRE: a rank leaving a test case early would leave the others
+// waiting in a collective call).
+#define CATCH_CONFIG_RUNNER
+#include <catch2/catch.hpp>
+
+#include <Eigen/Dense>
+#include <Eigen/SVD>
+#include <fmt/format.h>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "polydec/apps/applications/geodesics.h"
+#include "polydec/apps/applications/spectrum.h"
+#include "polydec/dec/generators.h"
+#include "polydec/dec/io.h"
+#include "polydec/operators/cholesky.h"
+#include "polydec/operators/laplacians.h"
+#include "polydec/operators/petsc/petsc.h"
+#include "polydec/operators/petsc/petsc_check.h"
+
+namespace test_mpi {
+
+using polydec::Mesh;
+namespace pp = polydec::petsc;
+
+MPI_Comm world() { return PETSC_COMM_WORLD; }
+int rank() {
+  int r = 0;
+  MPI_Comm_rank(world(), &r);
+  return r;
+}
+int size() {
+  int s = 1;
+  MPI_Comm_size(world(), &s);
+  return s;
+}
+// Rank 0's value, on every rank.
+double from_root(double x) {
+  MPI_Bcast(&x, 1, MPI_DOUBLE, 0, world());
+  return x;
+}
+
+struct NamedMesh {
+  std::string name;
+  Mesh mesh;
+};
+
+// The meshes: a sphere with degenerate eigenvalues (icosahedral symmetry: multiplicities
+// 1, 3, 5 exactly), a torus (pairs), a scanned mesh with boundary, a noisy hexagon grid.
+std::vector<NamedMesh> meshes() {
+  std::vector<NamedMesh> out;
+  out.push_back({"hex_sphere(3)", polydec::hex_sphere(3)});
+  out.push_back({"torus(24, 12)", polydec::torus(24, 12)});
+  out.push_back({"noisy hex_grid(10, 10)", polydec::add_noise(polydec::hex_grid(10, 10), 0.01, 7)});
+  const std::string suzanne = std::string(POLYDEC_SHARED_DATA) + "/suzanne-half.obj";
+  out.push_back({"suzanne-half.obj (boundary)", polydec::read_mesh(suzanne)});
+  return out;
+}
+
+// Largest extent of the mesh's bounding box.
+double extent(const Mesh& mesh) {
+  return (mesh.positions().colwise().maxCoeff() - mesh.positions().colwise().minCoeff()).maxCoeff();
+}
+
+TEST_CASE("the partition is the same on every rank, covers every face once and numbers the vertices in blocks",
+          "[mpi][partition]") {
+  for (const auto& [name, mesh] : meshes()) {
+    INFO(name);
+    const pp::Partition p = pp::partition_mesh(mesh, size());
+    // Identical on every rank: a hash of the face order and the numbering.
+    double h[2] = {0, 0};
+    for (size_t i = 0; i < p.face_order.size(); ++i) h[0] += double(p.face_order[i]) * double(i % 9973 + 1);
+    for (size_t i = 0; i < p.mesh_vertex.size(); ++i) h[1] += double(p.mesh_vertex[i]) * double(i % 9967 + 1);
+    double lo[2], hi[2];
+    MPI_Allreduce(h, lo, 2, MPI_DOUBLE, MPI_MIN, world());
+    MPI_Allreduce(h, hi, 2, MPI_DOUBLE, MPI_MAX, world());
+    CHECK(lo[0] == hi[0]);
+    CHECK(lo[1] == hi[1]);
+    std::vector<int> seen(size_t(mesh.n_faces()), 0);
+    for (int f : p.face_order) ++seen[size_t(f)];
+    CHECK(std::count(seen.begin(), seen.end(), 1) == mesh.n_faces());
+    CHECK(p.n_global() == mesh.n_vertices());  // these meshes have no unreferenced vertex
+    CHECK(p.vertex_begin.back() == p.n_global());
+    for (int v = 0; v < mesh.n_vertices(); ++v) CHECK(p.mesh_vertex[size_t(p.global_index[size_t(v)])] == v);
+    // A vertex is owned by the rank of the first face (in curve order) that holds it.
+    for (int r = 0; r < size(); ++r)
+      for (int i = p.face_begin[size_t(r)]; i < p.face_begin[size_t(r) + 1]; ++i)
+        for (int v : mesh.face(p.face_order[size_t(i)])) CHECK(p.global_index[size_t(v)] < p.vertex_begin[size_t(r) + 1]);
+  }
+}
+
+TEST_CASE("distributed S, M and lumped M equal the serial operators to 1e-14", "[mpi][operators]") {
+  for (const auto& [name, mesh] : meshes()) {
+    INFO(name << " on " << size() << " ranks");
+    const pp::Partition p = pp::partition_mesh(mesh, size());
+    const pp::DistributedOperators ops = pp::assemble_operators(world(), mesh, p);
+    const Eigen::SparseMatrix<double> S = pp::gather_to_root(ops.S.get(), p);
+    const Eigen::SparseMatrix<double> M = pp::gather_to_root(ops.M.get(), p);
+    const Eigen::VectorXd ml = pp::gather_to_root(ops.M_lumped.get(), p);
+    double dS = 1, dM = 1, dl = 1, dSD = 1;
+    if (rank() == 0) {
+      const polydec::OperatorSet ref = polydec::build_operators(mesh, polydec::parse_laplacian("ours"));
+      dS = (S - ref.S).norm() / ref.S.norm();
+      dM = (M - ref.M).norm() / ref.M.norm();
+      dl = (ml - ref.M_lumped).norm() / ref.M_lumped.norm();
+      dSD = 0;
+    }
+    // S = D G on the distributed operators (G and D are this rank's fan triangles).
+    {
+      pp::Handle<Mat> DG;
+      pp::check(MatMatMult(ops.D.get(), ops.G.get(), MAT_INITIAL_MATRIX, PETSC_DEFAULT, DG.out()), "MatMatMult");
+      const Eigen::SparseMatrix<double> dg = pp::gather_to_root(DG.get(), p);
+      if (rank() == 0) dSD = (dg - S).norm() / S.norm();
+    }
+    CHECK(from_root(dS) <= 1e-14);
+    CHECK(from_root(dM) <= 1e-14);
+    CHECK(from_root(dl) <= 1e-14);
+    CHECK(from_root(dSD) <= 1e-12);
+  }
+}
+
+TEST_CASE("distributed heat geodesics equal the serial ones (direct 1e-8, CG 1e-6 of the diameter)",
+          "[mpi][geodesics]") {
+  for (const auto& [name, mesh] : meshes()) {
+    const pp::Partition p = pp::partition_mesh(mesh, size());
+    const pp::DistributedOperators ops = pp::assemble_operators(world(), mesh, p);
+    const int sources[2] = {0, mesh.n_vertices() / 2};
+    Eigen::VectorXd ref;
+    if (rank() == 0) ref = polydec::HeatGeodesics(mesh).distance(std::span<const int>(sources, 2));
+    for (auto solver : {pp::LinearSolver::MumpsCholesky, pp::LinearSolver::CgGamg, pp::LinearSolver::CgBoomerAmg}) {
+      INFO(name << ", " << pp::linear_solver_name(solver) << " on " << size() << " ranks");
+      pp::GeodesicsOptions o;
+      o.solver = solver;
+      const pp::HeatGeodesics heat(world(), p, ops, mesh.mean_edge_length(), o);
+      const Eigen::VectorXd d = heat.distance(std::span<const int>(sources, 2));
+      double err = 1, diameter = 0;
+      if (rank() == 0) {
+        diameter = ref.maxCoeff();
+        err = (d - ref).cwiseAbs().maxCoeff() / diameter;
+      }
+      const double tol = solver == pp::LinearSolver::MumpsCholesky ? 1e-8 : 1e-6;
+      CHECK(from_root(diameter) > 0.5 * extent(mesh));
+      CHECK(from_root(err) <= tol);
+    }
+  }
+}
+
+// Groups of (numerically) equal eigenvalues: [begin, end) index ranges of `lambda` (ascending)
+// whose neighbours differ by less than `gap` relative to the largest.
+std::vector<std::pair<int, int>> clusters(const Eigen::VectorXd& lambda, double gap) {
+  std::vector<std::pair<int, int>> out;
+  const double scale = lambda.cwiseAbs().maxCoeff();
+  int b = 0;
+  for (int i = 1; i <= lambda.size(); ++i)
+    if (i == lambda.size() || lambda[i] - lambda[i - 1] > gap * scale) {
+      out.emplace_back(b, i);
+      b = i;
+    }
+  return out;
+}
+
+TEST_CASE("SLEPc eigenpairs equal the serial ones: eigenvalues 1e-8, eigenspaces by principal angles",
+          "[mpi][spectrum]") {
+  const int k = 10;
+  for (bool lumped : {true, false}) {
+    for (const auto& [name, mesh] : meshes()) {
+      if (!lumped && name.rfind("hex_sphere", 0) != 0) continue;  // Galerkin mass: once
+      INFO(name << (lumped ? ", lumped" : ", Galerkin") << " mass on " << size() << " ranks");
+      const pp::Partition p = pp::partition_mesh(mesh, size());
+      const pp::DistributedOperators ops = pp::assemble_operators(world(), mesh, p, false);
+      pp::SpectrumOptions o;
+      o.k = k;
+      o.lumped_mass = lumped;
+      const pp::Spectrum sp = pp::spectrum(world(), p, ops, o);
+      double value_err = 1, orth_err = 1, max_sine = 1, n_clusters = 0;
+      std::string values;  // both lists, for the report of a failure
+      if (rank() == 0) {
+        // The serial spectrum with 4 more pairs, to know which clusters end inside the first k.
+        polydec::SpectrumOptions so;
+        so.k = k + 4;
+        so.lumped_mass = lumped;
+        const polydec::OperatorSet set = polydec::build_operators(mesh, polydec::parse_laplacian("ours"), false);
+        const polydec::Spectrum ref = polydec::laplacian_spectrum(set, so);
+        const Eigen::VectorXd& ls = ref.eigenvalues;
+        for (int i = 0; i < k; ++i) values += fmt::format("{:.12g} / {:.12g}\n", ls[i], sp.eigenvalues[i]);
+        const double first_nonzero = ls[1];  // these meshes are connected: one zero eigenvalue
+        value_err = 0;
+        for (int i = 0; i < k; ++i)
+          value_err = std::max(value_err, std::abs(sp.eigenvalues[i] - ls[i]) / std::max(std::abs(ls[i]), first_nonzero));
+        const Eigen::SparseMatrix<double> Mm =
+            lumped ? Eigen::SparseMatrix<double>(set.M_lumped.asDiagonal()) : set.M;
+        const Eigen::MatrixXd& V = sp.eigenvectors;
+        orth_err = (V.transpose() * (Mm * V) - Eigen::MatrixXd::Identity(k, k)).cwiseAbs().maxCoeff();
+        max_sine = 0;
+        for (auto [b, e] : clusters(ls, 1e-6)) {
+          if (e > k) break;  // a cluster cut by k
+          const Eigen::MatrixXd C =
+              ref.eigenvectors.middleCols(b, e - b).transpose() * (Mm * V.middleCols(b, e - b));
+          const double smin = Eigen::JacobiSVD<Eigen::MatrixXd>(C).singularValues().minCoeff();
+          max_sine = std::max(max_sine, std::sqrt(std::max(0.0, 1 - smin * smin)));
+          n_clusters += 1;
+        }
+      }
+      INFO("serial / SLEPc eigenvalues (rank 0):\n" << values);
+      CHECK(from_root(value_err) <= 1e-8);
+      CHECK(from_root(orth_err) <= 1e-8);
+      CHECK(from_root(max_sine) <= 1e-6);
+      CHECK(from_root(n_clusters) >= 3);
+    }
+  }
+}
+
+TEST_CASE("an error on one rank ends every rank with the same error", "[mpi][errors]") {
+  const int last = size() - 1;
+  auto run = [&](auto thrower) -> std::string {
+    try {
+      pp::agree(world(), [&] {
+        if (rank() == last) thrower();
+      });
+    } catch (const polydec::FileError& e) {
+      return std::string("FileError: ") + e.what() + " line " + std::to_string(e.line);
+    } catch (const polydec::InvalidMeshError& e) {
+      return std::string("InvalidMeshError: ") + e.what() + " index " + std::to_string(e.index);
+    } catch (const polydec::SolverError& e) {
+      return std::string("SolverError: ") + e.what();
+    }
+    return "no error";
+  };
+  const std::string file = run([] { throw polydec::FileError("missing.obj", 3, 17, "cannot open file"); });
+  CHECK(file == std::string("FileError: ") + polydec::FileError("missing.obj", 3, 17, "cannot open file").what() +
+                    " line 3");
+  const std::string mesh = run([] { throw polydec::InvalidMeshError("edge", 5, "edge (1, 2) is non-manifold"); });
+  CHECK(mesh == "InvalidMeshError: edge (1, 2) is non-manifold index 5");
+  CHECK(run([] { throw polydec::SolverError("no convergence"); }) == "SolverError: no convergence");
+  CHECK(run([] {}) == "no error");
+  // A real one: a file that only the last rank tries to read.
+  const std::string missing = run([] { polydec::read_mesh("/nonexistent/polydec-mpi-test.obj"); });
+  CHECK(missing.rfind("FileError: ", 0) == 0);
+  CHECK(missing.find("polydec-mpi-test.obj") != std::string::npos);
+}
+
+}  // namespace test_mpi
+
+int main(int argc, char** argv) {
+  const polydec::petsc::Session session;
+  Catch::Session catch_session;
+  if (int rc = catch_session.applyCommandLine(argc, argv)) return rc;
+  // Only rank 0 reports (every rank checks the same broadcast numbers).
+  if (session.rank() != 0) catch_session.configData().outputFilename = "/dev/null";
+  int failed = catch_session.run();
+  MPI_Allreduce(MPI_IN_PLACE, &failed, 1, MPI_INT, MPI_MAX, session.comm());
+  return failed > 0 ? 1 : 0;
+}
