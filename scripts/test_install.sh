@@ -10,7 +10,7 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-"$root/build"}
-if ! grep -q '^BUILD_SHARED_LIBS:BOOL=ON' "$build/CMakeCache.txt" 2>/dev/null; then
+if ! grep -Eq '^BUILD_SHARED_LIBS:[A-Z]+=ON' "$build/CMakeCache.txt" 2>/dev/null; then
   [ $# -ge 1 ] || build="$root/build-install"
   cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DBUILD_SHARED_LIBS=ON \
     -DPOLYDEC_BUILD_TESTS=OFF -DPOLYDEC_BUILD_BENCH=OFF -DPOLYDEC_BUILD_PYTHON=OFF -DPOLYDEC_WITH_PETSC=OFF >/dev/null
@@ -25,14 +25,10 @@ ninja -C "$build" -j "$jobs" polydec_operators polydec_apps polydec_cli
 cmake --install "$build" --prefix "$prefix" >/dev/null
 
 # Every installed header compiles by itself (no hidden include-order dependency, no internal header).
-n=0
-while IFS= read -r h; do
-  rel=${h#"$prefix/include/"}
-  printf '#include <%s>\n' "$rel" > "$work/one.cpp"
-  c++ -std=c++20 -fsyntax-only -I"$prefix/include" $(pkg-config --cflags eigen3) "$work/one.cpp" ||
-    { echo "test_install.sh: installed header $rel does not compile on its own" >&2; exit 1; }
-  n=$((n + 1))
-done < <(find "$prefix/include/polydec" -name '*.h' | sort)
+headers=$(cd "$prefix/include" && find polydec -name '*.h' | sort)
+n=$(echo "$headers" | wc -l)
+echo "$headers" | xargs -P "$jobs" -I{} sh -c 'printf "#include <%s>\n" "$1" | c++ -std=c++20 -fsyntax-only -I"$2/include" $3 -x c++ - ||
+  { echo "test_install.sh: installed header $1 does not compile on its own" >&2; exit 255; }' _ {} "$prefix" "$(pkg-config --cflags eigen3)"
 echo "test_install.sh: $n installed headers compile on their own"
 
 # The shared libraries' dynamic symbol table: only namespace polydec (and its type information).
@@ -73,7 +69,9 @@ int main() {
   return (L.S * Eigen::VectorXd::Ones(mesh.n_vertices())).norm() < 1e-12 ? 0 : 1;
 }
 CPP
-PKG_CONFIG_PATH="$prefix/lib/pkgconfig" c++ -std=c++20 "$work/pc.cpp" -o "$work/pc" \
-  $(PKG_CONFIG_PATH="$prefix/lib/pkgconfig" pkg-config --cflags --libs polydec-operators)
+# (the .pc files name the configured CMAKE_INSTALL_PREFIX: copies with the temporary prefix)
+mkdir -p "$work/pkgconfig"
+for pc in "$prefix"/lib/pkgconfig/*.pc; do sed "s#^prefix=.*#prefix=$prefix#" "$pc" > "$work/pkgconfig/$(basename "$pc")"; done
+c++ -std=c++20 "$work/pc.cpp" -o "$work/pc" $(PKG_CONFIG_PATH="$work/pkgconfig" pkg-config --cflags --libs polydec-operators)
 "$work/pc"
 echo "test_install.sh: install, headers, symbol table, 3 examples and pkg-config ok"
