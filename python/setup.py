@@ -1,7 +1,9 @@
 """python/setup.py — builds polydec._polydec with the repository's CMake for the interpreter that
 runs pip (Python_EXECUTABLE = sys.executable), then packages it with polydec/*.py.
 
-Environment: POLYDEC_CMAKE_ARGS (extra CMake arguments, space-separated), CMAKE_BUILD_PARALLEL_LEVEL
+Environment: POLYDEC_PREFIX (an installed shared polydec, `cmake --install`: then only the module's
+own sources are compiled, against that installation: python/CMakeLists.txt as a project of its own),
+POLYDEC_CMAKE_ARGS (extra CMake arguments, space-separated), CMAKE_BUILD_PARALLEL_LEVEL
 (build jobs; default: all cores), POLYDEC_NO_CCACHE=1 (do not use ccache even when installed)."""
 
 import os
@@ -29,9 +31,14 @@ class CMakeBuild(build_ext):
             raise RuntimeError(f"polydec: the repository's CMakeLists.txt is not at {REPO} (install from a clone)")
         build = pathlib.Path(self.build_temp).resolve() / "cmake"
         build.mkdir(parents=True, exist_ok=True)
-        args = ["cmake", "-S", str(REPO), "-B", str(build), "-DCMAKE_BUILD_TYPE=Release",
-                "-DPOLYDEC_BUILD_PYTHON=ON", "-DPOLYDEC_BUILD_TESTS=OFF", "-DPOLYDEC_BUILD_BENCH=OFF",
-                f"-DPython_EXECUTABLE={sys.executable}"]
+        prefix = os.environ.get("POLYDEC_PREFIX")
+        if prefix:
+            args = ["cmake", "-S", str(HERE), "-B", str(build), "-DCMAKE_BUILD_TYPE=Release",
+                    f"-DCMAKE_PREFIX_PATH={pathlib.Path(prefix).resolve()}"]
+        else:
+            args = ["cmake", "-S", str(REPO), "-B", str(build), "-DCMAKE_BUILD_TYPE=Release",
+                    "-DPOLYDEC_BUILD_PYTHON=ON", "-DPOLYDEC_BUILD_TESTS=OFF", "-DPOLYDEC_BUILD_BENCH=OFF"]
+        args.append(f"-DPython_EXECUTABLE={sys.executable}")
         if shutil.which("ninja"):
             args += ["-G", "Ninja"]
         if shutil.which("ccache") and os.environ.get("POLYDEC_NO_CCACHE") != "1":
@@ -40,9 +47,10 @@ class CMakeBuild(build_ext):
         subprocess.run(args, check=True)
         jobs = os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL", str(os.cpu_count() or 1))
         subprocess.run(["cmake", "--build", str(build), "--target", "polydec_python", "-j", jobs], check=True)
-        built = list((build / "python" / "polydec").glob("_polydec*.so"))
+        out = build / "polydec" if prefix else build / "python" / "polydec"
+        built = list(out.glob("_polydec*.so"))
         if len(built) != 1:
-            raise RuntimeError(f"polydec: expected one built extension in {build / 'python' / 'polydec'}, found {built}")
+            raise RuntimeError(f"polydec: expected one built extension in {out}, found {built}")
         target = pathlib.Path(self.get_ext_fullpath(ext.name))
         target.parent.mkdir(parents=True, exist_ok=True)
         shutil.copyfile(built[0], target)

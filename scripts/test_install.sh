@@ -4,8 +4,9 @@
 # builds one there (default build-install/), installs it into a temporary prefix, checks that the
 # installed headers compile on their own and that the shared libraries export nothing outside
 # namespace polydec, then configures, builds and runs the three examples/
-# out of tree with find_package(polydec 0.2 CONFIG), and checks pkg-config. Exits non-zero on any
-# failure. Usage: scripts/test_install.sh [BUILD_DIR] (default: build/ when it is a shared build,
+# out of tree with find_package(polydec 0.2 CONFIG), checks pkg-config, and pip-installs the Python
+# module against the installation into a venv and runs the Python tests there
+# (scripts/test_pip_install.sh). Exits non-zero on any failure. Usage: scripts/test_install.sh [BUILD_DIR] (default: build/ when it is a shared build,
 # else build-install/).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -74,4 +75,8 @@ mkdir -p "$work/pkgconfig"
 for pc in "$prefix"/lib/pkgconfig/*.pc; do sed "s#^prefix=.*#prefix=$prefix#" "$pc" > "$work/pkgconfig/$(basename "$pc")"; done
 c++ -std=c++20 "$work/pc.cpp" -o "$work/pc" $(PKG_CONFIG_PATH="$work/pkgconfig" pkg-config --cflags --libs polydec-operators)
 "$work/pc"
-echo "test_install.sh: install, headers, symbol table, 3 examples and pkg-config ok"
+
+# The Python module as a user installs it: pip into a --system-site-packages venv, built against
+# this installation (the module's sources only), then the import and the whole pytest suite.
+POLYDEC_PREFIX="$prefix" POLYDEC_CLI="$prefix/bin/polydec" bash "$root/scripts/test_pip_install.sh" "${POLYDEC_PYTHON:-/usr/bin/python3}"
+echo "test_install.sh: install, headers, symbol table, 3 examples, pkg-config and the pip-installed Python module ok"
