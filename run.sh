@@ -43,7 +43,8 @@ if [ "$what" = demo ]; then
   options=(-DPOLYDEC_BUILD_TESTS=OFF -DPOLYDEC_BUILD_BENCH=OFF -DPOLYDEC_BUILD_PYTHON=OFF -DPOLYDEC_WITH_PETSC=OFF)
   targets=(polydec_cli)
 else
-  options=(-DPOLYDEC_BUILD_TESTS=ON -DPOLYDEC_BUILD_BENCH=ON -DPOLYDEC_BUILD_PYTHON=ON -DPOLYDEC_WITH_PETSC=ON
+  # Unity build (batches of 8 sources): a clean build in about two thirds of the compile time.
+  options=(-DPOLYDEC_BUILD_TESTS=ON -DPOLYDEC_BUILD_BENCH=ON -DPOLYDEC_BUILD_PYTHON=ON -DPOLYDEC_WITH_PETSC=ON -DPOLYDEC_UNITY_BUILD=ON
            -DPython_EXECUTABLE="${POLYDEC_PYTHON:-/usr/bin/python3}")
   targets=()
 fi
