@@ -60,7 +60,8 @@ std::string sphere_spectrum_markdown(const nlohmann::json& r, const std::vector<
   for (const auto& [mesh, row] : r["spectrum100"].items())
     for (const char* what : {"mean", "max"}) {
       s += fmt::format("| {} | {} |", mesh, what);
-      for (const std::string& c : cols) s += fmt::format(" {} |", row.contains(c) ? value(row[c][what]) : "–");
+      for (const std::string& c : cols)
+        s += fmt::format(" {} |", row.contains(c) ? value(row[c][what]) : "–");
       s += "\n";
     }
   return s + "\n";
