@@ -5,9 +5,11 @@
 // precomputation. Prints a Markdown table on stdout.
 //
 //   polydec_bench [--big N] [--no-big] [--quick] [--reps K] [--blas-threads N] [--no-big-geodesics]
-//                 [--only spectrum|feec|geodesics|cholesky]   (one section on FINE SPHERE)
+//                 [--only spectrum|feec|geodesics|cholesky|form-spectrum]   (one section on FINE SPHERE;
+//                 form-spectrum: a 100k-face quad sphere)
 //   polydec_bench --memory-child N      (internal: peak memory of one assembly, fresh process)
 #include "polydec/apps/applications/geodesics.h"
+#include "polydec/apps/applications/form_spectrum.h"
 #include "polydec/apps/applications/spectrum.h"
 #include "bench/plain_reference.h"
 #include "polydec/dec/complex.h"
@@ -379,6 +381,43 @@ void bench_spectrum(const std::string& name, const Mesh& mesh, int reps) {
                    fmt::format("{}, {} solves", ours.method, ours.n_solves), diff)});
 }
 
+// 50 eigenpairs of the 1-form Hodge Laplacian (apps/applications/form_spectrum.h) against 50 of
+// the 0-form spectrum, same mesh, one run each (ratio = 1-form time / 0-form time).
+void bench_form_spectrum(const std::string& name, const Mesh& mesh) {
+  SpectrumOptions o0;
+  o0.k = 50;
+  FormSpectrumOptions o1;
+  o1.k = 50;
+  o1.decompose = false;
+  Spectrum zero;
+  FormSpectrum one;
+  const double t0 = time_ms([&] { zero = laplacian_spectrum(mesh, o0); });
+  const double t1 = time_ms([&] { one = form_spectrum(mesh, o1); });
+  // The exact 1-form eigenvalues are the 0-form ones: the largest distance of a nonzero 0-form
+  // eigenvalue below the 1-form range to the nearest 1-form eigenvalue.
+  double diff = 0;
+  for (int i = 1; i < o0.k; ++i) {
+    if (zero.eigenvalues[i] > one.eigenvalues[o1.k - 1]) break;
+    diff = std::max(diff,
+                    (one.eigenvalues.array() - zero.eigenvalues[i]).abs().minCoeff() / zero.eigenvalues[i]);
+  }
+  Row r{
+      "1-form spectrum, 50 eigenpairs",
+      name,
+      "0-form spectrum (laplacian_spectrum)",
+      "form_spectrum",
+      t0,
+      t1,
+      0,
+      0,
+      fmt::format("ratio = 1-form time / 0-form time; {} faces, 1-form rank {}, {} solves (0-form: {}, {}); "
+                  "nearest 1-form eigenvalue to each 0-form one within {:.1e} (relative); includes assembly; "
+                  "thread CPU time (1 BLAS thread)",
+                  mesh.n_faces(), one.rank, one.n_solves, zero.n_solves, zero.method, diff)};
+  r.ratio = t1 / t0;
+  add(r);
+}
+
 std::string status(const Row& r) {
   if (r.required == 0) return "(reported)";
   if (r.required < 0) return r.ratio <= -r.required ? "met" : fmt::format("MISSED by {:.2f}x", r.ratio / -r.required);
@@ -390,7 +429,8 @@ std::string status(const Row& r) {
 int main(int argc, char** argv) {
   int big = 500, reps = 5, blas_threads = 1;
   bool with_big = true, quick = false, big_geodesics = true;  // --quick: assembly rows on HEX and FINE only
-  std::string only;  // --only spectrum|feec|geodesics|cholesky: that section alone, on FINE SPHERE
+  std::string only;  // --only spectrum|feec|geodesics|cholesky: that section alone, on FINE SPHERE;
+                     // form-spectrum: on a 100k-face quad sphere
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--memory-child" && i + 1 < argc) return memory_child(std::stoi(argv[i + 1]));
@@ -444,6 +484,8 @@ int main(int argc, char** argv) {
   }
   if (!only.empty()) {
     if (only == "spectrum") bench_spectrum("FINE SPHERE", fine, reps);
+    else if (only == "form-spectrum")
+      bench_form_spectrum("QUAD SPHERE 100K", project_to_unit_sphere(cube_sphere(129)));
     else if (only == "feec") bench_feec("FINE SPHERE", fine, reps);
     else if (only == "geodesics") bench_geodesics("FINE SPHERE", fine, 9);
     else if (only == "cholesky") bench_cholesky("FINE SPHERE", assemble_all(fine, 1), 3);

@@ -1,5 +1,6 @@
 // apps/cli/spectrum.cpp — `polydec spectrum MESH --k K --out DIR`: the k smallest eigenpairs of
-// -S x = lambda M x (manifold harmonics) with Spectra's shift-invert solver.
+// -S x = lambda M x (manifold harmonics) with Spectra's shift-invert solver; with --form 1|2 those
+// of the Hodge Laplacian on Whitney 1- or 2-forms (apps/applications/form_spectrum.h).
 #include "polydec/apps/applications/spectrum.h"
 
 #include <fmt/format.h>
@@ -7,10 +8,14 @@
 #include <filesystem>
 #include <fstream>
 
+#include "polydec/apps/applications/form_spectrum.h"
 #include "polydec/apps/cli/command.h"
 #include "polydec/apps/cli/engine.h"
 #include "polydec/apps/pictures/render.h"
+#include "polydec/apps/pictures/vector_field.h"
+#include "polydec/dec/complex.h"
 #include "polydec/dec/io.h"
+#include "polydec/dec/prolongation.h"
 
 namespace polydec::cli::spectrum_command {
 namespace {
@@ -18,7 +23,7 @@ namespace {
 struct Options {
   bool repair = false;  // --repair
   std::string mesh, out, png, mass = "lumped", laplacian = "ours";
-  int k = 10, png_index = 1;
+  int k = 10, png_index = 1, form = 0;
   bool json = false;
   EngineOptions engine;  // --engine, --solver, --petsc-options
 };
@@ -36,8 +41,14 @@ void write_dense_matrix_market(const std::string& path, const Eigen::MatrixXd& A
 void report(const Options& o, const Mesh& mesh, const std::string& laplacian, int n_in, const Spectrum& sp,
             const nlohmann::json* engine);
 
+void run_form(const Options& o);
+
 void run(const Options& o) {
   if (o.mass != "lumped" && o.mass != "unlumped") throw UsageError("--mass must be lumped or unlumped");
+  if (o.form != 0) {
+    run_form(o);
+    return;
+  }
   if (o.engine.engine == "petsc") {
     // The distributed run (apps/cli/engine.h); rank 0 reports as the serial run does.
     if (o.laplacian != "ours") throw UsageError("--engine petsc computes the paper's Laplacian only (--laplacian ours)");
@@ -114,18 +125,159 @@ void report(const Options& o, const Mesh& mesh, const std::string& laplacian, in
                o.out);
 }
 
+// Per-vertex mean of per-face values (for drawing).
+Eigen::VectorXd face_to_vertex(const Mesh& mesh, const Eigen::VectorXd& face_values) {
+  Eigen::VectorXd v = Eigen::VectorXd::Zero(mesh.n_vertices()), c = v;
+  for (int f = 0; f < mesh.n_faces(); ++f)
+    for (int i : mesh.face(f)) v[i] += face_values[f], c[i] += 1;
+  for (int i = 0; i < mesh.n_vertices(); ++i) v[i] = c[i] > 0 ? v[i] / c[i] : 0;
+  return v;
+}
+
+// The Whitney 2-form's density per face: its integral over the face (fan triangles, oriented as
+// the face) divided by the face's area.
+Eigen::VectorXd two_form_density(const Mesh& mesh, const Refinement& ref, const CoarseComplex& cx,
+                                 const Eigen::VectorXd& u) {
+  const Eigen::VectorXd t = prolongation2(mesh, ref, cx) * u;
+  Eigen::VectorXd integral = Eigen::VectorXd::Zero(mesh.n_faces()), area = integral;
+  for (int h = 0; h < mesh.n_halfedges(); ++h) {
+    const int f = mesh.halfedge_face(h);
+    const Eigen::Vector3d a = mesh.position(mesh.halfedge_source(h)),
+                          b = mesh.position(mesh.halfedge_target(h));
+    const Eigen::Vector3d x = ref.virtual_points.row(f).transpose();
+    integral[f] += refined_triangle_sign(mesh, h) * t[h];
+    area[f] += 0.5 * (b - a).cross(x - a).norm();
+  }
+  for (int f = 0; f < mesh.n_faces(); ++f) integral[f] = area[f] > 0 ? integral[f] / area[f] : 0;
+  return integral;
+}
+
+void run_form(const Options& o) {
+  if (o.form != 1 && o.form != 2) throw UsageError("--form must be 0, 1 or 2");
+  if (o.engine.engine != "serial") throw UsageError("--form: only the serial engine computes form spectra");
+  if (o.laplacian != "ours")
+    throw UsageError("--form: the Hodge Laplacian is built from the paper's stars (--laplacian ours)");
+  if (o.k < 1) throw UsageError("--k must be positive");
+  if (!o.png.empty() && (o.png_index < 0 || o.png_index >= o.k))
+    throw UsageError("--png-index must lie in [0, k)");
+  const Mesh mesh = load_mesh(o.mesh, o.repair);
+  FormSpectrumOptions fo;
+  fo.degree = o.form;
+  fo.k = o.k;
+  fo.lumped_mass = o.mass == "lumped";
+  const FormSpectrum sp = form_spectrum(mesh, fo);
+  const CoarseComplex cx(mesh);
+  std::vector<double> ev(sp.eigenvalues.data(), sp.eigenvalues.data() + sp.eigenvalues.size());
+  nlohmann::json pairs = nlohmann::json::array();
+  for (int i = 0; i < o.k; ++i)
+    pairs.push_back({{"index", i},
+                     {"eigenvalue", ev[size_t(i)]},
+                     {"kind", form_kind_name(sp.kinds[size_t(i)])},
+                     {"norm_exact", sp.norm_exact[i]},
+                     {"norm_coexact", sp.norm_coexact[i]},
+                     {"norm_harmonic", sp.norm_harmonic[i]}});
+  nlohmann::json j = {{"mesh", o.mesh},          {"form", o.form},
+                      {"mass", o.mass},          {"vertices", mesh.n_vertices()},
+                      {"faces", mesh.n_faces()}, {"cells", o.form == 1 ? cx.n_pairs() : cx.n_triples()},
+                      {"rank", sp.rank},         {"k", o.k},
+                      {"shift", sp.shift},       {"method", sp.method},
+                      {"eigenvalues", ev},       {"eigenpairs", pairs}};
+  if (!o.out.empty()) {
+    std::filesystem::create_directories(o.out);
+    {
+      const std::string p = o.out + "/eigenvalues.txt";
+      std::ofstream f(p);
+      if (!f) throw FileError(p, 0, -1, "cannot open file for writing");
+      for (int i = 0; i < o.k; ++i)
+        f << fmt::format("{:.17g} {} {:.6g} {:.6g} {:.6g}\n", ev[size_t(i)],
+                         form_kind_name(sp.kinds[size_t(i)]), sp.norm_exact[i], sp.norm_coexact[i],
+                         sp.norm_harmonic[i]);
+    }
+    write_dense_matrix_market(o.out + "/eigenvectors.mtx", sp.eigenvectors);
+    write_dense_matrix_market(o.out + "/exact.mtx", sp.exact);
+    write_dense_matrix_market(o.out + "/coexact.mtx", sp.coexact);
+    write_dense_matrix_market(o.out + "/harmonic.mtx", sp.harmonic);
+    {
+      const std::string p = o.out + (o.form == 1 ? "/pairs.txt" : "/triples.txt");
+      std::ofstream f(p);
+      if (!f) throw FileError(p, 0, -1, "cannot open file for writing");
+      if (o.form == 1)
+        for (int c = 0; c < cx.n_pairs(); ++c) f << cx.pairs()(c, 0) << ' ' << cx.pairs()(c, 1) << '\n';
+      else
+        for (int c = 0; c < cx.n_triples(); ++c)
+          f << cx.triples()(c, 0) << ' ' << cx.triples()(c, 1) << ' ' << cx.triples()(c, 2) << '\n';
+    }
+    std::ofstream(o.out + "/spectrum.json") << j.dump(2) << '\n';
+    j["out"] = o.out;
+    j["files"] = {"eigenvalues.txt", "eigenvectors.mtx", "exact.mtx",
+                  "coexact.mtx",     "harmonic.mtx",     o.form == 1 ? "pairs.txt" : "triples.txt",
+                  "spectrum.json"};
+  }
+  if (!o.png.empty()) {
+    const Refinement ref = refine(mesh);
+    RenderOptions ropt;
+    ropt.width = 800;
+    ropt.height = 600;
+    ropt.colormap = Colormap::turbo;
+    ropt.smooth_shading = true;
+    ropt.title = fmt::format("{}-form eigenform {}, lambda = {:.4g} ({})", o.form, o.png_index,
+                             ev[size_t(o.png_index)], form_kind_name(sp.kinds[size_t(o.png_index)]));
+    if (o.form == 1) {
+      const Eigen::MatrixX3d U =
+          whitney_vectors_at_virtual_vertices(mesh, ref, sp.eigenvectors.col(o.png_index));
+      ropt.scalar_label = "|w|";
+      render_vector_field_png(o.png, mesh, face_to_vertex(mesh, U.rowwise().norm()), ref.virtual_points, U,
+                              ropt);
+    } else {
+      ropt.scalar_label = "density";
+      ropt.isolines = 10;
+      render_png(o.png, mesh,
+                 face_to_vertex(mesh, two_form_density(mesh, ref, cx, sp.eigenvectors.col(o.png_index))),
+                 ropt);
+    }
+    j["png"] = o.png;
+  }
+  if (o.json) {
+    print_json(j);
+    return;
+  }
+  fmt::print("{}: {} vertices, {} faces; Whitney {}-forms: {} cells, rank {}; shift {:.6g}\n", o.mesh,
+             mesh.n_vertices(), mesh.n_faces(), o.form, o.form == 1 ? cx.n_pairs() : cx.n_triples(), sp.rank,
+             sp.shift);
+  fmt::print(
+      "{} smallest eigenvalues of the Hodge Laplacian (norms of the exact, co-exact, harmonic parts):\n",
+      o.k);
+  for (int i = 0; i < o.k; ++i)
+    fmt::print("  {:4d}  {:.10g}  {:<9} {:.3g} {:.3g} {:.3g}\n", i, ev[size_t(i)],
+               form_kind_name(sp.kinds[size_t(i)]), sp.norm_exact[i], sp.norm_coexact[i],
+               sp.norm_harmonic[i]);
+  if (!o.png.empty()) fmt::print("wrote {}\n", o.png);
+  if (!o.out.empty())
+    fmt::print(
+        "wrote eigenvalues.txt, eigenvectors.mtx (cells x k), exact/coexact/harmonic.mtx, "
+        "{} and spectrum.json to {}\n",
+        o.form == 1 ? "pairs.txt" : "triples.txt", o.out);
+}
+
 const RegisterCommand reg(
     "spectrum", "Smallest eigenpairs of the Laplacian, -S x = lambda M x (Spectra shift-invert)",
     [](CLI::App& app) {
       auto o = std::make_shared<Options>();
       app.add_option("mesh", o->mesh, "input mesh (.obj, .off, .ply)")->required();
       app.add_option("--k", o->k, "number of eigenpairs (default 10)");
+      app.add_option(
+          "--form", o->form,
+          "0 (default): functions, -S x = lambda M x; 1 or 2: Hodge Laplacian of Whitney 1- or 2-forms "
+          "(eigen-cochains, their Hodge parts; --mass is the 0-form mass M0 of the 1-form problem)");
       app.add_option("--out", o->out,
                      "output directory: eigenvalues.txt, eigenvectors.mtx, eigenvectors.ply");
       app.add_option("--mass", o->mass, "lumped (default) or unlumped mass");
       app.add_option("--laplacian", o->laplacian,
                      "Laplacian: " + fmt::format("{}", fmt::join(laplacian_names(), ", ")));
-      app.add_option("--png", o->png, "picture of one eigenfunction with isolines (.png)");
+      app.add_option(
+          "--png", o->png,
+          "picture of one eigenfunction with isolines (.png); --form 1: the eigen 1-form as arrows, "
+          "--form 2: its density");
       app.add_option("--png-index", o->png_index, "which eigenfunction to draw (default 1)");
       app.add_flag("--json", o->json, "print one JSON object instead of text");
       add_repair_flag(app, o->repair);

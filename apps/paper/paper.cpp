@@ -14,6 +14,7 @@
 #include "polydec/apps/applications/harmonics.h"
 #include "polydec/apps/pictures/image.h"
 #include "polydec/apps/paper/metrics.h"
+#include "polydec/apps/paper/sphere_spectrum.h"
 #include "polydec/apps/applications/parametrization.h"
 #include "polydec/apps/pictures/plot.h"
 #include "polydec/apps/applications/poisson.h"
@@ -169,6 +170,13 @@ class Evaluation {
       steps_.push_back({"Figure 9: " + m, o_.quick ? 0.5 : 3, [this, m] { figure9_cell(m); }});
     steps_.push_back({"Figure 9: plots, Poisson condition numbers", 3, [this] { figure9_finish(); }});
     steps_.push_back({"Figures 7, 8: geodesics pictures, negative off-diagonals", 4, [this] { figures78(); }});
+    // The unit sphere's first 100 eigenvalues (apps/paper/sphere_spectrum.h); FINE SPHERE left
+    // out, quick: REGULAR SPHERE only.
+    for (const std::string& s : spheres())
+      if (s != "FINE SPHERE" && (!o_.quick || s == "REGULAR SPHERE"))
+        for (const std::string& m : kAllMethods)
+          steps_.push_back({fmt::format("Spectrum: {} / {}", s, m), s == "HEX SPHERE" ? 3.0 : 0.5,
+                            [this, s, m] { r_["spectrum100"][s][m] = sphere_spectrum_errors(mesh(s), m); }});
   }
 
   // ---- Tables 2 and 3 -----------------------------------------------------------------------
@@ -680,7 +688,8 @@ std::string paper_report_markdown(const json& r) {
        "refined 17%, max-min-angle 5%, min-area 15%, intrinsic Delaunay 0%):\n\n";
   s += table(r, "figure7", baselines, INFINITY) + table(r, "figure8", baselines, INFINITY);
   s += "Pictures: `figure7-geodesics.png`, `figure8-geodesics.png` (one colour range for every tile: that of "
-       "`ours`; isolines at 1/15 of it).\n";
+       "`ours`; isolines at 1/15 of it).\n\n";
+  s += sphere_spectrum_markdown(r, kAllMethods);
   return s;
 }
 

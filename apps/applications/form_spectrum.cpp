@@ -1,0 +1,248 @@
+// apps/applications/form_spectrum.cpp — Hodge Laplacian eigenpairs of Whitney 1- and 2-forms:
+// Spectra's generalized shift-invert solver on a quasi-definite LDL^T of the mixed system.
+#include "polydec/apps/applications/form_spectrum.h"
+
+#include <Spectra/MatOp/SparseSymMatProd.h>
+#include <Spectra/SymGEigsShiftSolver.h>
+#include <fmt/format.h>
+
+#include <Eigen/SparseCholesky>
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "polydec/apps/applications/hodge_decomposition.h"
+#include "polydec/apps/applications/spectrum.h"
+#include "polydec/dec/complex.h"
+#include "polydec/dec/form_span.h"
+#include "polydec/dec/hodge_star.h"
+#include "polydec/dec/prolongation.h"
+#include "polydec/operators/cholesky.h"
+#include "polydec/operators/span_solver.h"
+
+namespace polydec {
+namespace form_spectrum_detail {
+namespace {
+
+using SpMat = Eigen::SparseMatrix<double>;
+
+// The 2 x 2 block matrix [A, C; C^T, -D] (A: n1 x n1, C: n1 x n2, D: n2 x n2), lower triangle.
+SpMat quasi_definite(const SpMat& A, const SpMat& C, const SpMat& D) {
+  const Eigen::Index n1 = A.rows(), n2 = D.rows();
+  std::vector<Eigen::Triplet<double>> t;
+  t.reserve(size_t(A.nonZeros() + C.nonZeros() + D.nonZeros()));
+  for (int j = 0; j < A.outerSize(); ++j)
+    for (SpMat::InnerIterator it(A, j); it; ++it)
+      if (it.row() >= it.col()) t.emplace_back(int(it.row()), int(it.col()), it.value());
+  for (int j = 0; j < C.outerSize(); ++j)
+    for (SpMat::InnerIterator it(C, j); it; ++it)
+      t.emplace_back(int(n1 + it.col()), int(it.row()), it.value());
+  for (int j = 0; j < D.outerSize(); ++j)
+    for (SpMat::InnerIterator it(D, j); it; ++it)
+      if (it.row() >= it.col()) t.emplace_back(int(n1 + it.row()), int(n1 + it.col()), -it.value());
+  SpMat N(n1 + n2, n1 + n2);
+  N.setFromTriplets(t.begin(), t.end());
+  return N;
+}
+
+// Spectra's shift-invert operator y = (K - sigma B)^-1 x, K - sigma B the Schur complement of the
+// quasi-definite matrix [A - sigma B, C; C^T, -D] on its first block (K = A + C D^-1 C^T).
+class MixedShiftInvert {
+ public:
+  using Scalar = double;
+  MixedShiftInvert(const SpMat& A, const SpMat& B, const SpMat& C, const SpMat& D, std::string name)
+      : A_(A), B_(B), C_(C), D_(D), name_(std::move(name)) {}
+  Eigen::Index rows() const { return A_.rows(); }
+  Eigen::Index cols() const { return A_.rows(); }
+  void set_shift(double sigma) {
+    const SpMat N = quasi_definite(SpMat(A_ - sigma * B_), C_, D_);
+    ldlt_.compute(N);
+    if (ldlt_.info() != Eigen::Success)
+      throw SolverError("form spectrum: LDL^T of the quasi-definite system " + name_ + " failed");
+    rhs_ = Eigen::VectorXd::Zero(N.rows());
+  }
+  void perform_op(const double* x_in, double* y_out) const {
+    const Eigen::Index n = rows();
+    rhs_.head(n) = Eigen::Map<const Eigen::VectorXd>(x_in, n);
+    rhs_.tail(rhs_.size() - n).setZero();
+    Eigen::Map<Eigen::VectorXd>(y_out, n) = ldlt_.solve(rhs_).head(n);
+  }
+
+ private:
+  const SpMat &A_, &B_, &C_, &D_;
+  std::string name_;
+  Eigen::SimplicialLDLT<SpMat, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt_;
+  mutable Eigen::VectorXd rhs_;
+};
+
+SpMat diagonal_matrix(const Eigen::VectorXd& d) {
+  SpMat D(d.size(), d.size());
+  D.reserve(Eigen::VectorXi::Constant(d.size(), 1));
+  for (Eigen::Index i = 0; i < d.size(); ++i) D.insert(i, i) = d[i];
+  return D;
+}
+
+double star_norm(const SpMat& star, const Eigen::VectorXd& x) {
+  return std::sqrt(std::max(0.0, x.dot(star * x)));
+}
+
+}  // namespace
+}  // namespace form_spectrum_detail
+
+const char* form_kind_name(FormKind kind) {
+  switch (kind) {
+    case FormKind::Exact:
+      return "exact";
+    case FormKind::Coexact:
+      return "co-exact";
+    case FormKind::Harmonic:
+      return "harmonic";
+  }
+  return "?";
+}
+
+FormSpectrum form_spectrum(const Mesh& mesh, const FormSpectrumOptions& options) {
+  using namespace form_spectrum_detail;
+  if (options.degree != 1 && options.degree != 2)
+    throw std::invalid_argument(fmt::format("form spectrum: degree {} must be 1 or 2", options.degree));
+  if (mesh.n_faces() == 0) throw InvalidMeshError("mesh", -1, "form spectrum: the mesh has no faces");
+  const Refinement ref = refine(mesh, options.refinement);
+  const CoarseComplex cx(mesh);
+  const HodgeStars H = hodge_stars(mesh, ref, cx);
+  const SpMat d0 = cx.d0(), d1 = cx.d1();
+  const FormSpan span1 = form_span(mesh, ref, cx, 1);
+  const SpMat& R1 = span1.R;
+  const SpMat B1 = R1.transpose() * H.star1 * R1;
+  const double area = H.star0_lumped.sum();
+  if (!(area > 0)) throw SolverError("form spectrum: the mesh has zero area");
+
+  FormSpectrum out;
+  out.degree = options.degree;
+  out.shift = -options.shift_factor / area;
+  SpMat A, B, C, D, R;
+  std::string name;
+  if (options.degree == 1) {
+    // Unreferenced vertices (zero mass, no pair) are left out of the vertex block.
+    std::vector<int> index(size_t(mesh.n_vertices()), -1);
+    int n0 = 0;
+    for (int v = 0; v < mesh.n_vertices(); ++v)
+      if (H.star0_lumped[v] > 0) index[size_t(v)] = n0++;
+    const SpMat M0full = options.lumped_mass ? diagonal_matrix(H.star0_lumped) : H.star0;
+    D = principal_submatrix(M0full, index);
+    SpMat keep(mesh.n_vertices(), n0);  // selection of the kept vertices
+    keep.reserve(Eigen::VectorXi::Constant(n0, 1));
+    for (int v = 0; v < mesh.n_vertices(); ++v)
+      if (index[size_t(v)] >= 0) keep.insert(v, index[size_t(v)]) = 1;
+    A = R1.transpose() * d1.transpose() * H.star2 * d1 * R1;
+    B = B1;
+    C = R1.transpose() * H.star1 * d0 * keep;
+    R = R1;
+    name = "[d1^T star2 d1 - sigma star1, star1 d0; d0^T star1, -M0]";
+  } else {
+    const FormSpan span2 = form_span(mesh, ref, cx, 2);
+    R = span2.R;
+    B = R.transpose() * H.star2 * R;
+    A = SpMat(B.rows(), B.cols());
+    C = R.transpose() * H.star2 * d1 * R1;
+    D = B1;
+    name = "[-sigma star2, star2 d1; d1^T star2, -star1]";
+  }
+  out.rank = int(B.rows());
+  const int n = out.rank;
+  if (options.k < 1 || options.k >= n)
+    throw std::invalid_argument(fmt::format("form spectrum: k = {} must lie in [1, {})", options.k, n));
+  const int ncv = options.krylov_size > 0 ? std::clamp(options.krylov_size, options.k + 1, n)
+                                          : spectrum_krylov_size(options.k, n);
+  MixedShiftInvert op(A, B, C, D, name);
+  Spectra::SparseSymMatProd<double> Bop(B);
+  Spectra::SymGEigsShiftSolver<MixedShiftInvert, Spectra::SparseSymMatProd<double>,
+                               Spectra::GEigsMode::ShiftInvert>
+      solver(op, Bop, options.k, ncv, out.shift);
+  solver.init();
+  out.n_converged = int(solver.compute(Spectra::SortRule::LargestMagn, options.max_iterations,
+                                       options.tolerance, Spectra::SortRule::SmallestAlge));
+  out.n_solves = int(solver.num_operations());
+  if (solver.info() != Spectra::CompInfo::Successful)
+    throw SolverError(
+        fmt::format("form spectrum: Spectra did not converge ({} of {} eigenpairs after {} restarts)",
+                    out.n_converged, options.k, options.max_iterations));
+  out.method = "Spectra SymGEigsShiftSolver + quasi-definite SimplicialLDLT";
+  out.eigenvalues = solver.eigenvalues();
+  out.eigenvectors = R * solver.eigenvectors();
+  if (!options.decompose) return out;
+
+  const int k = options.k;
+  out.exact = Eigen::MatrixXd::Zero(out.eigenvectors.rows(), k);
+  out.coexact = out.exact;
+  out.harmonic = out.exact;
+  out.norm_exact.resize(k);
+  out.norm_coexact.resize(k);
+  out.norm_harmonic.resize(k);
+  out.kinds.resize(size_t(k));
+  // Eigenvalues below this (relative to the first nonzero scale 1 / area) count as zero.
+  const double zero = 1e-8 / area;
+  if (options.degree == 1) {
+    const HodgeDecomposer hd(mesh, options.refinement);
+    for (int i = 0; i < k; ++i) {
+      const HodgeParts p = hd.decompose(out.eigenvectors.col(i));
+      out.exact.col(i) = p.exact;
+      out.coexact.col(i) = p.coexact;
+      out.harmonic.col(i) = p.harmonic;
+      out.norm_exact[i] = p.norm_exact;
+      out.norm_coexact[i] = p.norm_coexact;
+      out.norm_harmonic[i] = p.norm_harmonic;
+    }
+  } else {
+    // u = d1 (delta u) / lambda with delta u = star1^+ d1^T star2 u, when lambda != 0.
+    const SpanSolver S1(H.star1, span1, "star1");
+    for (int i = 0; i < k; ++i) {
+      const Eigen::VectorXd u = out.eigenvectors.col(i);
+      if (std::abs(out.eigenvalues[i]) > zero) {
+        const Eigen::VectorXd delta = S1.solve(d1.transpose() * (H.star2 * u));
+        out.exact.col(i) = d1 * delta / out.eigenvalues[i];
+      }
+      out.harmonic.col(i) = u - out.exact.col(i);
+      out.norm_exact[i] = star_norm(H.star2, out.exact.col(i));
+      out.norm_coexact[i] = 0;
+      out.norm_harmonic[i] = star_norm(H.star2, out.harmonic.col(i));
+    }
+  }
+  for (int i = 0; i < k; ++i) {
+    const double e = out.norm_exact[i], c = out.norm_coexact[i], h = out.norm_harmonic[i];
+    out.kinds[size_t(i)] = h >= e && h >= c ? FormKind::Harmonic
+                           : e >= c         ? FormKind::Exact
+                                            : FormKind::Coexact;
+  }
+  return out;
+}
+
+Eigen::MatrixX3d whitney_vectors_at_virtual_vertices(const Mesh& mesh, const Refinement& refinement,
+                                                     const Eigen::VectorXd& cochain) {
+  const CoarseComplex cx(mesh);
+  if (cochain.size() != cx.n_pairs())
+    throw std::invalid_argument(fmt::format("whitney vectors: the cochain has {} values, the mesh {} pairs",
+                                            cochain.size(), cx.n_pairs()));
+  const Eigen::VectorXd c = prolongation1(mesh, refinement, cx) * cochain;
+  const int ne = mesh.n_edges();
+  Eigen::MatrixX3d U = Eigen::MatrixX3d::Zero(mesh.n_faces(), 3);
+  for (int f = 0; f < mesh.n_faces(); ++f) {
+    const Eigen::Vector3d xv = refinement.virtual_points.row(f).transpose();
+    int used = 0;
+    for (int h = mesh.face_offsets()[f]; h < mesh.face_offsets()[f + 1]; ++h) {
+      const int hn = mesh.halfedge_next(h);
+      const Eigen::Vector3d ea = mesh.position(mesh.halfedge_source(h)) - xv;
+      const Eigen::Vector3d eb = mesh.position(mesh.halfedge_target(h)) - xv;
+      // u = alpha ea + beta eb with u . ea = -c_av, u . eb = -c_bv (2 x 2 Gram system).
+      const double g11 = ea.dot(ea), g12 = ea.dot(eb), g22 = eb.dot(eb), det = g11 * g22 - g12 * g12;
+      if (!(det > 1e-24 * g11 * g22)) continue;  // degenerate fan triangle: no Whitney form
+      const double ra = -c[ne + h], rb = -c[ne + hn];
+      const double alpha = (g22 * ra - g12 * rb) / det, beta = (g11 * rb - g12 * ra) / det;
+      U.row(f) += (alpha * ea + beta * eb).transpose();
+      ++used;
+    }
+    if (used > 0) U.row(f) /= double(used);
+  }
+  return U;
+}
+
+}  // namespace polydec
