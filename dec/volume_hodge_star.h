@@ -23,6 +23,8 @@
 
 namespace polydec {
 
+using SparseMatrix = Eigen::SparseMatrix<double>;
+
 // P_k: refined.n_simplices(k) x coarse.n_simplices(k), k = 0..3.
 Eigen::SparseMatrix<double> volume_prolongation_k(const VolumeMesh& mesh, const VolumeRefinement& refinement,
                                                   const SimplexComplex3& coarse, const SimplexComplex3& refined,
