@@ -94,7 +94,8 @@ class VolumeMesh {
   // vertices (interior vertices unreferenced), so every surface tool applies to it.
   Mesh boundary_surface() const;
 
-  // Signed volume of cell c (divergence theorem over its fan-triangulated half-faces; positive
+  // Signed volume of cell c (divergence theorem over its half-faces, each split into triangles
+  // around its vertex centroid, so independent of where a face's vertex cycle starts; positive
   // after validation's orientation) and the total.
   double cell_volume(int c) const;
   double volume() const;
