@@ -147,4 +147,21 @@ inline VolumeMesh single_pyramid(double height = 0.7) {
   return volume_from_cells(X, {{{0, 3, 2, 1}, {0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}}});
 }
 
+// One prism over a regular n-gon (2n vertices).
+inline VolumeMesh prism_volume(int n, double height = 0.8) {
+  Eigen::MatrixX3d X(2 * n, 3);
+  for (int k = 0; k < n; ++k) {
+    const double a = 2 * M_PI * k / n;
+    X.row(k) << std::cos(a), std::sin(a), 0.0;
+    X.row(n + k) << std::cos(a), std::sin(a), height;
+  }
+  std::vector<std::vector<int>> faces;
+  std::vector<int> bottom, top;
+  for (int k = 0; k < n; ++k) bottom.push_back(n - 1 - k), top.push_back(n + k);
+  faces.push_back(bottom);
+  faces.push_back(top);
+  for (int k = 0; k < n; ++k) faces.push_back({k, (k + 1) % n, n + (k + 1) % n, n + k});
+  return volume_from_cells(X, {faces});
+}
+
 }  // namespace polydec::test

@@ -203,9 +203,10 @@ TEST_CASE("cell point kernels: squared-volume minimizer and affine weights", "[v
   const Eigen::VectorXd w1 = least_norm_affine_weights(X, x);
   const Eigen::Matrix3d Q = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
   const double s = 1e-5;
-  const Eigen::MatrixX3d Xs = ((s * X * Q.transpose()).rowwise() + Eigen::RowVector3d(1e3, 2e3, -5e2));
-  const Eigen::VectorXd w2 = least_norm_affine_weights(Xs, s * Q * x + Eigen::Vector3d(1e3, 2e3, -5e2));
-  CHECK((w1 - w2).cwiseAbs().maxCoeff() < 1e-8);
+  const Eigen::Vector3d shift = s * Eigen::Vector3d(3e2, 2e2, -5e2);  // far from the points, relative to their size
+  const Eigen::MatrixX3d Xs = ((s * X * Q.transpose()).rowwise() + shift.transpose());
+  const Eigen::VectorXd w2 = least_norm_affine_weights(Xs, s * Q * x + shift);
+  CHECK((w1 - w2).cwiseAbs().maxCoeff() < 1e-11);
   CHECK((X.transpose() * w1 - x).norm() < 1e-14);
   // The least-norm weights have the smaller norm of the two rules' weights over the same points.
   const Eigen::VectorXd w3 = last_pinned_affine_weights(X, x);

@@ -10,6 +10,7 @@
 #include "polydec/dec/volume_generators.h"
 #include "polydec/dec/volume_hodge_star.h"
 #include "polydec/operators/volume_laplacian.h"
+#include "tests/dec/volume_test_meshes.h"
 #include "tests/support.h"
 
 using namespace polydec;
@@ -95,12 +96,14 @@ TEST_CASE("shared cube meshes: DEC identities", "[volume][volume-dec]") {
     CHECK(relative_difference(SparseMatrix(-D.d[0].transpose() * D.star[1] * D.d[0]), L.S) < 1e-12);
     CHECK(relative_difference(D.star[0], L.M) < 1e-12);
   }
-  // Whole truncated octahedra (24 vertices) are refused with a message naming the cell.
-  const VolumeMesh big = truncated_octahedra_volume(2);
-  int largest = 0;
-  for (int c = 0; c < big.n_cells(); ++c) largest = std::max(largest, int(big.cell_vertices(c).size()));
-  REQUIRE(largest > kMaxDecCellVertices);
-  CHECK_THROWS_WITH(volume_coarse_complex(big), Catch::Contains("vertices") && Catch::Contains("cell"));
+  // A cell with more vertices than kMaxDecCellVertices (a 7-gonal prism, 14 vertices) is refused
+  // with a message naming the cell.
+  const VolumeMesh prism = test::prism_volume(7);
+  REQUIRE(int(prism.cell_vertices(0).size()) > kMaxDecCellVertices);
+  CHECK_THROWS_WITH(volume_coarse_complex(prism), Catch::Contains("cell 0") && Catch::Contains("14 vertices"));
+  // Its Laplacian has no such limit.
+  const VolumeLaplacian L = assemble_volume_laplacian(prism, refine_volume(prism));
+  CHECK(std::abs(L.M_lumped.sum() - prism.volume()) < 1e-12 * prism.volume());
 }
 
 }  // namespace test_volume_laplacian_files

@@ -16,6 +16,7 @@
 #include "polydec/dec/volume_generators.h"
 #include "polydec/dec/volume_hodge_star.h"
 #include "polydec/operators/volume_laplacian.h"
+#include "tests/dec/volume_test_meshes.h"
 #include "tests/support.h"
 
 using namespace polydec;
@@ -121,8 +122,8 @@ TEST_CASE("polydec dec on volume meshes", "[volume][volume-dec][cli]") {
   CHECK(lines == D.coarse.n_quads());
 
   // Cells with more than kMaxDecCellVertices vertices: bad input naming the cell.
-  write_volume_mesh(truncated_octahedra_volume(2), s.path("trunc.ovm"));
-  r = run(s.dir, "dec " + s.path("trunc.ovm") + " --out " + s.path("t"));
+  write_volume_mesh(test::prism_volume(7), s.path("prism.ovm"));
+  r = run(s.dir, "dec " + s.path("prism.ovm") + " --out " + s.path("t"));
   CHECK(r.code == 3);
   CHECK(r.err.find("cell") != std::string::npos);
 }
