@@ -25,8 +25,8 @@ int find(const std::vector<std::array<int, K>>& v, std::span<const int> s) {
 }
 
 template <size_t K>
-Eigen::SparseMatrix<double> coboundary(const SimplexComplex3& cx, const std::vector<std::array<int, K>>& cells,
-                                       int n_faces) {
+Eigen::SparseMatrix<double> coboundary(const SimplexComplex3& cx,
+                                       const std::vector<std::array<int, K>>& cells, int n_faces) {
   std::vector<Eigen::Triplet<double>> t;
   t.reserve(cells.size() * K);
   std::array<int, K - 1> face;
@@ -46,7 +46,8 @@ Eigen::SparseMatrix<double> coboundary(const SimplexComplex3& cx, const std::vec
 }  // namespace
 }  // namespace volume_complex_detail
 
-SimplexComplex3::SimplexComplex3(int n_vertices, const std::vector<int>& offsets, const std::vector<int>& groups)
+SimplexComplex3::SimplexComplex3(int n_vertices, const std::vector<int>& offsets,
+                                 const std::vector<int>& groups)
     : n_vertices_(n_vertices) {
   std::vector<int> g;
   for (size_t k = 0; k + 1 < offsets.size(); ++k) {
@@ -69,38 +70,51 @@ SimplexComplex3::SimplexComplex3(int n_vertices, const std::vector<int>& offsets
 
 int SimplexComplex3::n_simplices(int k) const {
   switch (k) {
-    case 0: return n_vertices_;
-    case 1: return n_pairs();
-    case 2: return n_triples();
-    case 3: return n_quads();
-    default: throw std::invalid_argument("simplex dimension " + std::to_string(k) + " (0..3)");
+    case 0:
+      return n_vertices_;
+    case 1:
+      return n_pairs();
+    case 2:
+      return n_triples();
+    case 3:
+      return n_quads();
+    default:
+      throw std::invalid_argument("simplex dimension " + std::to_string(k) + " (0..3)");
   }
 }
 
 int SimplexComplex3::index(std::span<const int> s) const {
   switch (s.size()) {
-    case 1: return s[0] >= 0 && s[0] < n_vertices_ ? s[0] : -1;
-    case 2: return volume_complex_detail::find(pairs_, s);
-    case 3: return volume_complex_detail::find(triples_, s);
-    case 4: return volume_complex_detail::find(quads_, s);
-    default: return -1;
+    case 1:
+      return s[0] >= 0 && s[0] < n_vertices_ ? s[0] : -1;
+    case 2:
+      return volume_complex_detail::find(pairs_, s);
+    case 3:
+      return volume_complex_detail::find(triples_, s);
+    case 4:
+      return volume_complex_detail::find(quads_, s);
+    default:
+      return -1;
   }
 }
 
 Eigen::SparseMatrix<double> SimplexComplex3::d(int k) const {
   switch (k) {
-    case 0: return volume_complex_detail::coboundary(*this, pairs_, n_vertices_);
-    case 1: return volume_complex_detail::coboundary(*this, triples_, n_pairs());
-    case 2: return volume_complex_detail::coboundary(*this, quads_, n_triples());
-    default: throw std::invalid_argument("d_k for k = " + std::to_string(k) + " (0..2)");
+    case 0:
+      return volume_complex_detail::coboundary(*this, pairs_, n_vertices_);
+    case 1:
+      return volume_complex_detail::coboundary(*this, triples_, n_pairs());
+    case 2:
+      return volume_complex_detail::coboundary(*this, quads_, n_triples());
+    default:
+      throw std::invalid_argument("d_k for k = " + std::to_string(k) + " (0..2)");
   }
 }
 
 Eigen::MatrixXi SimplexComplex3::simplices(int k) const {
   Eigen::MatrixXi out(n_simplices(k), k + 1);
   for (int s = 0; s < out.rows(); ++s)
-    for (int j = 0; j <= k; ++j)
-      out(s, j) = k == 1 ? pairs_[s][j] : k == 2 ? triples_[s][j] : quads_[s][j];
+    for (int j = 0; j <= k; ++j) out(s, j) = k == 1 ? pairs_[s][j] : k == 2 ? triples_[s][j] : quads_[s][j];
   return out;
 }
 

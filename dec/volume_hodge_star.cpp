@@ -41,9 +41,10 @@ void prolong_row(const RowMajor& P0, const SimplexComplex3& coarse, std::span<co
   }
   std::sort(candidates.begin(), candidates.end());
   candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
-  candidates.erase(std::remove_if(candidates.begin(), candidates.end(),
-                                  [&](int v) { return std::find(forced.begin(), forced.end(), v) != forced.end(); }),
-                   candidates.end());
+  candidates.erase(
+      std::remove_if(candidates.begin(), candidates.end(),
+                     [&](int v) { return std::find(forced.begin(), forced.end(), v) != forced.end(); }),
+      candidates.end());
   const int nc = int(candidates.size());
   Eigen::Matrix4d A;
   auto emit = [&](std::vector<int> chosen) {
@@ -73,10 +74,11 @@ void prolong_row(const RowMajor& P0, const SimplexComplex3& coarse, std::span<co
 }  // namespace volume_hodge_star_detail
 
 Eigen::SparseMatrix<double> volume_prolongation_k(const VolumeMesh& mesh, const VolumeRefinement& refinement,
-                                                  const SimplexComplex3& coarse, const SimplexComplex3& refined,
-                                                  int k) {
+                                                  const SimplexComplex3& coarse,
+                                                  const SimplexComplex3& refined, int k) {
   using namespace volume_hodge_star_detail;
-  if (k < 0 || k > 3) throw std::invalid_argument("volume_prolongation_k: k = " + std::to_string(k) + " (0..3)");
+  if (k < 0 || k > 3)
+    throw std::invalid_argument("volume_prolongation_k: k = " + std::to_string(k) + " (0..3)");
   const RowMajor P0 = volume_prolongation(mesh, refinement);
   if (k == 0) return Eigen::SparseMatrix<double>(P0);
   const int nV = mesh.n_vertices();
@@ -95,7 +97,8 @@ Eigen::SparseMatrix<double> volume_prolongation_k(const VolumeMesh& mesh, const 
 
 Eigen::SparseMatrix<double> volume_refined_star(const VolumeMesh& mesh, const VolumeRefinement& refinement,
                                                 const SimplexComplex3& refined, int k) {
-  if (k < 0 || k > 3) throw std::invalid_argument("volume_refined_star: k = " + std::to_string(k) + " (0..3)");
+  if (k < 0 || k > 3)
+    throw std::invalid_argument("volume_refined_star: k = " + std::to_string(k) + " (0..3)");
   std::vector<Eigen::Triplet<double>> t;
   for (const RefinedTet& tet : refined_tets(mesh, refinement)) {
     if (k > 0 && tet.quality == SubTet::Degenerate) continue;
@@ -163,9 +166,9 @@ FormSpan volume_form_span(const VolumeDec& dec, const VolumeMesh& mesh, const Vo
   const Eigen::SparseMatrix<double>& P = dec.P[degree];
   const long cols = P.cols();
   if (long(rows.size()) * cols > max_entries)
-    throw std::invalid_argument("volume_form_span: " + std::to_string(rows.size()) + " x " + std::to_string(cols) +
-                                " dense rank decision exceeds the limit of " + std::to_string(max_entries) +
-                                " entries");
+    throw std::invalid_argument("volume_form_span: " + std::to_string(rows.size()) + " x " +
+                                std::to_string(cols) + " dense rank decision exceeds the limit of " +
+                                std::to_string(max_entries) + " entries");
   std::vector<int> index(P.rows(), -1);
   for (size_t i = 0; i < rows.size(); ++i) index[rows[i]] = int(i);
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(long(rows.size()), cols);

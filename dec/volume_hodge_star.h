@@ -27,8 +27,8 @@ using SparseMatrix = Eigen::SparseMatrix<double>;
 
 // P_k: refined.n_simplices(k) x coarse.n_simplices(k), k = 0..3.
 Eigen::SparseMatrix<double> volume_prolongation_k(const VolumeMesh& mesh, const VolumeRefinement& refinement,
-                                                  const SimplexComplex3& coarse, const SimplexComplex3& refined,
-                                                  int k);
+                                                  const SimplexComplex3& coarse,
+                                                  const SimplexComplex3& refined, int k);
 
 // star_k^tet on the refined complex, k = 0..3.
 Eigen::SparseMatrix<double> volume_refined_star(const VolumeMesh& mesh, const VolumeRefinement& refinement,

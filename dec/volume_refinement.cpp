@@ -25,8 +25,8 @@ void halfface_vertices(const VolumeMesh& mesh, int hf, std::vector<int>& out) {
 SubTet classify(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& f,
                 const Eigen::Vector3d& c, double tolerance) {
   const double vol6 = 6.0 * tet_signed_volume(a, b, f, c);
-  const double longest = std::max({(b - a).norm(), (f - a).norm(), (c - a).norm(), (f - b).norm(), (c - b).norm(),
-                                    (c - f).norm()});
+  const double longest = std::max(
+      {(b - a).norm(), (f - a).norm(), (c - a).norm(), (f - b).norm(), (c - b).norm(), (c - f).norm()});
   if (!(std::abs(vol6) > tolerance * longest * longest * longest)) return SubTet::Degenerate;
   // Outward face triangle (a, b, f): its normal n = (b - a) x (f - a) points away from the cell,
   // so a cell point inside gives n . (c - a) < 0, i.e. vol6 < 0.
@@ -68,7 +68,8 @@ Eigen::Vector3d squared_volume_minimizer(const Eigen::MatrixX3d& A, const Eigen:
   Eigen::Vector3d x = Eigen::Vector3d::Zero();
   if (top > 0)
     for (int k = 0; k < 3; ++k)
-      if (lambda(k) > 1e-12 * top) x += eig.eigenvectors().col(k) * (eig.eigenvectors().col(k).dot(r) / lambda(k));
+      if (lambda(k) > 1e-12 * top)
+        x += eig.eigenvectors().col(k) * (eig.eigenvectors().col(k).dot(r) / lambda(k));
   return centre + x;
 }
 
@@ -189,7 +190,8 @@ std::vector<RefinedTet> refined_tets(const VolumeMesh& mesh, const VolumeRefinem
     for (int hf : mesh.cell(c)) {
       halfface_vertices(mesh, hf, hv);
       const int n = int(hv.size());
-      for (int i = 0; i < n; ++i, ++t) out.push_back({{hv[i], hv[(i + 1) % n], nV + hf / 2, nV + nF + c}, refinement.tets[t]});
+      for (int i = 0; i < n; ++i, ++t)
+        out.push_back({{hv[i], hv[(i + 1) % n], nV + hf / 2, nV + nF + c}, refinement.tets[t]});
     }
   }
   return out;

@@ -58,8 +58,8 @@ struct SubTetQuality {
 
 struct VolumeRefinement {
   VolumeRefinementOptions options;
-  std::vector<double> face_weights;  // aligned with VolumeMesh::face_indices(); each face sums to 1
-  Eigen::MatrixX3d face_points;      // |F| x 3
+  std::vector<double> face_weights;         // aligned with VolumeMesh::face_indices(); each face sums to 1
+  Eigen::MatrixX3d face_points;             // |F| x 3
   std::vector<int> cell_weight_offsets{0};  // |C| + 1, aligned with VolumeMesh::cell_vertices(c)
   std::vector<double> cell_weights;         // weights of the cell's vertices (ascending); each cell sums to 1
   Eigen::MatrixX3d cell_points;             // |C| x 3
@@ -71,7 +71,8 @@ struct VolumeRefinement {
   SubTetQuality quality;
 
   std::span<const double> weights_of_cell(int c) const {
-    return {cell_weights.data() + cell_weight_offsets[c], size_t(cell_weight_offsets[c + 1] - cell_weight_offsets[c])};
+    return {cell_weights.data() + cell_weight_offsets[c],
+            size_t(cell_weight_offsets[c + 1] - cell_weight_offsets[c])};
   }
   std::span<const double> weights_of_face(const VolumeMesh& mesh, int f) const {
     return {face_weights.data() + mesh.face_offsets()[f], size_t(mesh.face_size(f))};

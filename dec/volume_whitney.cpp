@@ -43,8 +43,8 @@ Eigen::Matrix4d tet_stiffness(const Eigen::Vector3d& p0, const Eigen::Vector3d& 
   return -std::abs(vol) * (G.transpose() * G);
 }
 
-Eigen::Matrix4d tet_whitney0_mass(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2,
-                                  const Eigen::Vector3d& p3) {
+Eigen::Matrix4d tet_whitney0_mass(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
+                                  const Eigen::Vector3d& p2, const Eigen::Vector3d& p3) {
   const double v = std::abs(tet_signed_volume(p0, p1, p2, p3)) / 20.0;
   return v * (Eigen::Matrix4d::Ones() + Eigen::Matrix4d::Identity());
 }
@@ -66,8 +66,8 @@ Matrix6d tet_whitney1_mass(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
   return M;
 }
 
-Eigen::Matrix4d tet_whitney2_mass(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2,
-                                  const Eigen::Vector3d& p3) {
+Eigen::Matrix4d tet_whitney2_mass(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
+                                  const Eigen::Vector3d& p2, const Eigen::Vector3d& p3) {
   using namespace volume_whitney_detail;
   double vol = 0;
   const Matrix34d G = tet_hat_gradients(p0, p1, p2, p3, &vol);

@@ -35,8 +35,8 @@ Eigen::Matrix4d tet_stiffness(const Eigen::Vector3d& p0, const Eigen::Vector3d& 
                               const Eigen::Vector3d& p3);
 
 // Galerkin mass of the hats (Whitney 0-forms): |vol| / 20 * (1 + delta_ab).
-Eigen::Matrix4d tet_whitney0_mass(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2,
-                                  const Eigen::Vector3d& p3);
+Eigen::Matrix4d tet_whitney0_mass(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
+                                  const Eigen::Vector3d& p2, const Eigen::Vector3d& p3);
 
 // Mass of the six Whitney 1-forms, local edge order above. With G_ab = gl_a . gl_b and
 // int lambda_a lambda_c = |vol| (1 + delta_ac) / 20:
@@ -46,8 +46,8 @@ Matrix6d tet_whitney1_mass(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
 
 // Mass of the four Whitney 2-forms, local triangle order above: with phi_abc = 2 sum_p lambda_p v_p,
 //   M = 4 sum_{p, q} |vol| (1 + delta_pq) / 20 v_p . v'_q.
-Eigen::Matrix4d tet_whitney2_mass(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2,
-                                  const Eigen::Vector3d& p3);
+Eigen::Matrix4d tet_whitney2_mass(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
+                                  const Eigen::Vector3d& p2, const Eigen::Vector3d& p3);
 
 // Inner product of the Whitney 3-form with itself: 1 / |vol|, whatever the orientation.
 double tet_whitney3_mass(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2,

@@ -67,7 +67,8 @@ SparseMatrix cell_pattern(const VolumeMesh& mesh) {
     outer[v + 1] = int(inner.size());
   }
   std::vector<double> values(inner.size(), 0.0);
-  return Eigen::Map<const SparseMatrix>(nV, nV, long(inner.size()), outer.data(), inner.data(), values.data());
+  return Eigen::Map<const SparseMatrix>(nV, nV, long(inner.size()), outer.data(), inner.data(),
+                                        values.data());
 }
 
 void cell_matrices(const VolumeMesh& mesh, const VolumeRefinement& refinement, int c, Eigen::MatrixXd* S,

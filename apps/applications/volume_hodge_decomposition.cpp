@@ -32,7 +32,8 @@ VolumeHodgeDecomposer::VolumeHodgeDecomposer(const VolumeMesh& mesh, const Volum
     has_pin[r] = 1;
   }
   const SparseMatrix A = d0.transpose() * star1 * d0;
-  poisson_ = std::make_unique<SparseCholesky>(pin_to_identity(A, pinned_), "Poisson matrix d0^T star1 d0 (pinned)");
+  poisson_ =
+      std::make_unique<SparseCholesky>(pin_to_identity(A, pinned_), "Poisson matrix d0^T star1 d0 (pinned)");
 
   // Closed Whitney forms on the span: the null space of R^T d1^T star2 d1 R.
   const FormSpan span = volume_form_span(dec_, mesh, refinement, 1);

@@ -39,14 +39,16 @@ Eigen::Vector3d w1(const Eigen::Matrix<double, 3, 4>& G, int e, const Eigen::Vec
 }
 Eigen::Vector3d w2(const Eigen::Matrix<double, 3, 4>& G, int t, const Eigen::Vector4d& l) {
   const int a = kTris[t][0], b = kTris[t][1], c = kTris[t][2];
-  return 2 * (l(a) * G.col(b).cross(G.col(c)) + l(b) * G.col(c).cross(G.col(a)) + l(c) * G.col(a).cross(G.col(b)));
+  return 2 * (l(a) * G.col(b).cross(G.col(c)) + l(b) * G.col(c).cross(G.col(a)) +
+              l(c) * G.col(a).cross(G.col(b)));
 }
 
 double max_abs(const SparseMatrix& A) { return A.nonZeros() ? A.coeffs().cwiseAbs().maxCoeff() : 0.0; }
 
 }  // namespace
 
-TEST_CASE("Whitney forms of a tetrahedron: quadrature, unit integrals, d0/d1 energies", "[volume][volume-dec]") {
+TEST_CASE("Whitney forms of a tetrahedron: quadrature, unit integrals, d0/d1 energies",
+          "[volume][volume-dec]") {
   std::mt19937 rng(42);
   std::uniform_real_distribution<double> u(-1, 1);
   for (int trial = 0; trial < 5; ++trial) {
@@ -108,13 +110,14 @@ TEST_CASE("Whitney forms of a tetrahedron: quadrature, unit integrals, d0/d1 ene
   }
 }
 
-TEST_CASE("volume DEC: d d = 0, commuting prolongations, S = -d0^T star1 d0, star0 = M", "[volume][volume-dec]") {
+TEST_CASE("volume DEC: d d = 0, commuting prolongations, S = -d0^T star1 d0, star0 = M",
+          "[volume][volume-dec]") {
   Eigen::MatrixX3d Z = test::grid_positions(2, 2, 2);
   test::jitter_interior(Z, 2, 2, 2, 0.25, 9);
   Eigen::MatrixX3d T = test::grid_positions(2, 2, 2);
   test::jitter_interior(T, 2, 2, 2, 0.3, 4);
-  const VolumeMesh meshes[] = {test::hex_grid_mesh(2, 2, 2, &Z), test::tet_grid_mesh(2, 2, 2, &T), test::single_pyramid(),
-                               test::hex_solid_torus(5)};
+  const VolumeMesh meshes[] = {test::hex_grid_mesh(2, 2, 2, &Z), test::tet_grid_mesh(2, 2, 2, &T),
+                               test::single_pyramid(), test::hex_solid_torus(5)};
   for (const VolumeMesh& mesh : meshes) {
     const VolumeRefinement R = refine_volume(mesh);
     const VolumeDec D = volume_dec(mesh, R);
@@ -132,11 +135,13 @@ TEST_CASE("volume DEC: d d = 0, commuting prolongations, S = -d0^T star1 d0, sta
     const VolumeLaplacian L = assemble_volume_laplacian(mesh, R);
     CHECK(relative_difference(SparseMatrix(-D.d[0].transpose() * D.star[1] * D.d[0]), L.S) < 1e-12);
     CHECK(relative_difference(D.star[0], L.M) < 1e-12);
-    for (int k = 0; k < 4; ++k) CHECK(relative_difference(D.star[k], SparseMatrix(D.star[k].transpose())) < 1e-14);
+    for (int k = 0; k < 4; ++k)
+      CHECK(relative_difference(D.star[k], SparseMatrix(D.star[k].transpose())) < 1e-14);
   }
 }
 
-TEST_CASE("volume DEC on tetrahedral meshes: the stars are the Whitney stars of the tetrahedra", "[volume][volume-dec]") {
+TEST_CASE("volume DEC on tetrahedral meshes: the stars are the Whitney stars of the tetrahedra",
+          "[volume][volume-dec]") {
   Eigen::MatrixX3d T = test::grid_positions(2, 2, 1);
   test::jitter_interior(T, 2, 2, 1, 0.3, 8);
   const VolumeMesh mesh = test::tet_grid_mesh(2, 2, 1, &T);
@@ -159,7 +164,8 @@ TEST_CASE("volume DEC on tetrahedral meshes: the stars are the Whitney stars of 
       f[k] = D.coarse.index(s);
     }
     for (int a = 0; a < 4; ++a)
-      for (int b = 0; b < 4; ++b) t[0].emplace_back(v[a], v[b], M0(a, b)), t[2].emplace_back(f[a], f[b], M2(a, b));
+      for (int b = 0; b < 4; ++b)
+        t[0].emplace_back(v[a], v[b], M0(a, b)), t[2].emplace_back(f[a], f[b], M2(a, b));
     for (int a = 0; a < 6; ++a)
       for (int b = 0; b < 6; ++b) t[1].emplace_back(e[a], e[b], M1(a, b));
     const int q[4] = {v[0], v[1], v[2], v[3]};
@@ -173,10 +179,12 @@ TEST_CASE("volume DEC on tetrahedral meshes: the stars are the Whitney stars of 
   CHECK(D.coarse.n_quads() == mesh.n_cells());
 }
 
-TEST_CASE("volume DEC: ranks of the stars, positive definite on the span, solving on the span", "[volume][volume-dec]") {
+TEST_CASE("volume DEC: ranks of the stars, positive definite on the span, solving on the span",
+          "[volume][volume-dec]") {
   Eigen::MatrixX3d Z = test::grid_positions(2, 2, 1);
   test::jitter_interior(Z, 2, 2, 1, 0.25, 2);
-  const VolumeMesh meshes[] = {test::hex_grid_mesh(1, 1, 1), test::hex_grid_mesh(2, 2, 1, &Z), test::single_pyramid()};
+  const VolumeMesh meshes[] = {test::hex_grid_mesh(1, 1, 1), test::hex_grid_mesh(2, 2, 1, &Z),
+                               test::single_pyramid()};
   std::mt19937 rng(1);
   std::normal_distribution<double> g;
   for (const VolumeMesh& mesh : meshes) {
@@ -212,14 +220,16 @@ TEST_CASE("volume DEC: ranks of the stars, positive definite on the span, solvin
   }
 }
 
-TEST_CASE("volume Hodge decomposition: harmonic dimension is the first Betti number", "[volume][volume-dec]") {
+TEST_CASE("volume Hodge decomposition: harmonic dimension is the first Betti number",
+          "[volume][volume-dec]") {
   Eigen::MatrixX3d Z = test::grid_positions(2, 2, 2);
   test::jitter_interior(Z, 2, 2, 2, 0.2, 6);
   struct Case {
     VolumeMesh mesh;
     int betti1;
   };
-  const Case cases[] = {{test::hex_grid_mesh(2, 2, 2, &Z), 0}, {test::tet_grid_mesh(2, 1, 1), 0},
+  const Case cases[] = {{test::hex_grid_mesh(2, 2, 2, &Z), 0},
+                        {test::tet_grid_mesh(2, 1, 1), 0},
                         {test::hex_solid_torus(6), 1}};
   std::mt19937 rng(3);
   std::normal_distribution<double> g;
@@ -242,7 +252,8 @@ TEST_CASE("volume Hodge decomposition: harmonic dimension is the first Betti num
     const Eigen::VectorXd curl = D.d[1] * p.harmonic;
     const Eigen::VectorXd curl_omega = D.d[1] * omega;
     CHECK(curl.dot(D.star[2] * curl) <= 1e-16 * curl_omega.dot(D.star[2] * curl_omega));
-    CHECK((D.d[0].transpose() * (star1 * p.harmonic)).norm() <= 1e-9 * (D.d[0].transpose() * (star1 * omega)).norm() + 1e-12);
+    CHECK((D.d[0].transpose() * (star1 * p.harmonic)).norm() <=
+          1e-9 * (D.d[0].transpose() * (star1 * omega)).norm() + 1e-12);
     if (c.betti1 > 0) CHECK(p.norm_harmonic > 1e-3 * p.norm);
     // The exact part of an exact form is the form itself.
     Eigen::VectorXd u(c.mesh.n_vertices());

@@ -91,7 +91,8 @@ inline VolumeMesh hex_grid_mesh(int nx, int ny, int nz, const Eigen::MatrixX3d* 
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i) {
         int c[8];
-        for (int b = 0; b < 8; ++b) c[b] = grid_index(i + (b & 1), j + ((b >> 1) & 1), k + ((b >> 2) & 1), nx, ny);
+        for (int b = 0; b < 8; ++b)
+          c[b] = grid_index(i + (b & 1), j + ((b >> 1) & 1), k + ((b >> 2) & 1), nx, ny);
         cells.push_back(hex_faces(c));
       }
   return volume_from_cells(X, cells);

@@ -44,7 +44,8 @@ void reference_tet_mesh(const VolumeMesh& mesh, SparseMatrix& S, SparseMatrix& M
     Eigen::Matrix4d Sl, Ml;
     reference_tet(p, Sl, Ml);
     for (int a = 0; a < 4; ++a)
-      for (int b = 0; b < 4; ++b) ts.emplace_back(v[a], v[b], Sl(a, b)), tm.emplace_back(v[a], v[b], Ml(a, b));
+      for (int b = 0; b < 4; ++b)
+        ts.emplace_back(v[a], v[b], Sl(a, b)), tm.emplace_back(v[a], v[b], Ml(a, b));
   }
   S.resize(mesh.n_vertices(), mesh.n_vertices());
   M.resize(mesh.n_vertices(), mesh.n_vertices());
@@ -119,7 +120,8 @@ void reference_polylaplace(const VolumeMesh& mesh, SparseMatrix& S, SparseMatrix
     int j = 0;
     for (int hf : mesh.cell(c)) {
       const auto face = mesh.face(hf / 2);
-      for (size_t i = 0; i < face.size(); ++i) tp.emplace_back(nV + nF + c, face[i], lambda(j) * fw[hf / 2](i));
+      for (size_t i = 0; i < face.size(); ++i)
+        tp.emplace_back(nV + nF + c, face[i], lambda(j) * fw[hf / 2](i));
       ++j;
     }
     for (int v : verts) tp.emplace_back(nV + nF + c, v, lambda(j++));
@@ -133,7 +135,8 @@ void reference_polylaplace(const VolumeMesh& mesh, SparseMatrix& S, SparseMatrix
     Eigen::Matrix4d Sl, Ml;
     reference_tet(p, Sl, Ml);
     for (int a = 0; a < 4; ++a)
-      for (int b = 0; b < 4; ++b) ts.emplace_back(t[a], t[b], Sl(a, b)), tm.emplace_back(t[a], t[b], Ml(a, b));
+      for (int b = 0; b < 4; ++b)
+        ts.emplace_back(t[a], t[b], Sl(a, b)), tm.emplace_back(t[a], t[b], Ml(a, b));
   }
   SparseMatrix St(P.rows(), P.rows()), Mt(P.rows(), P.rows());
   St.setFromTriplets(ts.begin(), ts.end());
@@ -203,7 +206,8 @@ TEST_CASE("cell point kernels: squared-volume minimizer and affine weights", "[v
   const Eigen::VectorXd w1 = least_norm_affine_weights(X, x);
   const Eigen::Matrix3d Q = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
   const double s = 1e-5;
-  const Eigen::Vector3d shift = s * Eigen::Vector3d(3e2, 2e2, -5e2);  // far from the points, relative to their size
+  const Eigen::Vector3d shift =
+      s * Eigen::Vector3d(3e2, 2e2, -5e2);  // far from the points, relative to their size
   const Eigen::MatrixX3d Xs = ((s * X * Q.transpose()).rowwise() + shift.transpose());
   const Eigen::VectorXd w2 = least_norm_affine_weights(Xs, s * Q * x + shift);
   CHECK((w1 - w2).cwiseAbs().maxCoeff() < 1e-11);
@@ -214,7 +218,8 @@ TEST_CASE("cell point kernels: squared-volume minimizer and affine weights", "[v
   CHECK(w1.norm() <= w3.norm() + 1e-15);
 }
 
-TEST_CASE("single tetrahedron and tetrahedral grids: the standard linear FEM, both rules", "[volume][volume-operators]") {
+TEST_CASE("single tetrahedron and tetrahedral grids: the standard linear FEM, both rules",
+          "[volume][volume-operators]") {
   Eigen::MatrixX3d X = test::grid_positions(3, 3, 3);
   test::jitter_interior(X, 3, 3, 3, 0.15, 7);
   const VolumeMesh mesh = test::tet_grid_mesh(3, 3, 3, &X);
@@ -275,7 +280,8 @@ TEST_CASE("volume operators: translation and scale invariance", "[volume][volume
   }
 }
 
-TEST_CASE("volume refinement: degenerate sub-tetrahedra are reported and add no stiffness", "[volume][volume-operators]") {
+TEST_CASE("volume refinement: degenerate sub-tetrahedra are reported and add no stiffness",
+          "[volume][volume-operators]") {
   // A hexahedron squashed to a relative height of 1e-12: every sub-tetrahedron is flat.
   Eigen::MatrixX3d X = test::grid_positions(1, 1, 1);
   X.col(2) *= 1e-12;
@@ -290,10 +296,12 @@ TEST_CASE("volume refinement: degenerate sub-tetrahedra are reported and add no 
   CHECK(refine_volume(test::hex_grid_mesh(1, 1, 1)).quality.ok());
 }
 
-TEST_CASE("polyLaplace weight rule equals an independent reference of that construction", "[volume][volume-operators]") {
+TEST_CASE("polyLaplace weight rule equals an independent reference of that construction",
+          "[volume][volume-operators]") {
   Eigen::MatrixX3d Z = test::grid_positions(2, 2, 2);
   test::jitter_interior(Z, 2, 2, 2, 0.25, 5);
-  const VolumeMesh meshes[] = {test::hex_grid_mesh(2, 2, 2, &Z), test::single_pyramid(), test::hex_solid_torus(6)};
+  const VolumeMesh meshes[] = {test::hex_grid_mesh(2, 2, 2, &Z), test::single_pyramid(),
+                               test::hex_solid_torus(6)};
   VolumeRefinementOptions o;
   o.cell_rule = CellPointRule::PolyLaplace;
   for (const VolumeMesh& mesh : meshes) {
@@ -304,15 +312,18 @@ TEST_CASE("polyLaplace weight rule equals an independent reference of that const
     CHECK(relative_difference(L.M, Mr) < 1e-10);
     // The default rule puts the cell point at the same place but weighs it differently.
     const VolumeRefinement Rd = refine_volume(mesh);
-    CHECK((Rd.cell_points - refine_volume(mesh, o).cell_points).norm() < 1e-12 * mesh.bounding_box_diagonal());
+    CHECK((Rd.cell_points - refine_volume(mesh, o).cell_points).norm() <
+          1e-12 * mesh.bounding_box_diagonal());
   }
 }
 
-TEST_CASE("polyLaplace weight rule on the shared cube meshes equals the independent reference", "[volume][volume-operators]") {
+TEST_CASE("polyLaplace weight rule on the shared cube meshes equals the independent reference",
+          "[volume][volume-operators]") {
   VolumeRefinementOptions o;
   o.cell_rule = CellPointRule::PolyLaplace;
-  for (const char* name : {"volume/cube_hexahedron_1.ovm", "volume/cube_pyramids_1.ovm", "volume/cube_truncated_1.ovm",
-                           "volume/cube_pyramids_2.ovm", "volume/cube_truncated_2.ovm"}) {
+  for (const char* name :
+       {"volume/cube_hexahedron_1.ovm", "volume/cube_pyramids_1.ovm", "volume/cube_truncated_1.ovm",
+        "volume/cube_pyramids_2.ovm", "volume/cube_truncated_2.ovm"}) {
     const std::string path = test::shared_path(name);
     if (path.empty()) {
       WARN("skipped: " << name << " missing");

@@ -32,8 +32,8 @@ double max_interior_defect(const VolumeMesh& mesh, const SparseMatrix& S) {
 }  // namespace
 
 TEST_CASE("shared cube meshes: S, M properties and linear precision", "[volume][volume-operators]") {
-  for (const char* name : {"volume/cube_hexahedron_2.ovm", "volume/cube_pyramids_2.ovm", "volume/cube_truncated_2.ovm",
-                           "volume/cube_tetrahedron_1.ovm"}) {
+  for (const char* name : {"volume/cube_hexahedron_2.ovm", "volume/cube_pyramids_2.ovm",
+                           "volume/cube_truncated_2.ovm", "volume/cube_tetrahedron_1.ovm"}) {
     const std::string path = test::shared_path(name);
     if (path.empty()) {
       WARN("skipped: " << name << " missing");
@@ -79,8 +79,8 @@ TEST_CASE("shared tetrahedral cubes: both cell-point rules give the same S", "[v
 }
 
 TEST_CASE("shared cube meshes: DEC identities", "[volume][volume-dec]") {
-  for (const char* name : {"volume/cube_hexahedron_1.ovm", "volume/cube_pyramids_1.ovm", "volume/cube_truncated_1.ovm",
-                           "volume/noisycube.ovm"}) {
+  for (const char* name : {"volume/cube_hexahedron_1.ovm", "volume/cube_pyramids_1.ovm",
+                           "volume/cube_truncated_1.ovm", "volume/noisycube.ovm"}) {
     const std::string path = test::shared_path(name);
     if (path.empty()) {
       WARN("skipped: " << name << " missing");
@@ -100,7 +100,8 @@ TEST_CASE("shared cube meshes: DEC identities", "[volume][volume-dec]") {
   // with a message naming the cell.
   const VolumeMesh prism = test::prism_volume(7);
   REQUIRE(int(prism.cell_vertices(0).size()) > kMaxDecCellVertices);
-  CHECK_THROWS_WITH(volume_coarse_complex(prism), Catch::Contains("cell 0") && Catch::Contains("14 vertices"));
+  CHECK_THROWS_WITH(volume_coarse_complex(prism),
+                    Catch::Contains("cell 0") && Catch::Contains("14 vertices"));
   // Its Laplacian has no such limit.
   const VolumeLaplacian L = assemble_volume_laplacian(prism, refine_volume(prism));
   CHECK(std::abs(L.M_lumped.sum() - prism.volume()) < 1e-12 * prism.volume());

@@ -82,7 +82,8 @@ TEST_CASE("polydec operators on volume meshes", "[volume][volume-operators][cli]
 
   // --volume on a file without a volume extension; --cell-point polylaplace.
   fs::copy_file(s.path("hex.ovm"), s.path("hex.dat"));
-  r = run(s.dir, "operators " + s.path("hex.dat") + " --volume --cell-point polylaplace --out " + s.path("pl"));
+  r = run(s.dir,
+          "operators " + s.path("hex.dat") + " --volume --cell-point polylaplace --out " + s.path("pl"));
   REQUIRE(r.code == 0);
   VolumeRefinementOptions o;
   o.cell_rule = CellPointRule::PolyLaplace;
@@ -109,7 +110,8 @@ TEST_CASE("polydec dec on volume meshes", "[volume][volume-dec][cli]") {
   for (int k = 0; k < 4; ++k) {
     star[k] = read_matrix_market(s.path("dec/star" + std::to_string(k) + ".mtx"));
     CHECK(relative_difference(star[k], D.star[k]) < 1e-14);
-    CHECK(relative_difference(read_matrix_market(s.path("dec/P" + std::to_string(k) + ".mtx")), D.P[k]) < 1e-14);
+    CHECK(relative_difference(read_matrix_market(s.path("dec/P" + std::to_string(k) + ".mtx")), D.P[k]) <
+          1e-14);
   }
   CHECK(SparseMatrix(d[1] * d[0]).norm() == 0.0);
   CHECK(SparseMatrix(d[2] * d[1]).norm() == 0.0);
