@@ -8,8 +8,10 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <numeric>
 #include <random>
 #include <stdexcept>
+#include <tuple>
 
 #include "polydec/dec/polyhedron_builder.h"
 
@@ -53,7 +55,18 @@ struct Plane {
   long long d;
 };
 
-std::vector<std::vector<std::array<long long, 3>>> integer_convex_cell(const std::vector<Plane>& planes) {
+std::vector<std::vector<std::array<long long, 3>>> integer_convex_cell(std::vector<Plane> planes) {
+  // The same plane twice (a box side that is also a bisector) would give its face twice.
+  for (auto& p : planes) {
+    const long long g =
+        std::gcd(std::gcd(std::gcd(std::abs(p.n[0]), std::abs(p.n[1])), std::abs(p.n[2])), std::abs(p.d));
+    if (g > 1) p = {{p.n[0] / g, p.n[1] / g, p.n[2] / g}, p.d / g};
+  }
+  std::sort(planes.begin(), planes.end(),
+            [](const Plane& a, const Plane& b) { return std::tie(a.n, a.d) < std::tie(b.n, b.d); });
+  planes.erase(std::unique(planes.begin(), planes.end(),
+                           [](const Plane& a, const Plane& b) { return a.n == b.n && a.d == b.d; }),
+               planes.end());
   std::vector<std::array<long long, 3>> verts;
   const size_t np = planes.size();
   for (size_t a = 0; a < np; ++a)
@@ -101,7 +114,23 @@ std::vector<std::vector<std::array<long long, 3>>> integer_convex_cell(const std
       return std::atan2(d.dot(w), d.dot(u));
     };
     std::sort(on.begin(), on.end(), [&](const auto& x, const auto& y) { return angle(x) < angle(y); });
-    faces.push_back(std::move(on));
+    // A point where a third plane touches an edge is no vertex: drop corners collinear with their
+    // neighbours (exact in integers); a plane that only touches an edge leaves fewer than 3.
+    for (bool changed = true; changed && on.size() >= 3;) {
+      changed = false;
+      for (size_t i = 0; i < on.size(); ++i) {
+        const auto &a = on[(i + on.size() - 1) % on.size()], &b = on[i], &c = on[(i + 1) % on.size()];
+        const std::array<long long, 3> u{b[0] - a[0], b[1] - a[1], b[2] - a[2]},
+            v{c[0] - b[0], c[1] - b[1], c[2] - b[2]};
+        if (u[1] * v[2] - u[2] * v[1] == 0 && u[2] * v[0] - u[0] * v[2] == 0 &&
+            u[0] * v[1] - u[1] * v[0] == 0) {
+          on.erase(on.begin() + long(i));
+          changed = true;
+          break;
+        }
+      }
+    }
+    if (on.size() >= 3) faces.push_back(std::move(on));
   }
   return faces;
 }

@@ -58,7 +58,7 @@ void expect_file_error(const std::string& text, const char* format, long line, c
     CHECK(e.file == "bad");
     CHECK(e.line == line);
     CHECK(e.reason.find(reason) != std::string::npos);
-    CHECK(std::string(e.what()).find(fmt::format("bad:{}: ", line)) == 0);
+    CHECK(std::string(e.what()).find(line > 0 ? fmt::format("bad:{}: ", line) : std::string("bad: ")) == 0);
   }
 }
 
@@ -225,8 +225,7 @@ TEST_CASE("MEDIT: tetrahedra and hexahedra, references ignored, hostile files", 
   expect_file_error(replace(g, "2 3 4 5 3", "2 3 4 0 3"), "mesh", 17, "vertex index 0 out of range");
   expect_file_error(replace(g, "Tetrahedra\n2", "Tetrahedra\n3"), "mesh", 15,
                     "Tetrahedra count 3 needs at least 30 bytes");
-  expect_file_error(replace(g, "1 2 3 4 0\n2 3 4 5 3\nEnd", "1 2 3 4 0\n2 3 4 5 3 End"), "mesh", 17,
-                    "bad element reference 'End'");
+  expect_file_error(replace(g, "2 3 4 5 3\nEnd", "2 3 4 5 End"), "mesh", 17, "bad element reference 'End'");
   expect_file_error(replace(g, "Tetrahedra\n2", "Tetrahedra\n4000"), "mesh", 15,
                     "Tetrahedra count 4000 needs");
   expect_file_error(replace(g, "Triangles", "Prisms"), "mesh", 11, "'Prisms' is not supported");
