@@ -8,6 +8,7 @@
 #include <random>
 
 #include "polydec/apps/applications/volume_hodge_decomposition.h"
+#include "polydec/dec/volume_generators.h"
 #include "polydec/dec/volume_hodge_star.h"
 #include "polydec/dec/volume_whitney.h"
 #include "polydec/operators/span_solver.h"
@@ -230,7 +231,7 @@ TEST_CASE("volume Hodge decomposition: harmonic dimension is the first Betti num
   };
   const Case cases[] = {{test::hex_grid_mesh(2, 2, 2, &Z), 0},
                         {test::tet_grid_mesh(2, 1, 1), 0},
-                        {test::hex_solid_torus(6), 1}};
+                        {test::hex_solid_torus(6), 1}, {hex_torus_volume(8, 2, 1.0, 0.4, {0.15, 2}), 1}};
   std::mt19937 rng(3);
   std::normal_distribution<double> g;
   for (const Case& c : cases) {

@@ -10,6 +10,7 @@
 
 #include "polydec/dec/io_volume.h"
 #include "polydec/dec/virtual_vertex.h"
+#include "polydec/dec/volume_generators.h"
 #include "polydec/dec/volume_refinement.h"
 #include "polydec/operators/volume_laplacian.h"
 #include "tests/dec/volume_test_meshes.h"
@@ -250,7 +251,10 @@ TEST_CASE("hexahedral grids and a pyramid: properties and linear precision", "[v
     Y(v, 2) = Y(v, 2) * Y(v, 2) + 0.2 * Y(v, 2);
   }
   const VolumeMesh graded = test::hex_grid_mesh(3, 3, 3, &Y);
-  for (const VolumeMesh* m : {&affine, &graded}) {
+  // Generated meshes with planar faces: clipped truncated octahedra and pyramids (dec/volume_generators.h).
+  const VolumeMesh truncated = truncated_octahedra_volume(2);
+  const VolumeMesh pyramids = pyramid_grid_volume(2, 2, 2);
+  for (const VolumeMesh* m : {&affine, &graded, &truncated, &pyramids}) {
     const VolumeRefinement R = refine_volume(*m);
     CHECK(R.quality.ok());
     const VolumeLaplacian L = assemble_volume_laplacian(*m, R);
