@@ -2,7 +2,7 @@
 # fuzz/run.sh [SECONDS] — builds the libFuzzer targets (clang++, AddressSanitizer +
 # UndefinedBehaviorSanitizer, LeakSanitizer) in their own directory, outside the CMake build,
 # and runs each for SECONDS (default 60; the Matrix Market target for a quarter of it) from
-# the committed seed corpus. Exits non-zero on any crash, leak, timeout, allocation beyond
+# the committed seed corpus, two targets at a time (each with its own log and exit status). Exits non-zero on any crash, leak, timeout, allocation beyond
 # the limit, or sanitizer report; the offending input is left in $OUT/artifacts/.
 #   OUT (default build-fuzz/ beside fuzz/) may be set with POLYDEC_FUZZ_BUILD.
 set -euo pipefail
@@ -27,7 +27,9 @@ newest_header=$(ls -t "$ROOT"/dec/*.h "$ROOT"/operators/*.h | head -1)
 stale=()
 SOURCES=(dec/io.cpp dec/io_obj.cpp dec/io_off.cpp dec/io_ply.cpp dec/io_matrix_market.cpp dec/mesh.cpp
          dec/virtual_vertex.cpp dec/refinement.cpp dec/complex.cpp dec/prolongation.cpp
-         operators/local_matrices.cpp operators/laplacian.cpp operators/gradient.cpp)
+         operators/local_matrices.cpp operators/laplacian.cpp operators/gradient.cpp
+         dec/volume_mesh.cpp dec/polyhedron_builder.cpp dec/volume_cells.cpp dec/io_volume.cpp dec/io_ovm.cpp
+         dec/io_vtk.cpp dec/io_medit.cpp)
 for rel in "${SOURCES[@]}"; do
   src=$ROOT/$rel
   obj="$OUT/objects/$(basename "$(dirname "$src")")_$(basename "${src%.cpp}").o"
@@ -40,32 +42,48 @@ if ((${#stale[@]})); then
 fi
 [[ -f $OUT/libpolydec_fuzz.a ]] || ar rcs "$OUT/libpolydec_fuzz.a" "$OUT"/objects/*.o
 
-TARGETS=(obj off ply assemble mtx)
+TARGETS=(obj off ply assemble mtx ovm vtk medit)
 for t in "${TARGETS[@]}"; do
   bin="$OUT/fuzz_$t"
   src="$ROOT/fuzz/fuzz_$t.cpp"
-  if [[ ! -f $bin || $src -nt $bin || $ROOT/fuzz/fuzz_common.h -nt $bin || $OUT/libpolydec_fuzz.a -nt $bin ]]; then
+  if [[ ! -f $bin || $src -nt $bin || $ROOT/fuzz/fuzz_common.h -nt $bin || $ROOT/fuzz/fuzz_volume.h -nt $bin ||
+        $OUT/libpolydec_fuzz.a -nt $bin ]]; then
     "$CXX" "${CFLAGS[@]}" -fsanitize=fuzzer "$src" "$OUT/libpolydec_fuzz.a" -lfmt -o "$bin"
   fi
 done
 echo "fuzz/run.sh: build took $(( $(date +%s) - t0 )) s"
 
-status=0
-for t in "${TARGETS[@]}"; do
-  secs=$SECS
-  max_len=16384
+# One target: its run's exit status goes to $OUT/fuzz_$t.status, its output to $OUT/fuzz_$t.log.
+run_target() {
+  local t=$1 secs=$SECS max_len=16384
   [[ $t == mtx ]] && secs=$(( SECS / 4 > 5 ? SECS / 4 : 5 ))
   [[ $t == assemble ]] && max_len=4096
   mkdir -p "$OUT/corpus/$t"
-  log="$OUT/fuzz_$t.log"
-  if "$OUT/fuzz_$t" "$OUT/corpus/$t" "$ROOT/fuzz/corpus/$t" -dict="$ROOT/fuzz/dict/$t.dict" \
+  local rc=0
+  "$OUT/fuzz_$t" "$OUT/corpus/$t" "$ROOT/fuzz/corpus/$t" -dict="$ROOT/fuzz/dict/$t.dict" \
       -max_total_time="$secs" -max_len="$max_len" -timeout=10 -rss_limit_mb=1024 -malloc_limit_mb=256 \
-      -artifact_prefix="$OUT/artifacts/$t-" -print_final_stats=1 >"$log" 2>&1; then
+      -artifact_prefix="$OUT/artifacts/$t-" -print_final_stats=1 >"$OUT/fuzz_$t.log" 2>&1 || rc=$?
+  echo "$rc $secs" >"$OUT/fuzz_$t.status"
+}
+
+# Two at a time (the machine's two cores).
+rm -f "$OUT"/fuzz_*.status
+for t in "${TARGETS[@]}"; do
+  while (( $(jobs -rp | wc -l) >= 2 )); do wait -n || true; done
+  run_target "$t" &
+done
+wait
+
+status=0
+for t in "${TARGETS[@]}"; do
+  log="$OUT/fuzz_$t.log"
+  read -r rc secs <"$OUT/fuzz_$t.status" || { rc=1; secs='?'; }
+  if [[ $rc == 0 ]]; then
     runs=$(grep -m1 -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || echo '?')
     echo "fuzz_$t: ok, $runs inputs in $secs s"
   else
     status=1
-    echo "fuzz_$t: FAILED (log: $log)" >&2
+    echo "fuzz_$t: FAILED (exit $rc, log: $log)" >&2
     grep -E 'ERROR|SUMMARY|contract violated|non-finite|Test unit written' "$log" | head -20 >&2 || tail -30 "$log" >&2
   fi
 done

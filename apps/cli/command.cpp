@@ -1,9 +1,11 @@
-// apps/cli/command.cpp — shared CLI helpers: loading a mesh with the opt-in `--repair`.
+// apps/cli/command.cpp — shared CLI helpers: loading a mesh with the opt-in `--repair`, loading a
+// volume mesh.
 #include "polydec/apps/cli/command.h"
 
 #include <fmt/format.h>
 
 #include "polydec/dec/io.h"
+#include "polydec/dec/io_volume.h"
 #include "polydec/dec/repair.h"
 
 namespace polydec::cli {
@@ -29,6 +31,8 @@ Mesh load_mesh(const std::string& path, bool repair_first, std::vector<int>* ver
     throw InvalidMeshError(e.element, e.index, fmt::format("{}: still invalid after --repair: {}", path, e.what()));
   }
 }
+
+VolumeMesh load_volume_mesh(const std::string& path) { return read_volume_mesh(path); }
 
 void add_repair_flag(CLI::App& app, bool& flag) {
   app.add_flag("--repair", flag,

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "polydec/dec/mesh.h"
+#include "polydec/dec/volume_mesh.h"
 
 namespace polydec::cli {
 
@@ -40,6 +41,10 @@ void print_json(const nlohmann::json& j);
 // faces dropped, unreferenced vertices removed), one stderr line per step that changed something;
 // `vertex_map` (if given) receives file vertex -> mesh vertex (-1 when removed).
 Mesh load_mesh(const std::string& path, bool repair_first, std::vector<int>* vertex_map = nullptr);
+
+// Reads the volume mesh at `path` (.ovm, .vtk or .mesh by extension; dec/io_volume.h). Throws
+// FileError (exit code 3) for an unreadable or invalid file.
+VolumeMesh load_volume_mesh(const std::string& path);
 
 // Adds the `--repair` flag (see load_mesh) to a subcommand.
 void add_repair_flag(CLI::App& app, bool& flag);

@@ -2,10 +2,12 @@
 // format conversion and the generators' transformations, applied in this order: dual, then
 // N Catmull-Clark steps; with --unit-sphere every vertex is projected to the unit sphere after
 // each of these steps (so `--dual --subdivide 1 --unit-sphere` on unit-sphere.off builds the
-// paper's FINE SPHERE, `--dual --unit-sphere` its HEX SPHERE).
+// paper's FINE SPHERE, `--dual --unit-sphere` its HEX SPHERE). Volume meshes (.ovm, .vtk, .mesh
+// or --volume) convert between the volume formats, or with --boundary to their boundary surface.
 #include "polydec/apps/cli/command.h"
 #include "polydec/dec/generators.h"
 #include "polydec/dec/io.h"
+#include "polydec/dec/io_volume.h"
 
 #include <fmt/format.h>
 
@@ -17,9 +19,45 @@ struct Options {
   std::string in, out;
   bool dual = false, unit_sphere = false, json = false;
   int subdivide = 0;
+  bool volume = false, boundary = false;  // --volume, --boundary
 };
 
+void run_volume(const Options& o) {
+  if (o.dual || o.subdivide != 0 || o.unit_sphere || o.repair)
+    throw UsageError("--dual, --subdivide, --unit-sphere and --repair apply to surface meshes only");
+  const VolumeMesh m = load_volume_mesh(o.in);
+  nlohmann::json j = {{"in", o.in}, {"out", o.out}};
+  if (o.boundary) {
+    if (is_volume_mesh_path(o.out)) throw UsageError("--boundary writes a surface mesh (.obj, .off, .ply)");
+    const Mesh b = m.boundary_surface();
+    write_mesh(o.out, b);
+    j["vertices"] = b.n_vertices();
+    j["faces"] = b.n_faces();
+    j["boundary"] = true;
+    if (!o.json)
+      fmt::print("wrote {}: boundary surface, {} vertices ({} interior ones unreferenced), {} faces\n", o.out,
+                 b.n_vertices(), b.n_unreferenced_vertices(), b.n_faces());
+  } else {
+    if (!is_volume_mesh_path(o.out))
+      throw UsageError(
+          fmt::format("{}: a volume mesh is written as .ovm, .vtk or .mesh (or use --boundary)", o.out));
+    write_volume_mesh(m, o.out);
+    j["vertices"] = m.n_vertices();
+    j["faces"] = m.n_faces();
+    j["cells"] = m.n_cells();
+    if (!o.json)
+      fmt::print("wrote {}: {} vertices, {} faces, {} cells\n", o.out, m.n_vertices(), m.n_faces(),
+                 m.n_cells());
+  }
+  if (o.json) print_json(j);
+}
+
 void run(const Options& o) {
+  if (o.volume || is_volume_mesh_path(o.in)) {
+    run_volume(o);
+    return;
+  }
+  if (o.boundary) throw UsageError("--boundary applies to volume meshes (.ovm, .vtk, .mesh or --volume)");
   if (o.subdivide < 0) throw UsageError("--subdivide takes a non-negative count");
   Mesh mesh = load_mesh(o.in, o.repair);
   auto project = [&](Mesh m) { return o.unit_sphere ? project_to_unit_sphere(m) : m; };
@@ -34,14 +72,16 @@ void run(const Options& o) {
     fmt::print("wrote {}: {} vertices, {} faces\n", o.out, mesh.n_vertices(), mesh.n_faces());
 }
 
-const RegisterCommand reg("convert", "Convert between formats; optionally dual, Catmull-Clark, projection to the unit sphere",
+const RegisterCommand reg("convert", "Convert between formats; optionally dual, Catmull-Clark, projection to the unit sphere; volume formats and their boundary",
                           [](CLI::App& app) {
                             auto o = std::make_shared<Options>();
-                            app.add_option("in", o->in, "input mesh (.obj, .off, .ply)")->required();
-                            app.add_option("out", o->out, "output mesh (.obj, .off, .ply)")->required();
+                            app.add_option("in", o->in, "input mesh (.obj, .off, .ply; volume: .ovm, .vtk, .mesh)")->required();
+                            app.add_option("out", o->out, "output mesh (same kinds)")->required();
                             app.add_flag("--dual", o->dual, "replace the mesh by its dual (dual vertex at the face centroid)");
                             app.add_option("--subdivide", o->subdivide, "number of Catmull-Clark steps");
                             app.add_flag("--unit-sphere", o->unit_sphere, "project to the unit sphere (after each step)");
+                            app.add_flag("--volume", o->volume, "read IN as a volume mesh (implied by .ovm, .vtk, .mesh)");
+                            app.add_flag("--boundary", o->boundary, "volume IN: write its boundary surface to OUT (.obj, .off, .ply)");
                             app.add_flag("--json", o->json, "print one JSON object instead of text");
                             add_repair_flag(app, o->repair);
                             app.callback([o] { run(*o); });

@@ -1,7 +1,9 @@
 // apps/cli/dec.cpp — `polydec dec MESH --out DIR`: the FEEC building blocks (paper section 4.6)
 // in Matrix Market: d0, d1, star0, star1, star2, P0, P1, P2, plus the coarse cell lists
 // edges.txt (vertex pairs) and triangles.txt (vertex triples), 0-based, one per line, in
-// matrix order.
+// matrix order. Volume meshes (.ovm, .vtk, .mesh, or --volume): d0, d1, d2, star0..star3,
+// P0..P3 of the polyhedral refinement (dec/volume_hodge_star.h) and the coarse cell lists
+// edges.txt, triangles.txt, tetrahedra.txt (vertex pairs, triples, quadruples sharing a cell).
 #include <fmt/format.h>
 
 #include <filesystem>
@@ -12,6 +14,8 @@
 #include "polydec/dec/form_span.h"
 #include "polydec/dec/hodge_star.h"
 #include "polydec/dec/io.h"
+#include "polydec/dec/io_volume.h"
+#include "polydec/dec/volume_hodge_star.h"
 #include "polydec/dec/prolongation.h"
 
 namespace polydec::cli::dec_command {
@@ -19,8 +23,8 @@ namespace {
 
 struct Options {
   bool repair = false;  // --repair
-  std::string mesh, out, rule = "squared-area";
-  bool json = false, lumped = false;
+  std::string mesh, out, rule = "squared-area", cell_rule = "squared-volume";
+  bool json = false, lumped = false, volume = false;
 };
 
 template <class Cells>
@@ -34,7 +38,82 @@ void write_cells(const std::string& path, const Cells& cells) {
   if (!out) throw FileError(path, 0, -1, "write failed");
 }
 
+void write_simplices(const std::string& path, const SimplexComplex3& K, int k) {
+  write_cells(path, K.simplices(k));
+}
+
+void run_volume(const Options& o) {
+  const VolumeMesh mesh = load_volume_mesh(o.mesh);
+  VolumeRefinementOptions ropt;
+  try {
+    ropt.cell_rule = parse_cell_point_rule(o.cell_rule);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  const VolumeRefinement r = refine_volume(mesh, ropt);
+  VolumeDec D;
+  try {
+    D = volume_dec(mesh, r);
+  } catch (const std::invalid_argument& e) {  // a cell with too many vertices: the file's content
+    throw FileError(o.mesh, 0, -1, e.what());
+  }
+  std::filesystem::create_directories(o.out);
+  SparseMatrix star0 = D.star[0];
+  if (o.lumped) {
+    const Eigen::VectorXd rows = D.star[0] * Eigen::VectorXd::Ones(mesh.n_vertices());
+    star0 = SparseMatrix(mesh.n_vertices(), mesh.n_vertices());
+    star0.setIdentity();
+    star0.diagonal() = rows;
+  }
+  const std::string d = o.out + "/";
+  for (int k = 0; k < 3; ++k) write_matrix_market(d + fmt::format("d{}.mtx", k), D.d[k]);
+  write_matrix_market(d + "star0.mtx", star0);
+  for (int k = 1; k < 4; ++k) write_matrix_market(d + fmt::format("star{}.mtx", k), D.star[k]);
+  for (int k = 0; k < 4; ++k) write_matrix_market(d + fmt::format("P{}.mtx", k), D.P[k]);
+  write_simplices(d + "edges.txt", D.coarse, 1);
+  write_simplices(d + "triangles.txt", D.coarse, 2);
+  write_simplices(d + "tetrahedra.txt", D.coarse, 3);
+  // Ranks of star1..star3 by the dense reduced-basis decision, when the mesh is small enough.
+  nlohmann::json ranks = nlohmann::json::object();
+  for (int k = 1; k < 4; ++k) {
+    try {
+      ranks[fmt::format("rank_star{}", k)] = volume_form_span(D, mesh, r, k).rank();
+    } catch (const std::invalid_argument&) {
+      ranks[fmt::format("rank_star{}", k)] = nullptr;
+    }
+  }
+  nlohmann::json j = {{"mesh", o.mesh},
+                      {"out", o.out},
+                      {"vertices", mesh.n_vertices()},
+                      {"faces", mesh.n_faces()},
+                      {"cells", mesh.n_cells()},
+                      {"pairs", D.coarse.n_pairs()},
+                      {"triples", D.coarse.n_triples()},
+                      {"quadruples", D.coarse.n_quads()},
+                      {"star0", o.lumped ? "lumped" : "galerkin"},
+                      {"subtet_degenerate", r.quality.n_degenerate},
+                      {"subtet_inverted", r.quality.n_inverted},
+                      {"files",
+                       {"d0.mtx", "d1.mtx", "d2.mtx", "star0.mtx", "star1.mtx", "star2.mtx", "star3.mtx", "P0.mtx",
+                        "P1.mtx", "P2.mtx", "P3.mtx", "edges.txt", "triangles.txt", "tetrahedra.txt"}}};
+  j.update(ranks);
+  if (o.json) {
+    print_json(j);
+    return;
+  }
+  fmt::print("{}: {} vertices, {} faces, {} cells\n", o.mesh, mesh.n_vertices(), mesh.n_faces(), mesh.n_cells());
+  fmt::print("coarse complex: {} 1-cells, {} 2-cells, {} 3-cells; ranks of star1..3: {}, {}, {}\n",
+             D.coarse.n_pairs(), D.coarse.n_triples(), D.coarse.n_quads(), ranks["rank_star1"].dump(),
+             ranks["rank_star2"].dump(), ranks["rank_star3"].dump());
+  fmt::print("sub-tetrahedra: {} degenerate, {} inverted\n", r.quality.n_degenerate, r.quality.n_inverted);
+  fmt::print("wrote d0 d1 d2 star0..star3 P0..P3 (.mtx), edges.txt, triangles.txt, tetrahedra.txt to {}\n", o.out);
+}
+
 void run(const Options& o) {
+  if (o.volume || is_volume_mesh_path(o.mesh)) {
+    run_volume(o);
+    return;
+  }
   const Mesh mesh = load_mesh(o.mesh, o.repair);
   if (mesh.max_face_size() > kHighValence)
     std::cerr << fmt::format(
@@ -99,7 +178,12 @@ void run(const Options& o) {
 const RegisterCommand reg("dec", "Write d0, d1, star0-2, P0-2 and the coarse cell lists (paper section 4.6)",
                           [](CLI::App& app) {
                             auto o = std::make_shared<Options>();
-                            app.add_option("mesh", o->mesh, "input mesh (.obj, .off, .ply)")->required();
+                            app.add_option("mesh", o->mesh,
+                                           "input mesh (.obj, .off, .ply; volumes: .ovm, .vtk, .mesh)")
+                                ->required();
+                            app.add_flag("--volume", o->volume, "read MESH as a volume mesh whatever its extension");
+                            app.add_option("--cell-point", o->cell_rule,
+                                           "volumes: cell-point weights, squared-volume (default) or polylaplace");
                             app.add_option("--out", o->out, "output directory")->required();
                             app.add_option("--virtual-vertex", o->rule,
                                            "virtual-vertex rule: squared-area (default), centroid");

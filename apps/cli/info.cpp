@@ -1,8 +1,15 @@
 // apps/cli/info.cpp — `polydec info MESH`: counts, valence histogram, boundary loops, Euler
-// characteristic and genus, planarity and convexity statistics, fan quality.
+// characteristic and genus, planarity and convexity statistics, fan quality; on a volume mesh
+// (.ovm, .vtk, .mesh or --volume) counts, cell shapes, volumes, boundary and face planarity.
 #include "polydec/apps/cli/command.h"
 #include "polydec/apps/applications/mesh_statistics.h"
 #include "polydec/dec/io.h"
+#include "polydec/dec/io_volume.h"
+#include "polydec/dec/volume_cells.h"
+
+#include <Eigen/SVD>
+#include <algorithm>
+#include <map>
 
 #include <fmt/format.h>
 
@@ -13,9 +20,118 @@ struct Options {
   bool repair = false;  // --repair
   std::string mesh;
   bool json = false;
+  bool volume = false;  // --volume
 };
 
+// Largest distance of a face's vertex to its least-squares plane over the face's diameter (the
+// surface statistic of mesh_statistics, applied to the faces of a volume mesh).
+double face_nonplanarity(const VolumeMesh& m, int f) {
+  const auto vs = m.face(f);
+  const int n = int(vs.size());
+  Eigen::MatrixX3d X(n, 3);
+  for (int k = 0; k < n; ++k) X.row(k) = m.positions().row(vs[k]);
+  const Eigen::RowVector3d c = X.colwise().mean();
+  const Eigen::MatrixX3d Y = X.rowwise() - c;
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(Eigen::MatrixXd(Y), Eigen::ComputeThinV);
+  const Eigen::Vector3d normal = svd.matrixV().col(2);
+  double diameter = 0;
+  for (int a = 0; a < n; ++a)
+    for (int b = a + 1; b < n; ++b) diameter = std::max(diameter, (X.row(a) - X.row(b)).norm());
+  return diameter > 0 ? (Y * normal).cwiseAbs().maxCoeff() / diameter : 0.0;
+}
+
+void run_volume(const Options& o) {
+  if (o.repair) throw UsageError("--repair applies to surface meshes only");
+  const VolumeMesh m = load_volume_mesh(o.mesh);
+  std::map<std::string, int> shapes{
+      {"tetrahedron", 0}, {"pyramid", 0}, {"wedge", 0}, {"hexahedron", 0}, {"other", 0}};
+  double min_volume = m.n_cells() ? 1e308 : 0.0, max_volume = m.n_cells() ? -1e308 : 0.0;
+  int nonpositive = 0;
+  for (int c = 0; c < m.n_cells(); ++c) {
+    ++shapes[cell_shape_name(cell_shape(m, c))];
+    const double v = m.cell_volume(c);
+    min_volume = std::min(min_volume, v);
+    max_volume = std::max(max_volume, v);
+    nonpositive += v <= 0;
+  }
+  // Boundary: faces, vertices, edges (of the boundary faces) and its Euler characteristic.
+  int boundary_faces = 0, boundary_vertices = 0;
+  std::vector<std::pair<int, int>> boundary_edges;
+  for (int f = 0; f < m.n_faces(); ++f) {
+    if (!m.is_boundary_face(f)) continue;
+    ++boundary_faces;
+    const auto vs = m.face(f);
+    for (size_t i = 0; i < vs.size(); ++i)
+      boundary_edges.push_back({std::min(vs[i], vs[(i + 1) % vs.size()]), std::max(vs[i], vs[(i + 1) % vs.size()])});
+  }
+  std::sort(boundary_edges.begin(), boundary_edges.end());
+  boundary_edges.erase(std::unique(boundary_edges.begin(), boundary_edges.end()), boundary_edges.end());
+  for (int v = 0; v < m.n_vertices(); ++v) boundary_vertices += m.is_boundary_vertex(v);
+  std::map<int, int> face_sizes;
+  double max_np = 0, sum_np = 0;
+  int nonplanar = 0;
+  const double tolerance = 1e-5;
+  for (int f = 0; f < m.n_faces(); ++f) {
+    ++face_sizes[m.face_size(f)];
+    const double d = face_nonplanarity(m, f);
+    max_np = std::max(max_np, d);
+    sum_np += d;
+    nonplanar += d > tolerance;
+  }
+  nlohmann::json fs = nlohmann::json::object();
+  for (const auto& [n, c] : face_sizes) fs[std::to_string(n)] = c;
+  const int chi_boundary = boundary_vertices - int(boundary_edges.size()) + boundary_faces;
+  const nlohmann::json j = {{"mesh", o.mesh},
+                            {"kind", "volume"},
+                            {"vertices", m.n_vertices()},
+                            {"edges", m.n_edges()},
+                            {"faces", m.n_faces()},
+                            {"cells", m.n_cells()},
+                            {"cell_shapes", shapes},
+                            {"face_size_histogram", fs},
+                            {"euler_characteristic", m.n_vertices() - m.n_edges() + m.n_faces() - m.n_cells()},
+                            {"unreferenced_vertices", m.n_unreferenced_vertices()},
+                            {"volume", m.volume()},
+                            {"min_cell_volume", min_volume},
+                            {"max_cell_volume", max_volume},
+                            {"nonpositive_cells", nonpositive},
+                            {"boundary_faces", boundary_faces},
+                            {"boundary_edges", boundary_edges.size()},
+                            {"boundary_vertices", boundary_vertices},
+                            {"boundary_euler_characteristic", chi_boundary},
+                            {"mean_edge_length", m.mean_edge_length()},
+                            {"bounding_box_diagonal", m.bounding_box_diagonal()},
+                            {"planarity_tolerance", tolerance},
+                            {"nonplanar_faces", nonplanar},
+                            {"max_nonplanarity", max_np},
+                            {"mean_nonplanarity", m.n_faces() ? sum_np / m.n_faces() : 0.0}};
+  if (o.json) {
+    print_json(j);
+    return;
+  }
+  fmt::print("{} (volume mesh)\n", o.mesh);
+  fmt::print("  vertices {}, edges {}, faces {}, cells {}\n", m.n_vertices(), m.n_edges(), m.n_faces(), m.n_cells());
+  fmt::print("  cells: {} tetrahedra, {} pyramids, {} wedges, {} hexahedra, {} other\n", shapes["tetrahedron"],
+             shapes["pyramid"], shapes["wedge"], shapes["hexahedron"], shapes["other"]);
+  std::string h;
+  for (const auto& [n, c] : face_sizes) h += fmt::format(" {}-gons: {};", n, c);
+  fmt::print("  face valences:{}\n", h);
+  fmt::print("  V - E + F - C = {}, unreferenced vertices {}\n", j["euler_characteristic"].get<int>(),
+             m.n_unreferenced_vertices());
+  fmt::print("  volume {:.10g}; cell volumes from {:.6g} to {:.6g} ({} not positive)\n", m.volume(), min_volume,
+             max_volume, nonpositive);
+  fmt::print("  boundary: {} faces, {} edges, {} vertices, Euler characteristic {}\n", boundary_faces,
+             boundary_edges.size(), boundary_vertices, chi_boundary);
+  fmt::print("  mean edge length {:.6g}, bounding-box diagonal {:.6g}\n", m.mean_edge_length(), m.bounding_box_diagonal());
+  fmt::print("  planarity: {} faces deviate more than {:g} of their diameter from their plane (max {:.3g}, mean {:.3g})\n",
+             nonplanar, tolerance, max_np, m.n_faces() ? sum_np / m.n_faces() : 0.0);
+}
+
 void run(const Options& o) {
+  if (o.volume || is_volume_mesh_path(o.mesh)) {
+    run_volume(o);
+    return;
+  }
   const Mesh mesh = load_mesh(o.mesh, o.repair);
   const MeshStatistics s = mesh_statistics(mesh);
   nlohmann::json hist = nlohmann::json::object();
@@ -63,10 +179,11 @@ void run(const Options& o) {
              s.fan.n_inverted, s.fan.n_faces_affected);
 }
 
-const RegisterCommand reg("info", "Print counts, topology, planarity and convexity statistics of a mesh",
+const RegisterCommand reg("info", "Print counts, topology, planarity and convexity statistics of a surface or volume mesh",
                           [](CLI::App& app) {
                             auto o = std::make_shared<Options>();
-                            app.add_option("mesh", o->mesh, "input mesh (.obj, .off, .ply)")->required();
+                            app.add_option("mesh", o->mesh, "input mesh (.obj, .off, .ply; volume: .ovm, .vtk, .mesh)")->required();
+                            app.add_flag("--volume", o->volume, "read the file as a volume mesh (implied by .ovm, .vtk, .mesh)");
                             app.add_flag("--json", o->json, "print one JSON object instead of text");
                             add_repair_flag(app, o->repair);
                             app.callback([o] { run(*o); });

@@ -1,12 +1,15 @@
 // apps/cli/operators.cpp — `polydec operators MESH --out DIR`: writes S, M, M_lumped, G, D, P
 // in Matrix Market, rows and columns in the file's vertex order. With `--repeat N` it instead
 // times N assemblies of S, M and lumped M from the loaded mesh (virtual vertices, sparsity
-// pattern and values; load time excluded) and writes no files.
+// pattern and values; load time excluded) and writes no files. Volume meshes (.ovm, .vtk, .mesh,
+// or --volume) get S, M, M_lumped and P of the polyhedral refinement (operators/volume_laplacian.h).
 #include "polydec/apps/cli/command.h"
 #include "polydec/dec/io.h"
+#include "polydec/dec/io_volume.h"
 #include "polydec/dec/threads.h"
 #include "polydec/dec/prolongation.h"
 #include "polydec/operators/gradient.h"
+#include "polydec/operators/volume_laplacian.h"
 
 #include <algorithm>
 #include <chrono>
@@ -18,9 +21,9 @@ namespace {
 
 struct Options {
   bool repair = false;  // --repair
-  std::string mesh, out, rule = "squared-area";
+  std::string mesh, out, rule = "squared-area", cell_rule = "squared-volume";
   int repeat = 0, threads = 1;
-  bool json = false;
+  bool json = false, volume = false;
 };
 
 double median(std::vector<double> v) {
@@ -70,10 +73,83 @@ void run_timing(const Options& o, const Mesh& mesh, const RefinementOptions& rop
              o.repeat, median(values));
 }
 
+// Volume meshes: S, M, M_lumped, P of the polyhedral refinement, or --repeat N timings.
+void run_volume(const Options& o) {
+  using Clock = std::chrono::steady_clock;
+  const VolumeMesh mesh = load_volume_mesh(o.mesh);
+  VolumeRefinementOptions ropt;
+  try {
+    ropt.cell_rule = parse_cell_point_rule(o.cell_rule);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  if (o.repeat > 0) {
+    std::vector<double> full, values;
+    const SparseMatrix pattern = cell_pattern(mesh);
+    long nnz = 0;
+    for (int i = 0; i < o.repeat; ++i) {
+      const auto t0 = Clock::now();
+      const VolumeLaplacian L = assemble_volume_laplacian(mesh, refine_volume(mesh, ropt));
+      full.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+      nnz = L.S.nonZeros();
+    }
+    for (int i = 0; i < o.repeat; ++i) {
+      const auto t0 = Clock::now();
+      const VolumeLaplacian L = assemble_volume_laplacian(mesh, refine_volume(mesh, ropt), &pattern);
+      values.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+    }
+    nlohmann::json j = {{"mesh", o.mesh},         {"vertices", mesh.n_vertices()}, {"faces", mesh.n_faces()},
+                        {"cells", mesh.n_cells()}, {"S_nonzeros", nnz},             {"repeat", o.repeat},
+                        {"median_ms", median(full)}, {"min_ms", *std::min_element(full.begin(), full.end())},
+                        {"pattern_kept_median_ms", median(values)}, {"parts", {"S", "M", "M_lumped"}}};
+    if (o.json) {
+      print_json(j);
+      return;
+    }
+    fmt::print("{}: {} vertices, {} faces, {} cells\n", o.mesh, mesh.n_vertices(), mesh.n_faces(), mesh.n_cells());
+    fmt::print("assembly of S, M, lumped M: median {:.3f} ms over {} runs (pattern kept: {:.3f} ms)\n", median(full),
+               o.repeat, median(values));
+    return;
+  }
+  const VolumeRefinement r = refine_volume(mesh, ropt);
+  const VolumeLaplacian L = assemble_volume_laplacian(mesh, r);
+  std::filesystem::create_directories(o.out);
+  SparseMatrix Ml(mesh.n_vertices(), mesh.n_vertices());
+  Ml.setIdentity();
+  Ml.diagonal() = L.M_lumped;
+  write_matrix_market(o.out + "/S.mtx", L.S);
+  write_matrix_market(o.out + "/M.mtx", L.M);
+  write_matrix_market(o.out + "/M_lumped.mtx", Ml);
+  write_matrix_market(o.out + "/P.mtx", volume_prolongation(mesh, r));
+  nlohmann::json j = {{"mesh", o.mesh},
+                      {"out", o.out},
+                      {"vertices", mesh.n_vertices()},
+                      {"faces", mesh.n_faces()},
+                      {"cells", mesh.n_cells()},
+                      {"cell_point", to_string(ropt.cell_rule)},
+                      {"S_nonzeros", L.S.nonZeros()},
+                      {"volume", L.M_lumped.sum()},
+                      {"subtet_degenerate", r.quality.n_degenerate},
+                      {"subtet_inverted", r.quality.n_inverted},
+                      {"files", {"S.mtx", "M.mtx", "M_lumped.mtx", "P.mtx"}}};
+  if (o.json) {
+    print_json(j);
+    return;
+  }
+  fmt::print("{}: {} vertices, {} faces, {} cells; S has {} non-zeros\n", o.mesh, mesh.n_vertices(), mesh.n_faces(),
+             mesh.n_cells(), L.S.nonZeros());
+  fmt::print("sub-tetrahedra: {} degenerate, {} inverted\n", r.quality.n_degenerate, r.quality.n_inverted);
+  fmt::print("wrote S.mtx M.mtx M_lumped.mtx P.mtx to {}\n", o.out);
+}
+
 void run(const Options& o) {
   if (o.repeat < 0) throw UsageError("--repeat must be positive");
   if (o.threads < 0) throw UsageError("--threads must be at least 0 (0: all hardware threads)");
   if (o.repeat == 0 && o.out.empty()) throw UsageError("--out DIR is required (or --repeat N to time the assembly)");
+  if (o.volume || is_volume_mesh_path(o.mesh)) {
+    run_volume(o);
+    return;
+  }
   const Mesh mesh = load_mesh(o.mesh, o.repair);
   RefinementOptions ropt;
   ropt.rule = parse_virtual_vertex_rule(o.rule);
@@ -116,8 +192,10 @@ void run(const Options& o) {
 
 const RegisterCommand reg("operators", "Assemble S, M, lumped M, G, D, P and write them in Matrix Market", [](CLI::App& app) {
   auto o = std::make_shared<Options>();
-  app.add_option("mesh", o->mesh, "input mesh (.obj, .off, .ply)")->required();
+  app.add_option("mesh", o->mesh, "input mesh (.obj, .off, .ply; volumes: .ovm, .vtk, .mesh)")->required();
   app.add_option("--out", o->out, "output directory (required unless --repeat)");
+  app.add_flag("--volume", o->volume, "read MESH as a volume mesh whatever its extension");
+  app.add_option("--cell-point", o->cell_rule, "volumes: cell-point weights, squared-volume (default) or polylaplace");
   app.add_option("--virtual-vertex", o->rule, "virtual-vertex rule: squared-area (default), centroid");
   app.add_option("--repeat", o->repeat, "time N assemblies of S, M, lumped M instead of writing files");
   app.add_option("--threads", o->threads, "threads for the virtual vertices and the assembly (default 1; 0: all hardware threads)");

@@ -1,0 +1,132 @@
+// dec/io_volume.cpp — volume format dispatch by extension, read_volume_mesh (validation errors
+// mapped back to file lines) and write_volume_mesh. The formats live in io_ovm.cpp, io_vtk.cpp
+// and io_medit.cpp.
+#include "polydec/dec/io_volume.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+
+#include "polydec/dec/io_common.h"
+#include "polydec/dec/io_volume_common.h"
+
+namespace polydec {
+namespace io_volume_detail {
+namespace {
+
+using namespace io_detail;
+
+constexpr const char* kFormats = "ovm, vtk, mesh";
+
+std::string volume_extension(const std::string& path) {
+  const std::string file = std::filesystem::path(path).filename().string();
+  const auto dot = file.find_last_of('.');
+  return dot == std::string::npos ? "" : lower(file.substr(dot + 1));
+}
+
+bool known(const std::string& f) { return f == "ovm" || f == "vtk" || f == "mesh"; }
+
+std::string read_file(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw FileError(path, 0, -1, "is a directory, not a file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw FileError(path, 0, -1, "cannot open file");
+  std::string data;
+  char buf[1 << 16];
+  while (in.read(buf, sizeof buf) || in.gcount() > 0) data.append(buf, size_t(in.gcount()));
+  if (in.bad()) throw FileError(path, 0, -1, "read error");
+  return data;
+}
+
+// The format by extension; for another extension, by the file's first word ("OVM", "# vtk",
+// "MeshVersionFormatted"), so that `--volume` can read a file of any name.
+std::string checked_format(const std::string& path, std::string_view bytes) {
+  const std::string ext = volume_extension(path);
+  if (known(ext)) return ext;
+  std::string_view t = strip_bom(bytes);
+  while (!t.empty() && (is_space(t.front()) || t.front() == '\n')) t.remove_prefix(1);
+  const std::string head = lower(t.substr(0, 20));
+  if (head.rfind("ovm", 0) == 0) return "ovm";
+  if (head.rfind("# vtk", 0) == 0 || head.rfind("#vtk", 0) == 0) return "vtk";
+  if (head.rfind("meshversionformatted", 0) == 0) return "mesh";
+  throw FileError(
+      path, 0, -1,
+      fmt::format("unknown volume mesh format '.{}' ({}; nor does the file start like one)", ext, kFormats));
+}
+
+PolyhedronRead read_any(std::string_view bytes, std::string_view format, const std::string& name) {
+  const std::string f = lower(format);
+  if (f == "ovm") return read_ovm(bytes, name);
+  if (f == "vtk") return read_vtk(bytes, name);
+  if (f == "mesh") return read_medit(bytes, name);
+  throw FileError(name, 0, -1, fmt::format("unknown volume mesh format '{}' ({})", f, kFormats));
+}
+
+VolumeMesh validate(PolyhedronRead r, const std::string& name) {
+  const auto vertex_where = std::move(r.vertex_where);
+  const auto face_where = std::move(r.face_where);
+  const auto cell_where = std::move(r.cell_where);
+  try {
+    return VolumeMesh(std::move(r.soup));
+  } catch (const InvalidMeshError& e) {
+    const std::vector<long>* where = e.element == "vertex" ? &vertex_where
+                                     : e.element == "face" ? &face_where
+                                     : e.element == "cell" ? &cell_where
+                                                           : nullptr;
+    long at = 0;
+    if (where && e.index >= 0 && e.index < long(where->size())) at = (*where)[e.index];
+    throw FileError(name, std::max(at, 0L), -1, e.what());
+  }
+}
+
+}  // namespace
+}  // namespace io_volume_detail
+
+using namespace io_volume_detail;
+
+bool is_volume_mesh_path(const std::string& path) { return known(volume_extension(path)); }
+
+PolyhedronSoup read_polyhedron_soup(const std::string& path) {
+  const std::string bytes = read_file(path);
+  return read_any(bytes, checked_format(path, bytes), path).soup;
+}
+
+PolyhedronSoup read_polyhedron_soup_from_memory(std::string_view bytes, std::string_view format,
+                                                const std::string& name) {
+  return read_any(bytes, format, name).soup;
+}
+
+VolumeMesh read_volume_mesh(const std::string& path) {
+  const std::string bytes = read_file(path);
+  return validate(read_any(bytes, checked_format(path, bytes), path), path);
+}
+
+VolumeMesh read_volume_mesh_from_memory(std::string_view bytes, std::string_view format,
+                                        const std::string& name) {
+  return validate(read_any(bytes, format, name), name);
+}
+
+std::string write_volume_mesh_to_string(const VolumeMesh& mesh, std::string_view format) {
+  const std::string f = io_detail::lower(format);
+  if (f == "ovm") return io_detail::write_ovm(mesh);
+  if (f == "vtk") return io_detail::write_vtk(mesh);
+  if (f == "mesh") return io_detail::write_medit(mesh, "(memory)");
+  throw FileError("(memory)", 0, -1, fmt::format("unknown volume mesh format '{}' ({})", f, kFormats));
+}
+
+void write_volume_mesh(const VolumeMesh& mesh, const std::string& path) {
+  const std::string f = volume_extension(path);
+  if (!known(f))
+    throw FileError(path, 0, -1, fmt::format("unknown volume mesh format '.{}' ({})", f, kFormats));
+  const std::string data =
+      f == "mesh" ? io_detail::write_medit(mesh, path) : write_volume_mesh_to_string(mesh, f);
+  std::ofstream out(path, std::ios::binary);
+  if (!out) throw FileError(path, 0, -1, "cannot open file for writing");
+  out.write(data.data(), std::streamsize(data.size()));
+  out.close();
+  if (!out) throw FileError(path, 0, -1, "write failed");
+}
+
+}  // namespace polydec

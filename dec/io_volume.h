@@ -1,0 +1,41 @@
+// dec/io_volume.h — reading and writing polyhedral volume meshes: OVM ASCII (OpenVolumeMesh),
+// VTK legacy ASCII unstructured grids and MEDIT .mesh. Formats are chosen by extension; what
+// each accepts is documented in docs/io.md and docs/volumes.md. Errors are FileErrors (dec/io.h)
+// naming the file and line.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "polydec/dec/io.h"
+#include "polydec/dec/volume_mesh.h"
+
+namespace polydec {
+
+// True when the path's extension (case-insensitive) is a volume format: .ovm, .vtk or .mesh.
+bool is_volume_mesh_path(const std::string& path);
+
+// Reads the file's polyhedra without validation beyond what the format needs (indices in
+// range, faces of VTK/MEDIT cells identified by their vertex sets). Throws FileError.
+PolyhedronSoup read_polyhedron_soup(const std::string& path);
+// The same from bytes; `format` is "ovm", "vtk" or "mesh"; `name` is used in messages only.
+PolyhedronSoup read_polyhedron_soup_from_memory(std::string_view bytes, std::string_view format,
+                                                const std::string& name);
+
+// Files whose extension is none of these are recognized by their first word ("OVM", "# vtk",
+// "MeshVersionFormatted").
+// read_polyhedron_soup + validation (VolumeMesh); an InvalidMeshError about a vertex, face or
+// cell is reported as a FileError naming the line where that element was read.
+VolumeMesh read_volume_mesh(const std::string& path);
+VolumeMesh read_volume_mesh_from_memory(std::string_view bytes, std::string_view format,
+                                        const std::string& name);
+
+// Writes by extension (.ovm, .vtk, .mesh), positions with 17 significant digits. OVM files
+// are written with outward half-faces (polydec's convention; the reader accepts either).
+// MEDIT holds tetrahedra and hexahedra only: another cell throws FileError. Throws FileError
+// when the file cannot be written.
+void write_volume_mesh(const VolumeMesh& mesh, const std::string& path);
+// The file's bytes for `format` ("ovm", "vtk" or "mesh").
+std::string write_volume_mesh_to_string(const VolumeMesh& mesh, std::string_view format);
+
+}  // namespace polydec

@@ -1,0 +1,70 @@
+// fuzz/fuzz_volume.h — the contract every fuzzed volume file must satisfy: the reader throws
+// FileError (naming the file, with a reason and a sane line) or returns a soup with consistent
+// offsets and indices in range; VolumeMesh then throws only InvalidMeshError or yields a mesh
+// whose volume is finite and which survives OVM and VTK round trips (same cells, same volume).
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <string_view>
+
+#include "polydec/dec/io_volume.h"
+
+namespace polydec::fuzz_volume {
+
+inline void require(bool ok, const char* what) {
+  if (!ok) {
+    std::fprintf(stderr, "contract violated: %s\n", what);
+    std::abort();
+  }
+}
+
+inline bool offsets_ok(const std::vector<int>& o, size_t n) {
+  if (o.empty() || o.front() != 0 || o.back() != int(n)) return false;
+  for (size_t k = 0; k + 1 < o.size(); ++k)
+    if (o[k] > o[k + 1]) return false;
+  return true;
+}
+
+inline void check_volume_reader(const uint8_t* data, size_t size, const char* format) {
+  const std::string_view bytes(reinterpret_cast<const char*>(data), size);
+  PolyhedronSoup s;
+  try {
+    s = read_polyhedron_soup_from_memory(bytes, format, "fuzz");
+  } catch (const FileError& e) {
+    require(e.file == "fuzz", "FileError names the file");
+    require(!e.reason.empty(), "FileError has a reason");
+    require(e.line >= 0 && e.line <= long(size) + 1, "FileError line in range");
+    return;
+  }
+  require(offsets_ok(s.face_offsets, s.face_indices.size()), "face offsets consistent");
+  require(offsets_ok(s.cell_offsets, s.cell_halffaces.size()), "cell offsets consistent");
+  for (int i : s.face_indices) require(i >= 0 && i < s.n_vertices(), "face indices in range");
+  for (int h : s.cell_halffaces) require(h >= 0 && h < 2 * s.n_faces(), "half-faces in range");
+  VolumeMesh m;
+  try {
+    m = VolumeMesh(std::move(s));
+  } catch (const InvalidMeshError&) {
+    return;
+  }
+  const double v = m.volume();
+  require(std::isfinite(v), "finite volume");
+  try {
+    const Mesh b = m.boundary_surface();
+    require(b.n_vertices() == m.n_vertices(), "boundary on all vertices");
+  } catch (const InvalidMeshError&) {
+    // A non-manifold boundary (cells touching along an edge) is not a surface Mesh.
+  }
+  for (const char* f : {"ovm", "vtk"}) {
+    const VolumeMesh r = read_volume_mesh_from_memory(write_volume_mesh_to_string(m, f), f, "round trip");
+    require(r.n_cells() == m.n_cells() && r.n_faces() == m.n_faces(), "round trip keeps cells and faces");
+    require(r.positions() == m.positions(), "round trip keeps positions");
+    double scale = 0;
+    for (int c = 0; c < m.n_cells(); ++c) scale += std::abs(m.cell_volume(c));
+    require(std::abs(r.volume() - v) <= 1e-9 * scale + 1e-300, "round trip keeps the volume");
+  }
+}
+
+}  // namespace polydec::fuzz_volume

@@ -1,0 +1,8 @@
+// fuzz/fuzz_vtk.cpp — libFuzzer target: arbitrary bytes through the VTK volume reader, validation
+// and the OVM/VTK round trips (fuzz/fuzz_volume.h).
+#include "fuzz/fuzz_volume.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  polydec::fuzz_volume::check_volume_reader(data, size, "vtk");
+  return 0;
+}

@@ -1,0 +1,135 @@
+#!/usr/bin/env python3
+# fuzz/make_volume_seeds.py — writes the seed corpora fuzz/corpus/{ovm,vtk,medit}/: small
+# generated volume meshes (a tetrahedron, a Kuhn-split cube, two hexahedra, two wedges, a
+# pyramid on a hexahedron, a polyhedron cell) in each format. Rerun only to change them.
+import os
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+# VTK's outward faces of its linear cells (local vertex numbers), as dec/polyhedron_builder.cpp.
+FACES = {
+    10: [[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]],
+    12: [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]],
+    13: [[0, 1, 2], [3, 5, 4], [0, 3, 4, 1], [1, 4, 5, 2], [2, 5, 3, 0]],
+    14: [[0, 3, 2, 1], [0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]],
+}
+
+CUBE = [(x, y, z) for z in (0, 1) for y in (0, 1) for x in (0, 1)]
+CUBE = [CUBE[i] for i in (0, 1, 3, 2, 4, 5, 7, 6)]  # VTK hexahedron order
+
+
+def kuhn():
+    cells = []
+    for a, b in ((0, 1), (0, 2), (1, 0), (1, 2), (2, 0), (2, 1)):
+        p = [0, 0, 0]
+        path = [tuple(p)]
+        for axis in (a, b):
+            p[axis] = 1
+            path.append(tuple(p))
+        path.append((1, 1, 1))
+        idx = [CUBE.index(q) for q in path]
+        A, B, C, D = (CUBE[i] for i in idx)
+        det = sum((B[i] - A[i]) * ((C[(i + 1) % 3] - A[(i + 1) % 3]) * (D[(i + 2) % 3] - A[(i + 2) % 3]) -
+                                   (C[(i + 2) % 3] - A[(i + 2) % 3]) * (D[(i + 1) % 3] - A[(i + 1) % 3])) for i in range(3))
+        if det < 0:
+            idx[1], idx[2] = idx[2], idx[1]
+        cells.append((10, idx))
+    return CUBE, cells
+
+
+MESHES = {
+    "tet": ([(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)], [(10, [0, 1, 2, 3])]),
+    "kuhn": kuhn(),
+    "two_hexes": (CUBE + [(2, 0, 0), (2, 1, 0), (2, 0, 1), (2, 1, 1)],
+                  [(12, list(range(8))), (12, [1, 8, 9, 2, 5, 10, 11, 6])]),
+    "wedges": (CUBE, [(13, [0, 3, 1, 4, 7, 5]), (13, [1, 3, 2, 5, 7, 6])]),
+    "pyramid_hex": (CUBE + [(0.5, 0.5, 2.0)], [(12, list(range(8))), (14, [4, 5, 6, 7, 8])]),
+}
+
+
+def polygons(cells):
+    out = []
+    for t, v in cells:
+        out.append([[v[i] for i in f] for f in FACES[t]])
+    return out
+
+
+def ovm(points, cells):
+    faces, halffaces = [], []
+    for polys in polygons(cells):
+        hf = []
+        for p in polys:
+            key = sorted(p)
+            for k, f in enumerate(faces):
+                if sorted(f) == key:
+                    hf.append(2 * k + 1)
+                    break
+            else:
+                faces.append(p)
+                hf.append(2 * (len(faces) - 1))
+        halffaces.append(hf)
+    edges = []
+    def he(a, b):
+        e = (min(a, b), max(a, b))
+        if e not in edges:
+            edges.append(e)
+        return 2 * edges.index(e) + (0 if a < b else 1)
+    face_he = [[he(f[i], f[(i + 1) % len(f)]) for i in range(len(f))] for f in faces]
+    s = "OVM ASCII\nVertices\n%d\n" % len(points) + "".join("%r %r %r\n" % p for p in points)
+    s += "Edges\n%d\n" % len(edges) + "".join("%d %d\n" % e for e in edges)
+    s += "Faces\n%d\n" % len(faces) + "".join("%d %s\n" % (len(h), " ".join(map(str, h))) for h in face_he)
+    s += "Polyhedra\n%d\n" % len(halffaces) + "".join("%d %s\n" % (len(h), " ".join(map(str, h))) for h in halffaces)
+    return s
+
+
+def vtk(points, cells, version="3.0", polyhedron=False):
+    s = "# vtk DataFile Version %s\nseed\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS %d double\n" % (version, len(points))
+    s += "".join("%r %r %r\n" % p for p in points)
+    if polyhedron:
+        entries = []
+        for polys in polygons(cells):
+            e = [len(polys)]
+            for p in polys:
+                e += [len(p)] + p
+            entries.append([len(e)] + e)
+        s += "CELLS %d %d\n" % (len(entries), sum(len(e) for e in entries))
+        s += "".join(" ".join(map(str, e)) + "\n" for e in entries)
+        s += "CELL_TYPES %d\n" % len(cells) + "42\n" * len(cells)
+        return s
+    if version.startswith("5"):
+        offs = [0]
+        for _, v in cells:
+            offs.append(offs[-1] + len(v))
+        s += "CELLS %d %d\nOFFSETS vtktypeint64\n%s\nCONNECTIVITY vtktypeint64\n%s\n" % (
+            len(offs), offs[-1], " ".join(map(str, offs)), " ".join(str(i) for _, v in cells for i in v))
+    else:
+        s += "CELLS %d %d\n" % (len(cells), sum(1 + len(v) for _, v in cells))
+        s += "".join("%d %s\n" % (len(v), " ".join(map(str, v))) for _, v in cells)
+    s += "CELL_TYPES %d\n" % len(cells) + "".join("%d\n" % t for t, _ in cells)
+    return s
+
+
+def medit(points, cells):
+    s = "MeshVersionFormatted 2\nDimension 3\nVertices\n%d\n" % len(points)
+    s += "".join("%r %r %r 0\n" % p for p in points)
+    for t, key in ((10, "Tetrahedra"), (12, "Hexahedra")):
+        sel = [v for tt, v in cells if tt == t]
+        if sel:
+            s += "%s\n%d\n" % (key, len(sel)) + "".join(" ".join(str(i + 1) for i in v) + " 1\n" for v in sel)
+    return s + "End\n"
+
+
+def put(target, name, text):
+    d = os.path.join(HERE, "corpus", target)
+    os.makedirs(d, exist_ok=True)
+    with open(os.path.join(d, name), "w") as f:
+        f.write(text)
+
+
+for name, (points, cells) in MESHES.items():
+    put("ovm", name + ".ovm", ovm(points, cells))
+    put("vtk", name + ".vtk", vtk(points, cells))
+    if all(t in (10, 12) for t, _ in cells):
+        put("medit", name + ".mesh", medit(points, cells))
+put("vtk", "kuhn_v5.vtk", vtk(*MESHES["kuhn"], version="5.1"))
+put("vtk", "two_hexes_polyhedra.vtk", vtk(*MESHES["two_hexes"], polyhedron=True))

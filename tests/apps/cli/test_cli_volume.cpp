@@ -1,0 +1,141 @@
+// tests/apps/cli/test_cli_volume.cpp — `polydec info` and `polydec convert` on volume meshes:
+// the JSON report against the mesh's own numbers, conversions between the volume formats and
+// to the boundary surface, usage and bad-input exit codes.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "polydec/dec/io.h"
+#include "polydec/dec/io_volume.h"
+#include "polydec/dec/volume_generators.h"
+#include "tests/support.h"
+
+using namespace polydec;
+namespace fs = std::filesystem;
+
+namespace test_cli_volume {
+
+namespace {
+
+struct Run {
+  int code = -1;
+  std::string out, err;
+};
+
+Run run(const fs::path& dir, const std::string& args) {
+  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
+  const std::string cmd =
+      std::string("'") + POLYDEC_CLI_PATH + "' " + args + " >'" + out.string() + "' 2>'" + err.string() + "'";
+  const int status = std::system(cmd.c_str());
+  Run r;
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::stringstream o, e;
+  o << std::ifstream(out).rdbuf();
+  e << std::ifstream(err).rdbuf();
+  r.out = o.str();
+  r.err = e.str();
+  return r;
+}
+
+struct Scratch {
+  fs::path dir;
+  Scratch() {
+    dir = fs::temp_directory_path() / ("polydec_cli_volume_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+  }
+  ~Scratch() {
+    std::error_code ec;
+    fs::remove_all(dir, ec);
+  }
+  std::string path(const std::string& name) const { return (dir / name).string(); }
+};
+
+}  // namespace
+
+TEST_CASE("polydec info on volume meshes", "[volume][cli]") {
+  Scratch s;
+  write_volume_mesh(hex_grid_volume(2, 3, 2), s.path("hex.ovm"));
+  Run r = run(s.dir, "info " + s.path("hex.ovm") + " --json");
+  REQUIRE(r.code == 0);
+  auto j = nlohmann::json::parse(r.out);
+  CHECK(j["kind"] == "volume");
+  CHECK(j["vertices"] == 3 * 4 * 3);
+  CHECK(j["cells"] == 12);
+  CHECK(j["cell_shapes"]["hexahedron"] == 12);
+  CHECK(j["cell_shapes"]["other"] == 0);
+  CHECK(j["volume"].get<double>() == Approx(1.0));
+  CHECK(j["min_cell_volume"].get<double>() == Approx(1.0 / 12));
+  CHECK(j["euler_characteristic"] == 1);
+  CHECK(j["boundary_faces"] == 2 * (2 * 3 + 3 * 2 + 2 * 2));
+  CHECK(j["boundary_euler_characteristic"] == 2);
+  CHECK(j["boundary_vertices"] == 3 * 4 * 3 - 2);
+  CHECK(j["max_nonplanarity"].get<double>() < 1e-14);
+
+  // Jittered pyramids through VTK: non-planar faces are reported, relative to the face size.
+  const VolumeMesh p = pyramid_grid_volume(2, 2, 2, {0.3, 1});
+  write_volume_mesh(p, s.path("pyr.vtk"));
+  r = run(s.dir, "info " + s.path("pyr.vtk") + " --json");
+  REQUIRE(r.code == 0);
+  j = nlohmann::json::parse(r.out);
+  CHECK(j["cell_shapes"]["pyramid"] == 48);
+  CHECK(j["volume"].get<double>() == Approx(1.0));
+  CHECK(j["nonplanar_faces"].get<int>() > 0);
+  CHECK(j["max_nonplanarity"].get<double>() < 0.3);
+
+  // --volume reads a file of any name by its first word; the text report.
+  fs::copy_file(s.path("hex.ovm"), s.path("hex.txt"));
+  r = run(s.dir, "info --volume " + s.path("hex.txt"));
+  CHECK(r.code == 0);
+  CHECK_THAT(r.out, Catch::Contains("12 hexahedra") && Catch::Contains("Euler characteristic 2"));
+
+  // Shared data: the truncated-octahedra cube.
+  const std::string cube = test::shared_path("volume/cube_truncated_1.ovm");
+  if (!cube.empty()) {
+    r = run(s.dir, "info " + cube + " --json");
+    REQUIRE(r.code == 0);
+    j = nlohmann::json::parse(r.out);
+    CHECK(j["cells"] == 9);
+    CHECK(j["volume"].get<double>() == Approx(1.0));
+    CHECK(j["cell_shapes"]["other"].get<int>() >= 1);
+  }
+}
+
+TEST_CASE("polydec convert between volume formats and to the boundary", "[volume][cli]") {
+  Scratch s;
+  const VolumeMesh m = tet_grid_volume(2, 2, 2, {0.2, 3});
+  write_volume_mesh(m, s.path("t.ovm"));
+  Run r = run(s.dir, "convert " + s.path("t.ovm") + " " + s.path("t.vtk") + " --json");
+  REQUIRE(r.code == 0);
+  CHECK(nlohmann::json::parse(r.out)["cells"] == 48);
+  r = run(s.dir, "convert " + s.path("t.vtk") + " " + s.path("t.mesh"));
+  REQUIRE(r.code == 0);
+  const VolumeMesh back = read_volume_mesh(s.path("t.mesh"));
+  CHECK(back.positions() == m.positions());
+  CHECK(back.n_cells() == m.n_cells());
+  CHECK(back.volume() == Approx(m.volume()).epsilon(1e-14));
+
+  r = run(s.dir, "convert " + s.path("t.ovm") + " " + s.path("b.off") + " --boundary");
+  REQUIRE(r.code == 0);
+  const Mesh b = read_mesh(s.path("b.off"));
+  CHECK(b.n_faces() == 2 * 4 * 6);
+  CHECK(b.n_boundary_edges() == 0);
+  CHECK(b.n_vertices() - b.n_unreferenced_vertices() - b.n_edges() + b.n_faces() == 2);
+
+  // Usage errors (exit 2) and bad input (exit 3, naming file and line).
+  CHECK(run(s.dir, "convert " + s.path("t.ovm") + " " + s.path("x.off")).code == 2);
+  CHECK(run(s.dir, "convert " + s.path("t.ovm") + " " + s.path("x.vtk") + " --boundary").code == 2);
+  CHECK(run(s.dir, "convert " + s.path("t.ovm") + " " + s.path("x.vtk") + " --dual").code == 2);
+  CHECK(run(s.dir, "convert " + s.path("b.off") + " " + s.path("x.off") + " --boundary").code == 2);
+  std::ofstream(s.path("bad.ovm")) << "OVM ASCII\nVertices\n1\n0 0\nEdges\n0\n";
+  r = run(s.dir, "info " + s.path("bad.ovm"));
+  CHECK(r.code == 3);
+  CHECK_THAT(r.err, Catch::Contains(s.path("bad.ovm") + ":4: a vertex needs 3 coordinates"));
+}
+
+}  // namespace test_cli_volume

@@ -1,0 +1,133 @@
+// tests/apps/cli/test_cli_volume_operators.cpp — `polydec operators` and `polydec dec` on volume
+// meshes: the written matrices against the library's, --volume on a file without a volume
+// extension, --cell-point, the DEC files' identities, and the exit codes of refused input.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "polydec/dec/io.h"
+#include "polydec/dec/io_volume.h"
+#include "polydec/dec/volume_generators.h"
+#include "polydec/dec/volume_hodge_star.h"
+#include "polydec/operators/volume_laplacian.h"
+#include "tests/dec/volume_test_meshes.h"
+#include "tests/support.h"
+
+using namespace polydec;
+namespace fs = std::filesystem;
+
+namespace test_cli_volume_operators {
+using polydec::test::relative_difference;
+
+namespace {
+
+struct Run {
+  int code = -1;
+  std::string out, err;
+};
+
+Run run(const fs::path& dir, const std::string& args) {
+  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
+  const std::string cmd =
+      std::string("'") + POLYDEC_CLI_PATH + "' " + args + " >'" + out.string() + "' 2>'" + err.string() + "'";
+  const int status = std::system(cmd.c_str());
+  Run r;
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::stringstream o, e;
+  o << std::ifstream(out).rdbuf();
+  e << std::ifstream(err).rdbuf();
+  r.out = o.str();
+  r.err = e.str();
+  return r;
+}
+
+struct Scratch {
+  fs::path dir;
+  Scratch() {
+    dir = fs::temp_directory_path() / ("polydec_cli_volops_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+  }
+  ~Scratch() {
+    std::error_code ec;
+    fs::remove_all(dir, ec);
+  }
+  std::string path(const std::string& name) const { return (dir / name).string(); }
+};
+
+}  // namespace
+
+TEST_CASE("polydec operators on volume meshes", "[volume][volume-operators][cli]") {
+  Scratch s;
+  const VolumeMesh written = hex_grid_volume(2, 2, 3, {0.2, 5});
+  write_volume_mesh(written, s.path("hex.ovm"));
+  const VolumeMesh mesh = read_volume_mesh(s.path("hex.ovm"));
+  Run r = run(s.dir, "operators " + s.path("hex.ovm") + " --out " + s.path("ops") + " --json");
+  REQUIRE(r.code == 0);
+  auto j = nlohmann::json::parse(r.out);
+  CHECK(j["cells"] == 12);
+  CHECK(j["subtet_degenerate"] == 0);
+  const VolumeRefinement R = refine_volume(mesh);
+  const VolumeLaplacian L = assemble_volume_laplacian(mesh, R);
+  CHECK(relative_difference(read_matrix_market(s.path("ops/S.mtx")), L.S) < 1e-14);
+  CHECK(relative_difference(read_matrix_market(s.path("ops/M.mtx")), L.M) < 1e-14);
+  CHECK((SparseMatrix(read_matrix_market(s.path("ops/M_lumped.mtx"))).diagonal() - L.M_lumped).norm() <
+        1e-14 * L.M_lumped.norm());
+  CHECK(relative_difference(read_matrix_market(s.path("ops/P.mtx")), volume_prolongation(mesh, R)) < 1e-14);
+
+  // --volume on a file without a volume extension; --cell-point polylaplace.
+  fs::copy_file(s.path("hex.ovm"), s.path("hex.dat"));
+  r = run(s.dir,
+          "operators " + s.path("hex.dat") + " --volume --cell-point polylaplace --out " + s.path("pl"));
+  REQUIRE(r.code == 0);
+  VolumeRefinementOptions o;
+  o.cell_rule = CellPointRule::PolyLaplace;
+  CHECK(relative_difference(read_matrix_market(s.path("pl/S.mtx")),
+                            assemble_volume_laplacian(mesh, refine_volume(mesh, o)).S) < 1e-14);
+  r = run(s.dir, "operators " + s.path("hex.ovm") + " --cell-point nonsense --out " + s.path("x"));
+  CHECK(r.code == 2);
+  CHECK(r.err.find("nonsense") != std::string::npos);
+}
+
+TEST_CASE("polydec dec on volume meshes", "[volume][volume-dec][cli]") {
+  Scratch s;
+  write_volume_mesh(hex_grid_volume(2, 1, 1, {0.2, 3}), s.path("hex.ovm"));
+  const VolumeMesh mesh = read_volume_mesh(s.path("hex.ovm"));
+  Run r = run(s.dir, "dec " + s.path("hex.ovm") + " --out " + s.path("dec") + " --json");
+  REQUIRE(r.code == 0);
+  auto j = nlohmann::json::parse(r.out);
+  const VolumeDec D = volume_dec(mesh, refine_volume(mesh));
+  CHECK(j["pairs"] == D.coarse.n_pairs());
+  CHECK(j["quadruples"] == D.coarse.n_quads());
+  CHECK(j["rank_star3"].get<int>() > 0);
+  SparseMatrix d[3], star[4];
+  for (int k = 0; k < 3; ++k) d[k] = read_matrix_market(s.path("dec/d" + std::to_string(k) + ".mtx"));
+  for (int k = 0; k < 4; ++k) {
+    star[k] = read_matrix_market(s.path("dec/star" + std::to_string(k) + ".mtx"));
+    CHECK(relative_difference(star[k], D.star[k]) < 1e-14);
+    CHECK(relative_difference(read_matrix_market(s.path("dec/P" + std::to_string(k) + ".mtx")), D.P[k]) <
+          1e-14);
+  }
+  CHECK(SparseMatrix(d[1] * d[0]).norm() == 0.0);
+  CHECK(SparseMatrix(d[2] * d[1]).norm() == 0.0);
+  const SparseMatrix S = star[1];
+  CHECK(relative_difference(SparseMatrix(-d[0].transpose() * S * d[0]),
+                            assemble_volume_laplacian(mesh, refine_volume(mesh)).S) < 1e-12);
+  std::ifstream tets(s.path("dec/tetrahedra.txt"));
+  int lines = 0;
+  for (std::string line; std::getline(tets, line);) ++lines;
+  CHECK(lines == D.coarse.n_quads());
+
+  // Cells with more than kMaxDecCellVertices vertices: bad input naming the cell.
+  write_volume_mesh(test::prism_volume(7), s.path("prism.ovm"));
+  r = run(s.dir, "dec " + s.path("prism.ovm") + " --out " + s.path("t"));
+  CHECK(r.code == 3);
+  CHECK(r.err.find("cell") != std::string::npos);
+}
+
+}  // namespace test_cli_volume_operators
