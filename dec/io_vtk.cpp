@@ -247,6 +247,8 @@ PolyhedronRead read_vtk(std::string_view bytes, const std::string& name) {
         if (k > cell.size() - p - 1)
           in.fail(ln, fmt::format("polyhedron cell {}: face {} lists {} points, beyond the cell's numbers", c,
                                   f, k));
+        if (k < 3)
+          in.fail(ln, fmt::format("polyhedron cell {}: face {} has {} points (at least 3 needed)", c, f, k));
         poly.assign(cell.begin() + p + 1, cell.begin() + p + 1 + k);
         for (int v : poly)
           if (v >= nv) in.fail(ln, fmt::format("point index {} out of range [0, {})", v, nv));

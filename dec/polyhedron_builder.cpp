@@ -79,7 +79,8 @@ int PolyhedronSoupBuilder::add_polygon(std::span<const int> polygon) {
   std::sort(key_.begin(), key_.end());
   auto& bucket = by_hash_[polyhedron_builder_detail::hash_sorted(key_)];
   const size_t n = polygon.size();
-  for (int f : bucket) {
+  for (size_t b = 0; n > 0 && b < bucket.size(); ++b) {  // an empty polygon matches nothing
+    const int f = bucket[b];
     const auto face = soup_.face_offsets[f + 1] - soup_.face_offsets[f];
     if (size_t(face) != n) continue;
     other_.assign(soup_.face_indices.begin() + soup_.face_offsets[f],

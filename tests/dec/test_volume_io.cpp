@@ -202,6 +202,8 @@ TEST_CASE("VTK: hostile files name the line", "[volume]") {
   expect_file_error(replace(poly, "17 4 3 0 2 1", "17 5 3 0 2 1"), "vtk", 8, "face 4 lies beyond");
   expect_file_error(replace(poly, "17 4 3 0 2 1", "17 4 30 0 2 1"), "vtk", 8, "face 0 lists 30 points");
   expect_file_error(replace(poly, "3 0 3 2\n", "3 0 3 7\n"), "vtk", 8, "point index 7 out of range");
+  expect_file_error(replace(poly, "17 4 3 0 2 1", "17 4 0 0 2 1"), "vtk", 8,
+                    "face 0 has 0 points (at least 3 needed)");
   expect_file_error(replace(poly, "3 0 3 2\n", "3 0 2 3\n"), "vtk", 8, "same direction");
 }
 
