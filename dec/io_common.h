@@ -5,8 +5,8 @@
 
 #include <fmt/format.h>
 
-#include <bit>
 #include <algorithm>
+#include <bit>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -101,11 +101,12 @@ inline bool parse_int(std::string_view t, long long& x) {
 // S and the most decimal places D (after the exponent is applied) any coordinate shows. A file
 // written with a fixed number of decimals resolves 0.5 10^-D everywhere, one written with a fixed
 // number of significant digits half a unit of the S-th digit of each value; the larger of the two
-// at the largest |x| bounds both. Integers (no '.', no exponent) are taken as exact; a file of integers only, or with 17 or
-// more significant digits, carries the doubles themselves (noise 0: only their round-off).
+// at the largest |x| of a non-integer token bounds both. Integers (no '.', no exponent) are taken as exact; a file of integers only,
+// or with 17 or more significant digits, carries the doubles themselves (noise 0: only their round-off).
 class DigitCounter {
  public:
-  void see(std::string_view t) {
+  // Counts the digits of token t, whose value is x.
+  void see(std::string_view t, double x) {
     if (!t.empty() && (t[0] == '+' || t[0] == '-')) t.remove_prefix(1);
     const size_t e = t.find_first_of("eE");
     const std::string_view mantissa = t.substr(0, e);
@@ -126,6 +127,7 @@ class DigitCounter {
     }
     exponent = std::clamp<long long>(exponent, -400, 400);
     seen_ = true;
+    if (std::isfinite(x)) largest_ = std::max(largest_, std::abs(x));
     significant_ = std::max(significant_, significant);
     decimals_ = std::max(decimals_, decimals - int(exponent));
   }
@@ -133,7 +135,7 @@ class DigitCounter {
   CoordinatePrecision precision(const Eigen::MatrixX3d& X) const {
     CoordinatePrecision p;
     if (!seen_ || significant_ >= 17 || X.rows() == 0) return p;
-    const double largest = X.cwiseAbs().maxCoeff();
+    const double largest = largest_;
     const double absolute = decimals_ >= 330 ? 0.0 : 0.5 * std::pow(10.0, -decimals_);
     // S significant digits of the largest value: its last digit is 10^(floor(log10 |x|) + 1 - S).
     const double leading = largest > 0 ? std::floor(std::log10(largest)) : 0.0;
@@ -148,6 +150,7 @@ class DigitCounter {
  private:
   bool seen_ = false;
   int significant_ = 0, decimals_ = -400;
+  double largest_ = 0;  // the largest |x| of a non-integer token
 };
 
 // The precision of float32 coordinates X: half a float ulp of the largest, over rms_radius of X.

@@ -51,7 +51,7 @@ SoupRead read_obj(std::string_view bytes, const std::string& name) {
       for (int c = 1; c <= 3; ++c) {
         double x;
         if (!parse_double(tok[c], x)) throw FileError(name, ln, -1, "bad vertex coordinate " + quote(tok[c]));
-        digits.see(tok[c]);
+        digits.see(tok[c], x);
         xyz.push_back(x);
       }
       if (xyz.size() / 3 > size_t(INT_MAX / 2)) throw FileError(name, ln, -1, "too many vertices");

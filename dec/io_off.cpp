@@ -147,7 +147,7 @@ SoupRead read_off(std::string_view bytes, const std::string& name) {
     for (int c = 0; c < 3; ++c) {
       if (!parse_double(tok[c], r.soup.positions(v, c)))
         throw FileError(name, ln, -1, "bad vertex coordinate " + quote(tok[c]));
-      digits.see(tok[c]);
+      digits.see(tok[c], r.soup.positions(v, c));
     }
   }
   r.soup.precision = digits.precision(r.soup.positions);

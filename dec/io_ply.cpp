@@ -259,7 +259,7 @@ SoupRead read_ply(std::string_view bytes, const std::string& name) {
               for (int c = 0; c < 3; ++c)
                 if (p == px[c]) {
                   r.soup.positions(i, c) = x;
-                  digits.see(first);
+                  digits.see(first, x);
                 }
             continue;
           }

@@ -29,8 +29,9 @@ void check_position(const Eigen::MatrixX3d& X, long v) {
 void check_precision(const CoordinatePrecision& p) {
   for (double x : {p.noise, p.planarity_tolerance})
     if (!(x >= 0 && x < 1))
-      throw InvalidMeshError("mesh", 0,
-                             fmt::format("coordinate precision {:g} outside [0, 1) (relative to the mesh's size)", x));
+      throw InvalidMeshError(
+          "mesh", 0,
+          fmt::format("coordinate precision {:g} outside [0, 1) (relative to the mesh's size)", x));
 }
 
 }  // namespace

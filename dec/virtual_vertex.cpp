@@ -226,7 +226,8 @@ namespace {
 // The weights of the n corners x in arithmetic T, Y and w scratch of 3n and n entries of T.
 // With `certify`, false when the polygon is too flat for T (least_norm_affine_weights()).
 template <int N, class T>
-bool squared_area_weights_t(const double* x, int n_dyn, T* Y, T* w, const PlanarityCut& planarity, bool certify) {
+bool squared_area_weights_t(const double* x, int n_dyn, T* Y, T* w, const PlanarityCut& planarity,
+                            bool certify) {
   const int n = N > 0 ? N : n_dyn;
   // Centred corners Y (so that nothing depends on where the polygon sits), in two passes: far
   // from the origin the rounded mean c leaves a residual mean of ~eps |c| in Y, which the
@@ -293,7 +294,8 @@ void squared_area_weights(const double* x, int n, double* w, double* work, const
   }
 }
 
-Eigen::VectorXd virtual_vertex_weights(const PolygonPositions& X, VirtualVertexRule rule, const PlanarityCut& planarity) {
+Eigen::VectorXd virtual_vertex_weights(const PolygonPositions& X, VirtualVertexRule rule,
+                                       const PlanarityCut& planarity) {
   switch (rule) {
     case VirtualVertexRule::SquaredArea:
       return squared_area_weights(X, planarity);

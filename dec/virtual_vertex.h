@@ -28,7 +28,8 @@ enum class VirtualVertexRule {
 // round-off of the computation); with `relative` > 0, when it is at most `relative` times the
 // largest (the fixed cut of earlier versions: 1e-5).
 struct PlanarityCut {
-  double noise = -1.0;    // absolute uncertainty of each corner coordinate; < 0: double round-off of the corners
+  double noise =
+      -1.0;  // absolute uncertainty of each corner coordinate; < 0: double round-off of the corners
   double relative = 0.0;  // > 0: overrides `noise`
 };
 
@@ -47,7 +48,8 @@ std::string to_string(VirtualVertexRule rule);
 Eigen::VectorXd squared_area_weights(const PolygonPositions& X, const PlanarityCut& planarity = {});
 // The same weights without allocating: x holds the n corners row by row (x[3k..3k+2]), the
 // n weights are written to w; `work` needs 3n doubles of scratch. For per-face inner loops.
-void squared_area_weights(const double* x, int n, double* w, double* work, const PlanarityCut& planarity = {});
+void squared_area_weights(const double* x, int n, double* w, double* work,
+                          const PlanarityCut& planarity = {});
 
 // Uniform weights 1/n.
 Eigen::VectorXd centroid_weights(int n);

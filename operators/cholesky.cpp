@@ -1,18 +1,19 @@
 // operators/cholesky.cpp — SparseCholesky on CHOLMOD (supernodal) or Eigen's SimplicialLDLT.
 #include "polydec/operators/cholesky.h"
 
-#include "polydec/dec/huge_pages.h"
+#include <dlfcn.h>
 
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
-#include <dlfcn.h>
 #include <mutex>
 #include <stdexcept>
 #include <string_view>
 #include <thread>
+
+#include "polydec/dec/huge_pages.h"
 
 #ifdef POLYDEC_HAVE_CHOLMOD
 #include <cholmod.h>
@@ -290,7 +291,8 @@ BlasThreads blas_threads() {
 
 BlasThreads set_blas_threads(int n) {
   using namespace blas_thread_detail;
-  if (n < 0 || n > 1024) throw std::invalid_argument("BLAS threads must be from 0 to 1024, got " + std::to_string(n));
+  if (n < 0 || n > 1024)
+    throw std::invalid_argument("BLAS threads must be from 0 to 1024, got " + std::to_string(n));
   std::lock_guard lock(policy_mutex());
   return apply(n, "set_blas_threads", true);
 }

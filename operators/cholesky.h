@@ -60,10 +60,11 @@ Eigen::SparseMatrix<double> principal_submatrix(const Eigen::SparseMatrix<double
 // OpenBLAS is found at run time (openblas_set_num_threads, looked up with dlsym); with another
 // BLAS the policy is reported but cannot be applied.
 struct BlasThreads {
-  int threads = -1;     // threads in effect (openblas_get_num_threads), -1 when BLAS is not OpenBLAS
-  int requested = 1;    // what the policy asked for (0: OpenBLAS's own default)
-  std::string source;   // "default", "set_blas_threads", "POLYDEC_BLAS_THREADS", "OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS"
-  bool applied = false; // whether openblas_set_num_threads was found and called
+  int threads = -1;      // threads in effect (openblas_get_num_threads), -1 when BLAS is not OpenBLAS
+  int requested = 1;     // what the policy asked for (0: OpenBLAS's own default)
+  std::string source;    // "default", "set_blas_threads", "POLYDEC_BLAS_THREADS", "OPENBLAS_NUM_THREADS",
+                         // "OMP_NUM_THREADS"
+  bool applied = false;  // whether openblas_set_num_threads was found and called
 };
 // Applies the policy (once; later calls return the recorded choice). Throws
 // std::invalid_argument for a POLYDEC_BLAS_THREADS that is not a count from 0 to 1024.

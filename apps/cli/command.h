@@ -35,10 +35,10 @@ struct RegisterCommand {
 // Prints a JSON object on stdout (one line per object, pretty with 2 spaces).
 void print_json(const nlohmann::json& j);
 
-// Reads the mesh at `path` (with the --planarity-tolerance of global_options() applied). With `repair_first`, the opt-in repair steps of dec/repair.h run on
-// the file's polygons before validation (coincident vertices merged exactly, invalid and duplicate
-// faces dropped, unreferenced vertices removed), one stderr line per step that changed something;
-// `vertex_map` (if given) receives file vertex -> mesh vertex (-1 when removed).
+// Reads the mesh at `path` (with the --planarity-tolerance of global_options() applied). With `repair_first`,
+// the opt-in repair steps of dec/repair.h run on the file's polygons before validation (coincident vertices
+// merged exactly, invalid and duplicate faces dropped, unreferenced vertices removed), one stderr line per
+// step that changed something; `vertex_map` (if given) receives file vertex -> mesh vertex (-1 when removed).
 Mesh load_mesh(const std::string& path, bool repair_first, std::vector<int>* vertex_map = nullptr);
 
 // Options given before (or, by fall-through, after) the subcommand, for every command.

@@ -22,7 +22,8 @@ void print_json(const nlohmann::json& j) {
   }
   nlohmann::json out = j;
   const polydec::BlasThreads b = polydec::blas_threads();
-  out["blas_threads"] = {{"threads", b.threads}, {"requested", b.requested}, {"source", b.source}, {"applied", b.applied}};
+  out["blas_threads"] = {
+      {"threads", b.threads}, {"requested", b.requested}, {"source", b.source}, {"applied", b.applied}};
   std::cout << out.dump(2) << std::endl;
 }
 

@@ -90,7 +90,8 @@ const RegisterCommand reg(
       app.add_flag("--no-pictures", o->no_pictures, "write no pictures or plots");
       app.add_option("--repeats", o->repeats,
                      "Table 5: this many interleaved rounds, medians reported (default 3)");
-      app.add_flag("--quiet", o->quiet, "no progress lines on stderr (they never go to stdout, --json or not)");
+      app.add_flag("--quiet", o->quiet,
+                   "no progress lines on stderr (they never go to stdout, --json or not)");
       app.add_flag("--json", o->json, "also print results.json on stdout");
       app.add_option("--report-from", o->report_from, "only write report.md from an earlier run's results.json");
       app.callback([o] { run(*o); });

@@ -72,7 +72,8 @@ Eigen::VectorXd quad_weights(const PolygonPositions& X) {
       for (int j = 0; j < 3; ++j) G[i][j] += Y[3 * k + i] * Y[3 * k + j];
   solve3(G, y, z);
   Eigen::VectorXd w(n);
-  for (int k = 0; k < n; ++k) w[k] = double(Quad(1) / n + Y[3 * k] * z[0] + Y[3 * k + 1] * z[1] + Y[3 * k + 2] * z[2]);
+  for (int k = 0; k < n; ++k)
+    w[k] = double(Quad(1) / n + Y[3 * k] * z[0] + Y[3 * k + 1] * z[1] + Y[3 * k + 2] * z[2]);
   return w;
 }
 
@@ -108,7 +109,9 @@ std::string off_text(const PolygonPositions& X, const char* number_format) {
 
 TEST_CASE("readers record the precision the coordinates' digits carry", "[planarity][io]") {
   const std::string faces = "3 0 1 2\n";
-  auto off = [&](const std::string& v) { return read_mesh_from_memory("OFF\n3 1 0\n" + v + faces, "off", "t.off"); };
+  auto off = [&](const std::string& v) {
+    return read_mesh_from_memory("OFF\n3 1 0\n" + v + faces, "off", "t.off");
+  };
   // Six decimals (0.5e-6), up to 7 significant digits (half a unit of the 7th digit of 2.5: 0.5e-6).
   const Mesh fixed = off("1.250000 0.000001 0.5\n-1.000000 2.500000 0.000000\n0.125000 0.250000 1.000000\n");
   CHECK(fixed.coordinate_noise() == Approx(0.5e-6));
@@ -125,7 +128,8 @@ TEST_CASE("readers record the precision the coordinates' digits carry", "[planar
   const std::string ply_header =
       "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\nproperty double z\n"
       "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
-  const Mesh ply = read_mesh_from_memory(ply_header + "0.25 0 0\n1.75 0 0\n0 1.5 0\n3 0 1 2\n", "ply", "t.ply");
+  const Mesh ply =
+      read_mesh_from_memory(ply_header + "0.25 0 0\n1.75 0 0\n0 1.5 0\n3 0 1 2\n", "ply", "t.ply");
   CHECK(ply.coordinate_noise() == Approx(0.5e-2));  // 2 decimals; 3 digits of 1.75
   // The precision is relative to the mesh's size: it moves and scales with the positions.
   const Mesh doubled = fixed.with_positions(fixed.positions() * 2);

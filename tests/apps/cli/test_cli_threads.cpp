@@ -35,8 +35,9 @@ struct Run {
 // Runs the CLI with a clean thread environment plus `env` (e.g. "POLYDEC_BLAS_THREADS=2").
 Run run_cli(const std::string& env, const std::string& args, const std::string& dir) {
   const std::string out = dir + "/stdout.txt";
-  const std::string cmd = "env -u OPENBLAS_NUM_THREADS -u OMP_NUM_THREADS -u POLYDEC_BLAS_THREADS " + env + " '" +
-                          std::string(POLYDEC_CLI_PATH) + "' " + args + " > '" + out + "' 2> '" + dir + "/stderr.txt'";
+  const std::string cmd = "env -u OPENBLAS_NUM_THREADS -u OMP_NUM_THREADS -u POLYDEC_BLAS_THREADS " + env +
+                          " '" + std::string(POLYDEC_CLI_PATH) + "' " + args + " > '" + out + "' 2> '" + dir +
+                          "/stderr.txt'";
   const auto t0 = std::chrono::steady_clock::now();
   const int status = std::system(cmd.c_str());
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -122,9 +123,10 @@ TEST_CASE("the CLI reports its BLAS thread policy in --json", "[threads][cli]") 
 TEST_CASE("under load the default BLAS policy is as fast as one thread", "[threads][cli][load]") {
   const double load = load_average();
   if (load > 2.0) {
-    WARN(fmt::format("skipped: load average {:.2f} > 2 before the test (the machine is busy; the ratio would "
-                     "measure the other processes)",
-                     load));
+    WARN(
+        fmt::format("skipped: load average {:.2f} > 2 before the test (the machine is busy; the ratio would "
+                    "measure the other processes)",
+                    load));
     return;
   }
   const std::string dir = temp_dir("load");
@@ -142,9 +144,10 @@ TEST_CASE("under load the default BLAS policy is as fast as one thread", "[threa
   waitpid(a, nullptr, 0);
   waitpid(b, nullptr, 0);
   const double ratio = median(policy) / median(one);
-  INFO(fmt::format("default policy {:.2f} s, one BLAS thread {:.2f} s (medians of 3), ratio {:.2f}; OpenBLAS's own "
-                   "default (one thread per core) {:.2f} s",
-                   median(policy), median(one), ratio, all_cores));
+  INFO(fmt::format(
+      "default policy {:.2f} s, one BLAS thread {:.2f} s (medians of 3), ratio {:.2f}; OpenBLAS's own "
+      "default (one thread per core) {:.2f} s",
+      median(policy), median(one), ratio, all_cores));
   CHECK(ratio <= 1.5);
   std::filesystem::remove_all(dir);
 }
