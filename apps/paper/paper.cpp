@@ -640,9 +640,10 @@ std::string paper_report_markdown(const json& r) {
   s += "## Table 1: conformal distortion\n\n";
   for (const auto& [fig, text] : r["setup"]["table1"].items()) s += "- " + fig + ": " + text.get<std::string>() + "\n";
   s += "\nThe paper compares ours with [AW11] at an unstated lambda (its column `aw11` below); our metric is the "
-       "area-weighted RMS of corner-angle differences in radians (apps/applications/parametrization.h). Our values are about 100 "
-       "times the paper's on Figure 6 (0.116 vs 1.157e-3): the paper does not give its normalization, so "
-       "compare the methods' ranking, not the magnitudes.\n\n";
+       "area-weighted RMS of corner-angle differences in radians (apps/applications/parametrization.h). Our values are 99.97 "
+       "times the paper's on Figure 6 (0.11567 vs 1.157e-3) but 0.67 times on Figure 4: no normalization tried "
+       "explains both (docs/paper.md lists them; most likely a misprinted exponent on Figure 6), so compare "
+       "the methods' ranking, not the magnitudes.\n\n";
   {
     std::vector<std::string> cols = baselines;
     s += table(r, "table1", cols, INFINITY);  // magnitudes differ by an unknown normalization
