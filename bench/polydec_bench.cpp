@@ -25,7 +25,6 @@
 #include <cstdio>
 #include <cstring>
 #include <fmt/format.h>
-#include <dlfcn.h>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -250,17 +249,6 @@ void bench_memory(const std::string& self, int n) {
   add(r);
 }
 
-// Sets OpenBLAS's thread count when OpenBLAS is the BLAS mapped at run time (looked up with
-// dlsym, so the benchmark does not link OpenBLAS itself); returns the count in effect or -1.
-int set_blas_threads(int n) {
-  using Set = void (*)(int);
-  using Get = int (*)();
-  auto set = reinterpret_cast<Set>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
-  auto get = reinterpret_cast<Get>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
-  if (set && n > 0) set(n);
-  return get ? get() : -1;
-}
-
 std::string blas_libraries() {
   std::ifstream in("/proc/self/maps");
   std::string line;
@@ -463,7 +451,7 @@ int main(int argc, char** argv) {
   const auto t_start = Clock::now();
   // One BLAS thread by default: Eigen's factorization it is compared with is single-threaded,
   // and on a shared 2-core machine OpenBLAS's spinning worker threads lose to other processes.
-  const int blas_in_effect = set_blas_threads(blas_threads);
+  const int blas_in_effect = polydec::set_blas_threads(blas_threads).threads;  // the library's policy (operators/cholesky.h)
   std::fprintf(stderr, "loading and generating meshes...\n");
   const Mesh hex = project_to_unit_sphere(dual(read_mesh(shared("unit-sphere.off"))));
   const Mesh fine = project_to_unit_sphere(catmull_clark(hex));

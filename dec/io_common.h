@@ -5,8 +5,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <bit>
 #include <charconv>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <string_view>
@@ -93,6 +95,73 @@ inline bool parse_int(std::string_view t, long long& x) {
   if (t.empty()) return false;
   const auto r = std::from_chars(t.data(), t.data() + t.size(), x);
   return r.ec == std::errc() && r.ptr == t.data() + t.size();
+}
+
+// The precision a text file's coordinates carry, from their digits: the most significant digits
+// S and the most decimal places D (after the exponent is applied) any coordinate shows. A file
+// written with a fixed number of decimals resolves 0.5 10^-D everywhere, one written with a fixed
+// number of significant digits half a unit of the S-th digit of each value; the larger of the two
+// at the largest |x| of a non-integer token bounds both. Integers (no '.', no exponent) are taken as exact; a file of integers only,
+// or with 17 or more significant digits, carries the doubles themselves (noise 0: only their round-off).
+class DigitCounter {
+ public:
+  // Counts the digits of token t, whose value is x.
+  void see(std::string_view t, double x) {
+    if (!t.empty() && (t[0] == '+' || t[0] == '-')) t.remove_prefix(1);
+    const size_t e = t.find_first_of("eE");
+    const std::string_view mantissa = t.substr(0, e);
+    long long exponent = 0;
+    if (e != std::string_view::npos && !parse_int(t.substr(e + 1), exponent)) return;
+    const size_t dot = mantissa.find('.');
+    if (dot == std::string_view::npos && e == std::string_view::npos) return;  // an integer: exact
+    int significant = 0, decimals = 0;
+    bool leading = true;
+    for (size_t i = 0; i < mantissa.size(); ++i) {
+      const char c = mantissa[i];
+      if (c == '.') continue;
+      if (c < '0' || c > '9') return;  // inf, nan: no decimal digits to count
+      if (dot != std::string_view::npos && i > dot) ++decimals;
+      if (leading && c == '0') continue;
+      leading = false;
+      ++significant;
+    }
+    exponent = std::clamp<long long>(exponent, -400, 400);
+    seen_ = true;
+    if (std::isfinite(x)) largest_ = std::max(largest_, std::abs(x));
+    significant_ = std::max(significant_, significant);
+    decimals_ = std::max(decimals_, decimals - int(exponent));
+  }
+  // The recorded precision of the coordinates X: the absolute bound above over rms_radius of X.
+  CoordinatePrecision precision(const Eigen::MatrixX3d& X) const {
+    CoordinatePrecision p;
+    if (!seen_ || significant_ >= 17 || X.rows() == 0) return p;
+    const double largest = largest_;
+    const double absolute = decimals_ >= 330 ? 0.0 : 0.5 * std::pow(10.0, -decimals_);
+    // S significant digits of the largest value: its last digit is 10^(floor(log10 |x|) + 1 - S).
+    const double leading = largest > 0 ? std::floor(std::log10(largest)) : 0.0;
+    const double noise = std::max(absolute, 0.5 * std::pow(10.0, leading + 1 - std::max(significant_, 1)));
+    const Eigen::RowVector3d c = X.colwise().mean();
+    const double radius = std::sqrt((X.rowwise() - c).rowwise().squaredNorm().mean());
+    if (!(radius > 0) || !std::isfinite(noise)) return p;
+    p.noise = std::min(noise / radius, 0.5);  // Mesh accepts [0, 1)
+    return p;
+  }
+
+ private:
+  bool seen_ = false;
+  int significant_ = 0, decimals_ = -400;
+  double largest_ = 0;  // the largest |x| of a non-integer token
+};
+
+// The precision of float32 coordinates X: half a float ulp of the largest, over rms_radius of X.
+inline CoordinatePrecision float_precision(const Eigen::MatrixX3d& X) {
+  CoordinatePrecision p;
+  if (X.rows() == 0) return p;
+  const Eigen::RowVector3d c = X.colwise().mean();
+  const double radius = std::sqrt((X.rowwise() - c).rowwise().squaredNorm().mean());
+  const double noise = 0x1p-24 * X.cwiseAbs().maxCoeff();
+  if (radius > 0 && std::isfinite(noise)) p.noise = std::min(noise / radius, 0.5);
+  return p;
 }
 
 // Shortens a token for an error message (a 1 MB token is not quoted in full).

@@ -34,6 +34,7 @@ SoupRead read_obj(std::string_view bytes, const std::string& name) {
   const std::string_view text = strip_bom(bytes);
   SoupRead r;
   std::vector<double> xyz;
+  DigitCounter digits;
   std::vector<long long> raw;  // 1-based or resolved positive indices, checked at the end
   std::vector<int> face;
   std::vector<std::string_view> tok;
@@ -50,6 +51,7 @@ SoupRead read_obj(std::string_view bytes, const std::string& name) {
       for (int c = 1; c <= 3; ++c) {
         double x;
         if (!parse_double(tok[c], x)) throw FileError(name, ln, -1, "bad vertex coordinate " + quote(tok[c]));
+        digits.see(tok[c], x);
         xyz.push_back(x);
       }
       if (xyz.size() / 3 > size_t(INT_MAX / 2)) throw FileError(name, ln, -1, "too many vertices");
@@ -92,6 +94,7 @@ SoupRead read_obj(std::string_view bytes, const std::string& name) {
     }
   r.soup.positions =
       Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(xyz.data(), nv, 3);
+  r.soup.precision = digits.precision(r.soup.positions);
   return r;
 }
 

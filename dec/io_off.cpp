@@ -68,6 +68,7 @@ SoupRead read_off_binary(std::string_view bytes, size_t start, const std::string
     r.vertex_where[v] = long(in.position());
     for (int c = 0; c < 3; ++c) r.soup.positions(v, c) = in.read<float>("vertex record");
   }
+  r.soup.precision = float_precision(r.soup.positions);  // float32 positions
   r.face_where.reserve(nf);
   r.soup.face_offsets.reserve(size_t(nf) + 1);
   r.soup.face_indices.reserve(std::min<size_t>(size_t(nf) * 6, in.remaining() / 4));
@@ -135,6 +136,7 @@ SoupRead read_off(std::string_view bytes, const std::string& name) {
   SoupRead r;
   r.soup.positions.resize(nv, 3);
   r.vertex_where.resize(nv);
+  DigitCounter digits;
   for (long long v = 0; v < nv; ++v) {
     if (!next_significant(lines, tok))
       throw FileError(name, lines.line(), -1,
@@ -142,10 +144,13 @@ SoupRead read_off(std::string_view bytes, const std::string& name) {
     const long ln = r.vertex_where[v] = lines.line();
     if (tok.size() < 3)
       throw FileError(name, ln, -1, fmt::format("vertex needs 3 coordinates, found {}", tok.size()));
-    for (int c = 0; c < 3; ++c)
+    for (int c = 0; c < 3; ++c) {
       if (!parse_double(tok[c], r.soup.positions(v, c)))
         throw FileError(name, ln, -1, "bad vertex coordinate " + quote(tok[c]));
+      digits.see(tok[c], r.soup.positions(v, c));
+    }
   }
+  r.soup.precision = digits.precision(r.soup.positions);
   r.face_where.reserve(nf);
   r.soup.face_offsets.reserve(nf + 1);
   std::vector<int> face;

@@ -234,6 +234,7 @@ SoupRead read_ply(std::string_view bytes, const std::string& name) {
   }
 
   if (format == Format::Ascii) {
+    DigitCounter digits;
     Tokens in(text, data_start, lines.line() + 1);
     std::string_view t;
     auto next = [&](const Element& el, long long i) {
@@ -256,7 +257,10 @@ SoupRead read_ply(std::string_view bytes, const std::string& name) {
             if (!parse_double(first, x)) throw FileError(name, in.line(), -1, "bad number " + quote(first));
             if (e == ev)
               for (int c = 0; c < 3; ++c)
-                if (p == px[c]) r.soup.positions(i, c) = x;
+                if (p == px[c]) {
+                  r.soup.positions(i, c) = x;
+                  digits.see(first, x);
+                }
             continue;
           }
           long long n;
@@ -282,6 +286,7 @@ SoupRead read_ply(std::string_view bytes, const std::string& name) {
         }
       }
     }
+    r.soup.precision = digits.precision(r.soup.positions);
     return r;
   }
 
@@ -331,6 +336,10 @@ SoupRead read_ply(std::string_view bytes, const std::string& name) {
       }
     }
   }
+  // Binary coordinates resolve their type's precision: float32 2^-24 relative, the rest double
+  // round-off (integers are exact).
+  for (int c = 0; c < 3; ++c)
+    if (elements[ev].props[px[c]].type == Type::F32) r.soup.precision = float_precision(r.soup.positions);
   return r;
 }
 

@@ -25,6 +25,15 @@ void check_position(const Eigen::MatrixX3d& X, long v) {
                                        v, X.row(v).cwiseAbs().maxCoeff(), kMaxCoordinate));
 }
 
+// Rejects a coordinate precision or planarity tolerance outside [0, 1) (NaN included).
+void check_precision(const CoordinatePrecision& p) {
+  for (double x : {p.noise, p.planarity_tolerance})
+    if (!(x >= 0 && x < 1))
+      throw InvalidMeshError(
+          "mesh", 0,
+          fmt::format("coordinate precision {:g} outside [0, 1) (relative to the mesh's size)", x));
+}
+
 }  // namespace
 
 void PolygonSoup::add_face(std::span<const int> f) {
@@ -45,6 +54,8 @@ Mesh::Mesh(PolygonSoup soup) {
   const int nf = int(soup.face_offsets.size()) - 1;
 
   for (long v = 0; v < nv; ++v) check_position(soup.positions, v);
+  check_precision(soup.precision);
+  precision_ = soup.precision;
 
   // Faces: size, index range, repeated vertices.
   for (int f = 0; f < nf; ++f) {
@@ -198,8 +209,22 @@ Mesh Mesh::with_positions(Eigen::MatrixX3d positions) const {
   for (long v = 0; v < positions.rows(); ++v) check_position(positions, v);
   Mesh m;
   m.positions_ = std::move(positions);
+  m.precision_ = precision_;
   m.topo_ = topo_;
   return m;
+}
+
+Mesh Mesh::with_precision(const CoordinatePrecision& precision) const {
+  check_precision(precision);
+  Mesh m = *this;
+  m.precision_ = precision;
+  return m;
+}
+
+double Mesh::rms_radius() const {
+  if (n_vertices() == 0) return 0.0;
+  const Eigen::RowVector3d c = positions_.colwise().mean();
+  return std::sqrt((positions_.rowwise() - c).rowwise().squaredNorm().mean());
 }
 
 double Mesh::mean_edge_length() const {

@@ -12,12 +12,26 @@
 
 namespace polydec {
 
+// The precision the vertex coordinates carry, relative to the mesh's size (Mesh::rms_radius()),
+// so that it moves, turns and scales with the mesh (Mesh::with_positions keeps it). Readers
+// record what the file's digits resolve (dec/io.h); generated and in-memory data default to 0,
+// i.e. exact doubles (only their round-off counts). Decides which nearly planar polygons count as
+// planar for the least-norm virtual-vertex weights (dec/virtual_vertex.h, dec/refinement.h).
+struct CoordinatePrecision {
+  double noise = 0.0;  // largest uncertainty of a coordinate / rms_radius()
+  // Overrides `noise` when > 0: a polygon whose out-of-plane extent is at most this fraction of
+  // its size counts as planar (the fixed cut of earlier versions was 1e-5).
+  double planarity_tolerance = 0.0;
+  bool operator==(const CoordinatePrecision&) const = default;
+};
+
 // Raw polygon data, as a reader or generator produces it, before validation.
 // Face f has the vertex indices face_indices[face_offsets[f] .. face_offsets[f+1]).
 struct PolygonSoup {
   Eigen::MatrixX3d positions;        // |V| x 3
   std::vector<int> face_offsets{0};  // |F| + 1 entries, starts at 0
   std::vector<int> face_indices;     // sum of face valences
+  CoordinatePrecision precision;     // what the source's digits resolve
 
   int n_vertices() const { return int(positions.rows()); }
   int n_faces() const { return int(face_offsets.size()) - 1; }
@@ -51,8 +65,16 @@ class Mesh {
   Mesh() = default;
   explicit Mesh(PolygonSoup soup);  // throws InvalidMeshError
 
-  // The same connectivity with new positions (|V| x 3, finite); cheap: shares connectivity.
+  // The same connectivity and coordinate precision with new positions (|V| x 3, finite);
+  // cheap: shares connectivity. Moved positions resolve no more than the ones they came from.
   Mesh with_positions(Eigen::MatrixX3d positions) const;
+  // The same mesh with another coordinate precision (e.g. a user's planarity tolerance).
+  Mesh with_precision(const CoordinatePrecision& precision) const;
+  const CoordinatePrecision& precision() const { return precision_; }
+  // Root-mean-square distance of the vertices from their mean: the size the precision refers to.
+  double rms_radius() const;
+  // The coordinates' absolute uncertainty, precision().noise * rms_radius().
+  double coordinate_noise() const { return precision_.noise * rms_radius(); }
 
   const Eigen::MatrixX3d& positions() const { return positions_; }
   Eigen::Vector3d position(int v) const { return positions_.row(v).transpose(); }
@@ -116,6 +138,7 @@ class Mesh {
     int n_boundary_edges = 0, n_unreferenced = 0, n_components = 0, max_face_size = 0;
   };
   Eigen::MatrixX3d positions_;
+  CoordinatePrecision precision_;
   std::shared_ptr<const Topology> topo_ = std::make_shared<Topology>();
 };
 

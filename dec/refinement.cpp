@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fmt/format.h>
+#include <stdexcept>
 #include <vector>
 
 namespace polydec {
@@ -19,10 +21,23 @@ PolygonPositions face_positions(const Mesh& mesh, int f) {
 
 namespace {
 
+// The planarity decision of a face with the n corners x (row by row): the options' tolerance,
+// else the mesh's, else the mesh's coordinate noise (`noise`, absolute) or the corners' own
+// double round-off, whichever is larger.
+PlanarityCut face_planarity(const Mesh& mesh, const RefinementOptions& o, double noise, const double* x, int n) {
+  if (o.planarity_tolerance > 0) return {0.0, o.planarity_tolerance};
+  if (mesh.precision().planarity_tolerance > 0) return {0.0, mesh.precision().planarity_tolerance};
+  double m = 0;
+  for (int k = 0; k < 3 * n; ++k) m = std::max(m, std::abs(x[k]));
+  return {std::max(noise, 0x1p-53 * m), 0.0};
+}
+
 // Virtual vertex and fan classification of face f with N corners (0: any), written into r.
-// x, Y and work are scratch of 3 * max_face_size doubles each.
+// x, Y and work are scratch of 3 * max_face_size doubles each; `noise` is the mesh's absolute
+// coordinate noise (Mesh::coordinate_noise()).
 template <int N>
-void refine_face(const Mesh& mesh, int f, Refinement& r, FanQuality& count, double* x, double* Y, double* work) {
+void refine_face(const Mesh& mesh, int f, Refinement& r, FanQuality& count, double noise, double* x, double* Y,
+                 double* work) {
   const int h0 = mesh.face_offsets()[f], n = N > 0 ? N : mesh.face_offsets()[f + 1] - h0;
   const int* face = mesh.face_indices().data() + h0;
   const Eigen::MatrixX3d& P = mesh.positions();
@@ -34,12 +49,13 @@ void refine_face(const Mesh& mesh, int f, Refinement& r, FanQuality& count, doub
     }
   for (int d = 0; d < 3; ++d) c[d] /= n;
   double* w = r.weights.data() + h0;
+  const PlanarityCut planarity = face_planarity(mesh, r.options, noise, x, n);
   if (r.options.rule == VirtualVertexRule::SquaredArea) {
-    squared_area_weights(x, n, w, work);
+    squared_area_weights(x, n, w, work, planarity);
   } else if (r.options.rule == VirtualVertexRule::Centroid) {
     for (int k = 0; k < n; ++k) w[k] = 1.0 / n;
   } else {  // the other rules (dec/virtual_vertex.h) through their general routes
-    const Eigen::VectorXd wr = virtual_vertex_weights(face_positions(mesh, f), r.options.rule);
+    const Eigen::VectorXd wr = virtual_vertex_weights(face_positions(mesh, f), r.options.rule, planarity);
     for (int k = 0; k < n; ++k) w[k] = wr[k];
   }
   // x_f = c + sum_k w_k (x_k - c): centred, so that far from the origin no digits are lost.
@@ -89,6 +105,8 @@ void refine_face(const Mesh& mesh, int f, Refinement& r, FanQuality& count, doub
 }  // namespace
 
 Refinement refine(const Mesh& mesh, const RefinementOptions& options) {
+  if (!(options.planarity_tolerance >= 0 && options.planarity_tolerance < 1))
+    throw std::invalid_argument(fmt::format("planarity tolerance {:g} outside [0, 1)", options.planarity_tolerance));
   Refinement r;
   r.options = options;
   // Large outputs on huge pages where available (first-touch faults dominate otherwise).
@@ -106,6 +124,7 @@ Refinement refine(const Mesh& mesh, const RefinementOptions& options) {
   const int nf = mesh.n_faces(), nmax = mesh.max_face_size();
   const int T = std::min(resolve_threads(options.threads), std::max(1, nf / 4096));  // >= 4096 faces per thread
   std::vector<FanQuality> counts(T);
+  const double noise = mesh.precision().noise > 0 ? mesh.coordinate_noise() : 0.0;
   auto work = [&](int t) {
     std::vector<double> buffer(9 * size_t(nmax));
     double* x = buffer.data();
@@ -114,11 +133,11 @@ Refinement refine(const Mesh& mesh, const RefinementOptions& options) {
     const int* offsets = mesh.face_offsets().data();
     for (int f = int(long(nf) * t / T), f1 = int(long(nf) * (t + 1) / T); f < f1; ++f) {
       switch (offsets[f + 1] - offsets[f]) {
-        case 3: refine_face<3>(mesh, f, r, counts[t], x, Y, scratch); break;
-        case 4: refine_face<4>(mesh, f, r, counts[t], x, Y, scratch); break;
-        case 5: refine_face<5>(mesh, f, r, counts[t], x, Y, scratch); break;
-        case 6: refine_face<6>(mesh, f, r, counts[t], x, Y, scratch); break;
-        default: refine_face<0>(mesh, f, r, counts[t], x, Y, scratch); break;
+        case 3: refine_face<3>(mesh, f, r, counts[t], noise, x, Y, scratch); break;
+        case 4: refine_face<4>(mesh, f, r, counts[t], noise, x, Y, scratch); break;
+        case 5: refine_face<5>(mesh, f, r, counts[t], noise, x, Y, scratch); break;
+        case 6: refine_face<6>(mesh, f, r, counts[t], noise, x, Y, scratch); break;
+        default: refine_face<0>(mesh, f, r, counts[t], noise, x, Y, scratch); break;
       }
     }
   };

@@ -19,6 +19,12 @@ struct RefinementOptions {
   // its length). Degenerate fan triangles get zero stiffness and zero gradient: relative to
   // the triangle's own size, so independent of the mesh's scale and position.
   double degenerate_tolerance = 1e-8;
+  // Planarity of nearly planar faces for the least-norm weights (eq. 16, dec/virtual_vertex.h):
+  // 0 decides from the mesh's coordinate precision (Mesh::precision(): what the file's digits
+  // resolve, double round-off for generated meshes); > 0 overrides it and the mesh's own
+  // planarity_tolerance: a face whose out-of-plane extent is at most this fraction of its size
+  // counts as planar.
+  double planarity_tolerance = 0.0;
   // Threads for the per-face work (0: all hardware threads). Results do not depend on it.
   int threads = 1;
 };

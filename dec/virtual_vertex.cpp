@@ -13,20 +13,44 @@ namespace polydec {
 
 namespace {
 
-// Relative eigenvalue cut-off for the rank decisions below. Eigenvalues of a 3x3 matrix of
-// squared lengths below kRankTolerance times the largest are treated as zero: a polygon whose
-// out-of-plane extent is below ~1e-5 of its size counts as planar. The least-norm weights of
-// eq. (16) jump between the planar and the non-planar case (the virtual point does not), so the
-// decision must not be left to round-off: mesh files store coordinates with 6 to 9 digits, which
-// makes planar polygons (e.g. a UV sphere's trapezoids) non-planar at the 1e-6 level.
+// Relative eigenvalue cut-off for psd_solve(): eigenvalues of a 3x3 matrix of squared lengths
+// below kRankTolerance times the largest count as zero. Used for the squared-area system A, which
+// is singular only for degenerate polygons (all edges parallel), and the absolute-area steps.
 constexpr double kRankTolerance = 1e-10;
 
+// The least-norm weights divide the polygon's out-of-plane part by its smallest singular value
+// sigma_min, so round-off costs them about eps sigma_max / sigma_min. In double they are kept
+// when sigma_min >= kDoubleCertified sigma_max (error ~1e-10) and recomputed in long double
+// otherwise; flatter than kResolution sigma_max, long double cannot promise 1e-6 either
+// (~1e-19 / 1e-11 times a small constant), so such a polygon counts as planar whatever its data.
+constexpr double kDoubleCertified = 1e-6;
+constexpr double kResolution = 1e-11;
+
+// Singular values of the centred corners at or below which the polygon counts as planar
+// (absolute, in the units of the coordinates): with a relative override, that fraction of the
+// largest singular value sigma_max; otherwise the largest perturbation the corners' uncertainty
+// allows (n x 3 entries of at most `noise` each: spectral norm <= sqrt(3n) noise) plus
+// kResolution sigma_max.
+template <class T>
+T planarity_cut(const PlanarityCut& p, int n, T sigma_max) {
+  if (p.relative > 0) return T(p.relative) * sigma_max;
+  return std::sqrt(T(3 * n)) * T(std::max(p.noise, 0.0)) + T(kResolution) * sigma_max;
+}
+
+// Double round-off of the corners x (n x 3, row by row): half an ulp of the largest coordinate.
+double roundoff_noise(const double* x, int n) {
+  double m = 0;
+  for (int k = 0; k < 3 * n; ++k) m = std::max(m, std::abs(x[k]));
+  return 0x1p-53 * m;
+}
+
 // Pseudo-inverse solve of a symmetric positive semi-definite 3x3 system.
-Eigen::Vector3d psd_solve(const Eigen::Matrix3d& A, const Eigen::Vector3d& b) {
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(A);
-  const Eigen::Vector3d lambda = es.eigenvalues();
-  const double cut = kRankTolerance * lambda.cwiseAbs().maxCoeff();
-  Eigen::Vector3d x = Eigen::Vector3d::Zero();
+template <class T>
+Eigen::Matrix<T, 3, 1> psd_solve(const Eigen::Matrix<T, 3, 3>& A, const Eigen::Matrix<T, 3, 1>& b) {
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix<T, 3, 3>> es(A);
+  const Eigen::Matrix<T, 3, 1> lambda = es.eigenvalues();
+  const T cut = T(kRankTolerance) * lambda.cwiseAbs().maxCoeff();
+  Eigen::Matrix<T, 3, 1> x = Eigen::Matrix<T, 3, 1>::Zero();
   for (int i = 0; i < 3; ++i)
     if (lambda[i] > cut && lambda[i] > 0)
       x += es.eigenvectors().col(i) * (es.eigenvectors().col(i).dot(b) / lambda[i]);
@@ -34,28 +58,32 @@ Eigen::Vector3d psd_solve(const Eigen::Matrix3d& A, const Eigen::Vector3d& b) {
 }
 
 // Least-norm w with sum w = 1 and Y^T w = y, for the n centred corners Y (row by row, 3n
-// doubles; overwritten). Because Y is centred, the row of ones is orthogonal to the columns of Y,
-// so w = 1/n + pinv(Y^T) y. Y = Q R by Householder reflections (backward stable: the normal
+// entries; overwritten), with the rank decided by `planarity` (planarity_cut()); w has n entries.
+// Because Y is centred, the row of ones is orthogonal to the columns of Y, so
+// w = 1/n + pinv(Y^T) y. Y = Q R by Householder reflections (backward stable: the normal
 // equations Y^T Y would square the condition number of nearly planar polygons); singular values
-// of R (those of Y) below sqrt(kRankTolerance) of the largest count as zero. When the bound
-// sigma_min / sigma_max >= 1 / (|R|_F |R^-1|_F) already clears that cut, R is full rank and
-// w = 1/n + Q R^-T y without an SVD; otherwise the SVD of the 3x3 R decides the rank.
+// of R (those of Y) at or below the cut count as zero. When the bound sigma_min >= 1 / |R^-1|_F
+// clears kDoubleCertified |R|_F (>= sigma_max), R is full rank and w = 1/n + Q R^-T y without
+// an SVD; otherwise the SVD of the 3x3 R decides the rank. Returns false (w not written) when
+// `certify` is set and the polygon is full rank with sigma_min < kDoubleCertified sigma_max:
+// then the caller recomputes in higher precision.
 // N > 0: the corner count fixed at compile time (loops unrolled); N = 0: n_dyn corners.
-template <int N = 0>
-inline void least_norm_affine_weights(double* Y, int n_dyn, const double y[3], double* w) {
+template <int N, class T>
+inline bool least_norm_affine_weights(T* Y, int n_dyn, const T y[3], T* w, const PlanarityCut& planarity,
+                                      bool certify) {
   const int n = N > 0 ? N : n_dyn;
-  double R[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}, beta[3] = {0, 0, 0};
+  T R[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}, beta[3] = {0, 0, 0};
   const int m = std::min(n, 3);
   for (int j = 0; j < m; ++j) {
-    double norm2 = 0;
+    T norm2 = 0;
     for (int k = j; k < n; ++k) norm2 += Y[3 * k + j] * Y[3 * k + j];
-    const double x0 = Y[3 * j + j], alpha = x0 > 0 ? -std::sqrt(norm2) : std::sqrt(norm2);
-    const double v0 = x0 - alpha, vv = norm2 - x0 * x0 + v0 * v0;
+    const T x0 = Y[3 * j + j], alpha = x0 > 0 ? -std::sqrt(norm2) : std::sqrt(norm2);
+    const T v0 = x0 - alpha, vv = norm2 - x0 * x0 + v0 * v0;
     Y[3 * j + j] = v0;  // v = (x0 - alpha, x1, ...) stored in column j, rows j..n-1
-    beta[j] = vv > 0 ? 2.0 / vv : 0.0;
+    beta[j] = vv > 0 ? T(2) / vv : T(0);
     R[j][j] = vv > 0 ? alpha : x0;
     for (int c = j + 1; c < 3; ++c) {
-      double dot = 0;
+      T dot = 0;
       for (int k = j; k < n; ++k) dot += Y[3 * k + j] * Y[3 * k + c];
       dot *= beta[j];
       for (int k = j; k < n; ++k) Y[3 * k + c] -= dot * Y[3 * k + j];
@@ -63,17 +91,17 @@ inline void least_norm_affine_weights(double* Y, int n_dyn, const double y[3], d
     }
   }
   // z = pinv(R^T) y (3 entries, the rest of Q^T's range is zero).
-  double z[3] = {0, 0, 0};
-  const double Rf = std::sqrt(R[0][0] * R[0][0] + R[0][1] * R[0][1] + R[0][2] * R[0][2] + R[1][1] * R[1][1] +
-                              R[1][2] * R[1][2] + R[2][2] * R[2][2]);
+  T z[3] = {0, 0, 0};
+  const T Rf = std::sqrt(R[0][0] * R[0][0] + R[0][1] * R[0][1] + R[0][2] * R[0][2] + R[1][1] * R[1][1] +
+                         R[1][2] * R[1][2] + R[2][2] * R[2][2]);
   bool full_rank = false;
   if (m == 3 && R[0][0] != 0 && R[1][1] != 0 && R[2][2] != 0) {
     // Inverse of the upper-triangular R.
-    const double i00 = 1 / R[0][0], i11 = 1 / R[1][1], i22 = 1 / R[2][2];
-    const double i01 = -R[0][1] * i00 * i11, i12 = -R[1][2] * i11 * i22;
-    const double i02 = -(R[0][1] * i12 + R[0][2] * i22) * i00;
-    const double Rinv_f = std::sqrt(i00 * i00 + i11 * i11 + i22 * i22 + i01 * i01 + i12 * i12 + i02 * i02);
-    if (Rf * Rinv_f * std::sqrt(kRankTolerance) < 1) {
+    const T i00 = 1 / R[0][0], i11 = 1 / R[1][1], i22 = 1 / R[2][2];
+    const T i01 = -R[0][1] * i00 * i11, i12 = -R[1][2] * i11 * i22;
+    const T i02 = -(R[0][1] * i12 + R[0][2] * i22) * i00;
+    const T Rinv_f = std::sqrt(i00 * i00 + i11 * i11 + i22 * i22 + i01 * i01 + i12 * i12 + i02 * i02);
+    if (Rf * Rinv_f * T(kDoubleCertified) < 1 && planarity_cut<T>(planarity, n, Rf) * Rinv_f < 1) {
       full_rank = true;
       // R^T z = y: forward substitution with the lower-triangular R^T.
       z[0] = y[0] / R[0][0];
@@ -83,34 +111,46 @@ inline void least_norm_affine_weights(double* Y, int n_dyn, const double y[3], d
   }
   if (!full_rank && Rf > 0) {
     // R = U S V^T: pinv(R^T) y = U S^+ V^T y.
-    Eigen::Matrix3d Rm;
+    using M3 = Eigen::Matrix<T, 3, 3>;
+    M3 Rm;
     Rm << R[0][0], R[0][1], R[0][2], 0, R[1][1], R[1][2], 0, 0, R[2][2];
-    Eigen::JacobiSVD<Eigen::Matrix3d> svd(Rm, Eigen::ComputeFullU | Eigen::ComputeFullV);
-    const Eigen::Vector3d sigma = svd.singularValues();
-    Eigen::Vector3d t = svd.matrixV().transpose() * Eigen::Vector3d(y[0], y[1], y[2]);
-    for (int i = 0; i < 3; ++i) t[i] = sigma[i] > std::sqrt(kRankTolerance) * sigma[0] ? t[i] / sigma[i] : 0.0;
-    const Eigen::Vector3d u = svd.matrixU() * t;
+    Eigen::JacobiSVD<M3> svd(Rm, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    const Eigen::Matrix<T, 3, 1> sigma = svd.singularValues();
+    const T cut = planarity_cut<T>(planarity, n, sigma[0]);
+    if (certify && sigma[2] > cut && sigma[2] < T(kDoubleCertified) * sigma[0]) return false;
+    Eigen::Matrix<T, 3, 1> t = svd.matrixV().transpose() * Eigen::Matrix<T, 3, 1>(y[0], y[1], y[2]);
+    for (int i = 0; i < 3; ++i) t[i] = sigma[i] > cut ? t[i] / sigma[i] : T(0);
+    const Eigen::Matrix<T, 3, 1> u = svd.matrixU() * t;
     for (int i = 0; i < m; ++i) z[i] = u[i];
   }
   // w = 1/n + Q (z, 0, ..., 0): apply the reflections in reverse order.
-  for (int k = 0; k < n; ++k) w[k] = k < m ? z[k] : 0.0;
+  for (int k = 0; k < n; ++k) w[k] = k < m ? z[k] : T(0);
   for (int j = m - 1; j >= 0; --j) {
-    double dot = 0;
+    T dot = 0;
     for (int k = j; k < n; ++k) dot += Y[3 * k + j] * w[k];
     dot *= beta[j];
     for (int k = j; k < n; ++k) w[k] -= dot * Y[3 * k + j];
   }
-  for (int k = 0; k < n; ++k) w[k] += 1.0 / n;
+  for (int k = 0; k < n; ++k) w[k] += T(1) / T(n);
+  return true;
 }
 
 // Corners row by row (x[3k..3k+2]), the layout of the pointer routines.
 using RowCorners = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
 
-Eigen::VectorXd least_norm_affine_weights(const PolygonPositions& Y, const Eigen::Vector3d& y) {
+Eigen::VectorXd least_norm_affine_weights(const PolygonPositions& Y, const Eigen::Vector3d& y,
+                                          const PlanarityCut& planarity) {
   RowCorners Yr = Y;
   Eigen::VectorXd w(Y.rows());
-  least_norm_affine_weights(Yr.data(), int(Y.rows()), y.data(), w.data());
+  least_norm_affine_weights<0, double>(Yr.data(), int(Y.rows()), y.data(), w.data(), planarity, false);
   return w;
+}
+
+// The planarity decision for the corners X (n x 3): double round-off when no noise is given.
+PlanarityCut resolved(const PlanarityCut& p, const PolygonPositions& X) {
+  if (p.relative > 0 || p.noise >= 0) return p;
+  const RowCorners x = X;
+  return {roundoff_noise(x.data(), int(X.rows())), 0.0};
 }
 
 // Centred corners, two passes (see squared_area_weights_n: the least-norm weights need sum Y = 0
@@ -122,15 +162,16 @@ PolygonPositions centred(const PolygonPositions& X) {
 
 // The normal equations A y = b of the squared fan area E(y) = 1/2 sum_k |e_k x (y - y_k)|^2 of the
 // n corners Y (row by row; eq. 38): A = sum_k (|e_k|^2 I - e_k e_k^T), b = sum_k (|e_k|^2 I - e_k e_k^T) y_k.
-template <int N = 0>
-inline std::pair<Eigen::Matrix3d, Eigen::Vector3d> squared_area_system(const double* Y, int n_dyn) {
+template <int N = 0, class T = double>
+inline std::pair<Eigen::Matrix<T, 3, 3>, Eigen::Matrix<T, 3, 1>> squared_area_system(const T* Y, int n_dyn) {
+  using V3 = Eigen::Matrix<T, 3, 1>;
   const int n = N > 0 ? N : n_dyn;
-  Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
-  Eigen::Vector3d b = Eigen::Vector3d::Zero();
+  Eigen::Matrix<T, 3, 3> A = Eigen::Matrix<T, 3, 3>::Zero();
+  V3 b = V3::Zero();
   for (int k = 0; k < n; ++k) {
-    const Eigen::Map<const Eigen::Vector3d> p(Y + 3 * k), q(Y + 3 * (k + 1 == n ? 0 : k + 1));
-    const Eigen::Vector3d e = q - p;
-    const double ee = e.squaredNorm();
+    const Eigen::Map<const V3> p(Y + 3 * k), q(Y + 3 * (k + 1 == n ? 0 : k + 1));
+    const V3 e = q - p;
+    const T ee = e.squaredNorm();
     A -= e * e.transpose();
     A.diagonal().array() += ee;
     b += ee * p - e * e.dot(p);
@@ -172,48 +213,49 @@ std::string to_string(VirtualVertexRule rule) {
 
 Eigen::VectorXd centroid_weights(int n) { return Eigen::VectorXd::Constant(n, 1.0 / n); }
 
-Eigen::VectorXd squared_area_weights(const PolygonPositions& X) {
+Eigen::VectorXd squared_area_weights(const PolygonPositions& X, const PlanarityCut& planarity) {
   const RowCorners x = X;
   RowCorners work(X.rows(), 3);
   Eigen::VectorXd w(X.rows());
-  squared_area_weights(x.data(), int(X.rows()), w.data(), work.data());
+  squared_area_weights(x.data(), int(X.rows()), w.data(), work.data(), planarity);
   return w;
 }
 
 namespace {
 
-template <int N>
-void squared_area_weights_n(const double* x, int n_dyn, double* w, double* work) {
+// The weights of the n corners x in arithmetic T, Y and w scratch of 3n and n entries of T.
+// With `certify`, false when the polygon is too flat for T (least_norm_affine_weights()).
+template <int N, class T>
+bool squared_area_weights_t(const double* x, int n_dyn, T* Y, T* w, const PlanarityCut& planarity,
+                            bool certify) {
   const int n = N > 0 ? N : n_dyn;
   // Centred corners Y (so that nothing depends on where the polygon sits), in two passes: far
   // from the origin the rounded mean c leaves a residual mean of ~eps |c| in Y, which the
   // least-norm weights below (they assume sum_k Y_k = 0) would amplify by the inverse of the
   // polygon's out-of-plane extent; the second pass removes it down to ~eps |Y|.
-  double* Y = work;
   for (int pass = 0; pass < 2; ++pass) {
-    const double* src = pass == 0 ? x : Y;
-    double c[3] = {0, 0, 0};
+    T c[3] = {0, 0, 0};
     for (int k = 0; k < n; ++k)
-      for (int d = 0; d < 3; ++d) c[d] += src[3 * k + d];
-    for (int d = 0; d < 3; ++d) c[d] /= n;
+      for (int d = 0; d < 3; ++d) c[d] += pass == 0 ? T(x[3 * k + d]) : Y[3 * k + d];
+    for (int d = 0; d < 3; ++d) c[d] /= T(n);
     for (int k = 0; k < n; ++k)
-      for (int d = 0; d < 3; ++d) Y[3 * k + d] = src[3 * k + d] - c[d];
+      for (int d = 0; d < 3; ++d) Y[3 * k + d] = (pass == 0 ? T(x[3 * k + d]) : Y[3 * k + d]) - c[d];
   }
   // The minimizer y of the squared fan area: A y = b (eq. 38). A is positive semi-definite and
   // singular only for degenerate polygons (all edges parallel). LDL^T when every pivot exceeds
   // 1e-3 of the trace: then lambda_min >= 1e-9 lambda_max (the pivots' product is det A), above
   // the eigenvalue cut of psd_solve(), which handles the rest.
-  const auto [A, b] = squared_area_system<N>(Y, n);
-  const double tau = 1e-3 * A.trace();
-  double y[3];
+  const auto [A, b] = squared_area_system<N, T>(Y, n);
+  const T tau = T(1e-3) * A.trace();
+  T y[3];
   bool solved = false;
   if (A(0, 0) > tau) {
-    const double l10 = A(1, 0) / A(0, 0), l20 = A(2, 0) / A(0, 0);
-    const double d1 = A(1, 1) - l10 * A(1, 0), a21 = A(2, 1) - l10 * A(2, 0);
+    const T l10 = A(1, 0) / A(0, 0), l20 = A(2, 0) / A(0, 0);
+    const T d1 = A(1, 1) - l10 * A(1, 0), a21 = A(2, 1) - l10 * A(2, 0);
     if (d1 > tau) {
-      const double l21 = a21 / d1, d2 = A(2, 2) - l20 * A(2, 0) - l21 * a21;
+      const T l21 = a21 / d1, d2 = A(2, 2) - l20 * A(2, 0) - l21 * a21;
       if (d2 > tau) {
-        const double f0 = b[0], f1 = b[1] - l10 * f0, f2 = b[2] - l20 * f0 - l21 * f1;
+        const T f0 = b[0], f1 = b[1] - l10 * f0, f2 = b[2] - l20 * f0 - l21 * f1;
         y[2] = f2 / d2;
         y[1] = f1 / d1 - l21 * y[2];
         y[0] = f0 / A(0, 0) - l10 * y[1] - l20 * y[2];
@@ -222,36 +264,49 @@ void squared_area_weights_n(const double* x, int n_dyn, double* w, double* work)
     }
   }
   if (!solved) {
-    const Eigen::Vector3d ys = psd_solve(A, b);
+    const Eigen::Matrix<T, 3, 1> ys = psd_solve<T>(A, b);
     for (int d = 0; d < 3; ++d) y[d] = ys[d];
   }
-  least_norm_affine_weights<N>(Y, n, y, w);
+  return least_norm_affine_weights<N, T>(Y, n, y, w, planarity, certify);
+}
+
+// Double first; a polygon too flat for double's round-off again in long double.
+template <int N>
+void squared_area_weights_n(const double* x, int n_dyn, double* w, double* work, PlanarityCut planarity) {
+  const int n = N > 0 ? N : n_dyn;
+  if (planarity.relative <= 0 && planarity.noise < 0) planarity.noise = roundoff_noise(x, n);
+  if (squared_area_weights_t<N, double>(x, n, work, w, planarity, true)) return;
+  std::vector<long double> buffer(4 * size_t(n));
+  long double* wl = buffer.data() + 3 * size_t(n);
+  squared_area_weights_t<N, long double>(x, n, buffer.data(), wl, planarity, false);
+  for (int k = 0; k < n; ++k) w[k] = double(wl[k]);
 }
 
 }  // namespace
 
-void squared_area_weights(const double* x, int n, double* w, double* work) {
+void squared_area_weights(const double* x, int n, double* w, double* work, const PlanarityCut& planarity) {
   switch (n) {
-    case 3: squared_area_weights_n<3>(x, n, w, work); break;
-    case 4: squared_area_weights_n<4>(x, n, w, work); break;
-    case 5: squared_area_weights_n<5>(x, n, w, work); break;
-    case 6: squared_area_weights_n<6>(x, n, w, work); break;
-    default: squared_area_weights_n<0>(x, n, w, work); break;
+    case 3: squared_area_weights_n<3>(x, n, w, work, planarity); break;
+    case 4: squared_area_weights_n<4>(x, n, w, work, planarity); break;
+    case 5: squared_area_weights_n<5>(x, n, w, work, planarity); break;
+    case 6: squared_area_weights_n<6>(x, n, w, work, planarity); break;
+    default: squared_area_weights_n<0>(x, n, w, work, planarity); break;
   }
 }
 
-Eigen::VectorXd virtual_vertex_weights(const PolygonPositions& X, VirtualVertexRule rule) {
+Eigen::VectorXd virtual_vertex_weights(const PolygonPositions& X, VirtualVertexRule rule,
+                                       const PlanarityCut& planarity) {
   switch (rule) {
     case VirtualVertexRule::SquaredArea:
-      return squared_area_weights(X);
+      return squared_area_weights(X, planarity);
     case VirtualVertexRule::Centroid:
       return centroid_weights(int(X.rows()));
     case VirtualVertexRule::AbsArea:
-      return abs_area_weights(X);
+      return abs_area_weights(X, planarity);
     case VirtualVertexRule::Convex:
       return convex_weights(X);
     case VirtualVertexRule::TraceMin:
-      return trace_min_weights(X);
+      return trace_min_weights(X, planarity);
   }
   throw std::invalid_argument("unknown virtual-vertex rule");
 }
@@ -262,7 +317,7 @@ namespace polydec {
 
 // ---- absolute-area minimizer -------------------------------------------------------------
 
-Eigen::VectorXd abs_area_weights(const PolygonPositions& X) {
+Eigen::VectorXd abs_area_weights(const PolygonPositions& X, const PlanarityCut& planarity) {
   const int n = int(X.rows());
   const PolygonPositions Y = centred(X);
   // Twice the area vector of fan triangle i: c_i(x) = (y_i - x) x e_i = y_i x e_i + e_i x x.
@@ -313,7 +368,7 @@ Eigen::VectorXd abs_area_weights(const PolygonPositions& X) {
       if (done) break;
     }
   }
-  return least_norm_affine_weights(Y, best);
+  return least_norm_affine_weights(Y, best, resolved(planarity, X));
 }
 
 // ---- convex squared-area weights -----------------------------------------------------------
@@ -491,10 +546,10 @@ double coarse_stiffness_trace(const PolygonPositions& X, const Eigen::VectorXd& 
   return d.sum() + 2 * w.dot(s) + sigma * w.squaredNorm();
 }
 
-Eigen::VectorXd trace_min_weights(const PolygonPositions& X) {
+Eigen::VectorXd trace_min_weights(const PolygonPositions& X, const PlanarityCut& planarity) {
   const int n = int(X.rows());
   const PolygonPositions Y = centred(X);
-  const Eigen::VectorXd w_area = squared_area_weights(X);
+  const Eigen::VectorXd w_area = squared_area_weights(X, planarity);
   Eigen::Vector3d N = Eigen::Vector3d::Zero();
   for (int i = 0; i < n; ++i) N += Y.row(i).transpose().cross(Y.row((i + 1) % n).transpose());
   if (!(N.norm() > 1e-12 * scale2(Y))) return w_area;  // no plane to work in

@@ -21,6 +21,18 @@ enum class VirtualVertexRule {
   TraceMin,  // minimizer of the fan's stiffness trace, harmonic weights (Bunge et al. 2024)
 };
 
+// How the rank of a polygon's centred corners (2: planar, 3: non-planar) is decided for the
+// least-norm weights (eq. 16): the paper's definition (exact arithmetic) wherever the data can
+// tell. A polygon counts as planar when its smallest singular value is within what the corners'
+// uncertainty allows (sqrt(3n) noise, plus a few n eps of the largest singular value for the
+// round-off of the computation); with `relative` > 0, when it is at most `relative` times the
+// largest (the fixed cut of earlier versions: 1e-5).
+struct PlanarityCut {
+  double noise =
+      -1.0;  // absolute uncertainty of each corner coordinate; < 0: double round-off of the corners
+  double relative = 0.0;  // > 0: overrides `noise`
+};
+
 // Parses "squared-area" (or "affine"), "centroid", "abs-area", "convex", "trace-min"; throws
 // std::invalid_argument otherwise.
 VirtualVertexRule parse_virtual_vertex_rule(const std::string& name);
@@ -31,12 +43,13 @@ std::string to_string(VirtualVertexRule rule);
 // depend on where the polygon sits or how large it is: the minimizer solves a 3x3 system (LDL^T,
 // or an eigen-decomposition when it is ill-conditioned), and the least-norm weights reproducing
 // it come from the pseudo-inverse of the centred positions (Householder QR, then R^-T or the SVD
-// of R), whose rank (2 for planar, 3 for non-planar polygons) is decided relative to the
-// polygon's own extent. No allocation in the pointer version below.
-Eigen::VectorXd squared_area_weights(const PolygonPositions& X);
+// of R), whose rank (2 for planar, 3 for non-planar polygons) `planarity` decides (default: the
+// corners are exact doubles, so only round-off counts as planar). No allocation in the pointer version below.
+Eigen::VectorXd squared_area_weights(const PolygonPositions& X, const PlanarityCut& planarity = {});
 // The same weights without allocating: x holds the n corners row by row (x[3k..3k+2]), the
 // n weights are written to w; `work` needs 3n doubles of scratch. For per-face inner loops.
-void squared_area_weights(const double* x, int n, double* w, double* work);
+void squared_area_weights(const double* x, int n, double* w, double* work,
+                          const PlanarityCut& planarity = {});
 
 // Uniform weights 1/n.
 Eigen::VectorXd centroid_weights(int n);
@@ -48,7 +61,7 @@ Eigen::VectorXd centroid_weights(int n);
 // twice the area vector of fan triangle i), eps decreasing from 1e-2 to 1e-7 of the polygon's
 // squared size, starting at the centroid; the centroid is kept unless a point improves the true
 // objective by more than 1e-12 of it (so convex polygons keep their centroid).
-Eigen::VectorXd abs_area_weights(const PolygonPositions& X);
+Eigen::VectorXd abs_area_weights(const PolygonPositions& X, const PlanarityCut& planarity = {});
 
 // Convex weights (w >= 0, sum w = 1) minimizing the sum of squared fan areas of x = X^T w, with
 // ties (the objective has rank <= 3 in w) broken towards the least-norm w by a Tikhonov term
@@ -66,7 +79,7 @@ Eigen::VectorXd convex_weights(const PolygonPositions& X);
 // weights of p in its fan, which reproduce p for planar polygons. Falls back to
 // squared_area_weights() when the projected polygon has no kernel (not star-shaped) or when the
 // fallback's coarsened stiffness has the smaller trace.
-Eigen::VectorXd trace_min_weights(const PolygonPositions& X);
+Eigen::VectorXd trace_min_weights(const PolygonPositions& X, const PlanarityCut& planarity = {});
 
 // Trace of the positive semi-definite coarsened fan stiffness -P_f^T S^f P_f of polygon X with
 // virtual-vertex weights w (eq. 12), fan triangles (x_i, x_{i+1}, x_f) with x_f = X^T w; +infinity
@@ -74,6 +87,7 @@ Eigen::VectorXd trace_min_weights(const PolygonPositions& X);
 double coarse_stiffness_trace(const PolygonPositions& X, const Eigen::VectorXd& w);
 
 // Dispatch on the rule.
-Eigen::VectorXd virtual_vertex_weights(const PolygonPositions& X, VirtualVertexRule rule);
+Eigen::VectorXd virtual_vertex_weights(const PolygonPositions& X, VirtualVertexRule rule,
+                                       const PlanarityCut& planarity = {});
 
 }  // namespace polydec

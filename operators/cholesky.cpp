@@ -1,11 +1,19 @@
 // operators/cholesky.cpp — SparseCholesky on CHOLMOD (supernodal) or Eigen's SimplicialLDLT.
 #include "polydec/operators/cholesky.h"
 
-#include "polydec/dec/huge_pages.h"
+#include <dlfcn.h>
 
 #include <Eigen/SparseCholesky>
 #include <algorithm>
+#include <charconv>
 #include <cmath>
+#include <cstdlib>
+#include <mutex>
+#include <stdexcept>
+#include <string_view>
+#include <thread>
+
+#include "polydec/dec/huge_pages.h"
 
 #ifdef POLYDEC_HAVE_CHOLMOD
 #include <cholmod.h>
@@ -92,6 +100,7 @@ SparseCholesky::SparseCholesky(const Eigen::SparseMatrix<double>& A_in, std::str
     return;
   }
 #ifdef POLYDEC_HAVE_CHOLMOD
+  blas_threads();  // the thread policy, applied once before the first factorization
   impl_->use_cholmod = true;
   cholmod_common& c = impl_->c;
   cholmod_start(&c);
@@ -212,6 +221,81 @@ double SparseCholesky::factor_nonzeros() const {
 }
 
 std::string SparseCholesky::ordering() const { return impl_->ordering; }
+
+namespace blas_thread_detail {
+
+std::mutex& policy_mutex() {
+  static std::mutex m;
+  return m;
+}
+BlasThreads& recorded() {
+  static BlasThreads b;
+  return b;
+}
+
+// OpenBLAS's thread count when OpenBLAS is mapped, else -1.
+int openblas_threads() {
+  using Get = int (*)();
+  auto get = reinterpret_cast<Get>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
+  return get ? get() : -1;
+}
+
+// Calls openblas_set_num_threads(n) (n = 0: one per hardware thread); false when not mapped.
+bool openblas_set(int n) {
+  using Set = void (*)(int);
+  auto set = reinterpret_cast<Set>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
+  if (!set) return false;
+  set(n > 0 ? n : std::max(1, int(std::thread::hardware_concurrency())));
+  return true;
+}
+
+int parse_count(const char* name, const char* value) {
+  const std::string_view v(value);
+  int n = -1;
+  const auto r = std::from_chars(v.data(), v.data() + v.size(), n);
+  if (v.empty() || r.ec != std::errc() || r.ptr != v.data() + v.size() || n < 0 || n > 1024)
+    throw std::invalid_argument(std::string(name) + "='" + std::string(v.substr(0, 40)) +
+                                "' is not a thread count from 0 to 1024");
+  return n;
+}
+
+// Applies `requested` from `source` and records it; the caller holds the mutex.
+BlasThreads apply(int requested, std::string source, bool set_it) {
+  BlasThreads b;
+  b.requested = requested;
+  b.source = std::move(source);
+  b.applied = set_it && openblas_set(requested);
+  b.threads = openblas_threads();
+  recorded() = b;
+  return b;
+}
+
+}  // namespace blas_thread_detail
+
+BlasThreads blas_threads() {
+  using namespace blas_thread_detail;
+  std::lock_guard lock(policy_mutex());
+  if (!recorded().source.empty()) {
+    recorded().threads = openblas_threads();
+    return recorded();
+  }
+  if (const char* v = std::getenv("POLYDEC_BLAS_THREADS"))
+    return apply(parse_count("POLYDEC_BLAS_THREADS", v), "POLYDEC_BLAS_THREADS", true);
+  for (const char* name : {"OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS"})
+    if (const char* v = std::getenv(name); v && *v) {
+      const int t = openblas_threads();
+      return apply(t > 0 ? t : 0, name, false);  // OpenBLAS read it at load time
+    }
+  return apply(1, "default", true);
+}
+
+BlasThreads set_blas_threads(int n) {
+  using namespace blas_thread_detail;
+  if (n < 0 || n > 1024)
+    throw std::invalid_argument("BLAS threads must be from 0 to 1024, got " + std::to_string(n));
+  std::lock_guard lock(policy_mutex());
+  return apply(n, "set_blas_threads", true);
+}
 
 bool SparseCholesky::cholmod_available() {
 #ifdef POLYDEC_HAVE_CHOLMOD

@@ -48,6 +48,31 @@ Eigen::SparseMatrix<double> pin_to_identity(const Eigen::SparseMatrix<double>& A
 // column index[v]; index must increase with v on those vertices.
 Eigen::SparseMatrix<double> principal_submatrix(const Eigen::SparseMatrix<double>& A, const std::vector<int>& index);
 
+// The BLAS thread policy of the solvers. CHOLMOD's supernodal factorization and its solves do
+// their dense work in BLAS (CHOLMOD 3 has no threads of its own); OpenBLAS's default of one
+// thread per core spins against other processes on a loaded machine (issue 14: geodesics on HEX
+// SPHERE 7.5-9.1 s wall with the default threads, 3.1-3.4 s with one, same CPU time). The
+// policy, applied once before the first factorization (or by set_blas_threads()):
+//   1. set_blas_threads(n) (the CLI's --blas-threads), else
+//   2. the environment variable POLYDEC_BLAS_THREADS (n >= 1, or 0 for OpenBLAS's own default), else
+//   3. OPENBLAS_NUM_THREADS or OMP_NUM_THREADS when set (the user asked OpenBLAS directly), else
+//   4. one thread (the default).
+// OpenBLAS is found at run time (openblas_set_num_threads, looked up with dlsym); with another
+// BLAS the policy is reported but cannot be applied.
+struct BlasThreads {
+  int threads = -1;      // threads in effect (openblas_get_num_threads), -1 when BLAS is not OpenBLAS
+  int requested = 1;     // what the policy asked for (0: OpenBLAS's own default)
+  std::string source;    // "default", "set_blas_threads", "POLYDEC_BLAS_THREADS", "OPENBLAS_NUM_THREADS",
+                         // "OMP_NUM_THREADS"
+  bool applied = false;  // whether openblas_set_num_threads was found and called
+};
+// Applies the policy (once; later calls return the recorded choice). Throws
+// std::invalid_argument for a POLYDEC_BLAS_THREADS that is not a count from 0 to 1024.
+BlasThreads blas_threads();
+// Sets the BLAS threads now (n >= 1; 0: OpenBLAS's own default, one per core) and records
+// source "set_blas_threads"; throws std::invalid_argument for n < 0 or n > 1024.
+BlasThreads set_blas_threads(int n);
+
 class SparseCholesky {
  public:
   // Analyses and factors A (symmetric positive definite; only its lower triangle is read).

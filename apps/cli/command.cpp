@@ -10,9 +10,27 @@
 
 namespace polydec::cli {
 
+GlobalOptions& global_options() {
+  static GlobalOptions options;
+  return options;
+}
+
+namespace load_detail {
+
+// The mesh with the user's planarity tolerance, if one was given.
+Mesh with_global_options(Mesh mesh) {
+  const double t = global_options().planarity_tolerance;
+  if (t <= 0) return mesh;
+  CoordinatePrecision p = mesh.precision();
+  p.planarity_tolerance = t;
+  return mesh.with_precision(p);
+}
+
+}  // namespace load_detail
+
 Mesh load_mesh(const std::string& path, bool repair_first, std::vector<int>* vertex_map) {
   if (!repair_first) {
-    const Mesh mesh = read_mesh(path);
+    const Mesh mesh = load_detail::with_global_options(read_mesh(path));
     if (vertex_map) {
       vertex_map->resize(mesh.n_vertices());
       for (int v = 0; v < mesh.n_vertices(); ++v) (*vertex_map)[v] = v;
@@ -26,7 +44,7 @@ Mesh load_mesh(const std::string& path, bool repair_first, std::vector<int>* ver
   for (const std::string& line : report.summary()) fmt::print(stderr, "polydec: --repair {}: {}\n", path, line);
   if (vertex_map) *vertex_map = report.vertex_map;
   try {
-    return Mesh(std::move(soup));
+    return load_detail::with_global_options(Mesh(std::move(soup)));
   } catch (const InvalidMeshError& e) {
     throw InvalidMeshError(e.element, e.index, fmt::format("{}: still invalid after --repair: {}", path, e.what()));
   }

@@ -36,15 +36,23 @@ struct RegisterCommand {
 // Prints a JSON object on stdout (one line per object, pretty with 2 spaces).
 void print_json(const nlohmann::json& j);
 
-// Reads the mesh at `path`. With `repair_first`, the opt-in repair steps of dec/repair.h run on
-// the file's polygons before validation (coincident vertices merged exactly, invalid and duplicate
-// faces dropped, unreferenced vertices removed), one stderr line per step that changed something;
-// `vertex_map` (if given) receives file vertex -> mesh vertex (-1 when removed).
+// Reads the mesh at `path` (with the --planarity-tolerance of global_options() applied). With `repair_first`,
+// the opt-in repair steps of dec/repair.h run on the file's polygons before validation (coincident vertices
+// merged exactly, invalid and duplicate faces dropped, unreferenced vertices removed), one stderr line per
+// step that changed something; `vertex_map` (if given) receives file vertex -> mesh vertex (-1 when removed).
 Mesh load_mesh(const std::string& path, bool repair_first, std::vector<int>* vertex_map = nullptr);
 
 // Reads the volume mesh at `path` (.ovm, .vtk or .mesh by extension; dec/io_volume.h). Throws
 // FileError (exit code 3) for an unreadable or invalid file.
 VolumeMesh load_volume_mesh(const std::string& path);
+
+// Options given before (or, by fall-through, after) the subcommand, for every command.
+struct GlobalOptions {
+  // --planarity-tolerance: > 0 overrides the coordinate precision that load_mesh() records,
+  // so that a face whose out-of-plane extent is at most this fraction of its size counts as planar.
+  double planarity_tolerance = 0.0;
+};
+GlobalOptions& global_options();
 
 // Adds the `--repair` flag (see load_mesh) to a subcommand.
 void add_repair_flag(CLI::App& app, bool& flag);

@@ -15,7 +15,17 @@ std::vector<Command>& registry() {
   return commands;
 }
 
-void print_json(const nlohmann::json& j) { std::cout << j.dump(2) << std::endl; }
+void print_json(const nlohmann::json& j) {
+  if (!j.is_object() || j.contains("blas_threads")) {
+    std::cout << j.dump(2) << std::endl;
+    return;
+  }
+  nlohmann::json out = j;
+  const polydec::BlasThreads b = polydec::blas_threads();
+  out["blas_threads"] = {
+      {"threads", b.threads}, {"requested", b.requested}, {"source", b.source}, {"applied", b.applied}};
+  std::cout << out.dump(2) << std::endl;
+}
 
 }  // namespace polydec::cli
 
@@ -24,6 +34,17 @@ int main(int argc, char** argv) {
   CLI::App app{"polydec: discrete exterior calculus on polygon meshes (Polygon Laplacian Made Simple)"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "polydec 0.1");
+  app.fallthrough();
+  app.add_option("--planarity-tolerance", global_options().planarity_tolerance,
+                 "faces whose out-of-plane extent is at most this fraction of their size count as planar for "
+                 "the virtual-vertex weights (default 0: decided from the precision the file's coordinates "
+                 "carry; 1e-5 reproduces polydec <= 0.1)")
+      ->check(CLI::Range(0.0, 0.999));
+  app.add_option_function<int>(
+         "--blas-threads", [](int n) { polydec::set_blas_threads(n); },
+         "BLAS threads of the sparse Cholesky solvers (default 1, or POLYDEC_BLAS_THREADS, or OpenBLAS's "
+         "OPENBLAS_NUM_THREADS when set; 0: one per core); reported as blas_threads in every --json")
+      ->check(CLI::Range(0, 1024));
   auto& cmds = registry();
   std::sort(cmds.begin(), cmds.end(), [](const Command& a, const Command& b) { return a.name < b.name; });
   for (auto& c : cmds) c.setup(*app.add_subcommand(c.name, c.description));

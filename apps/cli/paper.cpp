@@ -19,7 +19,7 @@ namespace {
 
 struct Options {
   std::string data = "../shared/data", out = "paper-out", report_from;
-  bool quick = false, no_timings = false, no_pictures = false, json = false;
+  bool quick = false, no_timings = false, no_pictures = false, json = false, quiet = false;
   int repeats = 3;
 };
 
@@ -67,7 +67,7 @@ void run(const Options& o) {
   p.pictures = !o.no_pictures;
   p.timing_repeats = o.repeats;
   ProgressBar bar;
-  p.progress = std::ref(bar);
+  if (!o.quiet) p.progress = std::ref(bar);
   const nlohmann::json results = reproduce_paper(p);
   write_file_atomically(o.out + "/results.json", results.dump(2) + "\n");
   write_file_atomically(o.out + "/report.md", paper_report_markdown(results));
@@ -88,7 +88,10 @@ const RegisterCommand reg(
       app.add_flag("--quick", o->quick, "leave out HEX/FINE SPHERE and Table 5, coarse Poisson grids (seconds)");
       app.add_flag("--no-timings", o->no_timings, "leave out Table 5");
       app.add_flag("--no-pictures", o->no_pictures, "write no pictures or plots");
-      app.add_option("--repeats", o->repeats, "Table 5: median of this many runs (default 3)");
+      app.add_option("--repeats", o->repeats,
+                     "Table 5: this many interleaved rounds, medians reported (default 3)");
+      app.add_flag("--quiet", o->quiet,
+                   "no progress lines on stderr (they never go to stdout, --json or not)");
       app.add_flag("--json", o->json, "also print results.json on stdout");
       app.add_option("--report-from", o->report_from, "only write report.md from an earlier run's results.json");
       app.callback([o] { run(*o); });

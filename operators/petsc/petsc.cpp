@@ -260,7 +260,13 @@ DistributedOperators assemble_operators(MPI_Comm comm, const Mesh& mesh, const P
       soup.positions.row(Eigen::Index(l)) = mesh.positions().row(verts[l]);
       l2g[l] = part.global_index[size_t(verts[l])];
     }
-    const Mesh sub(std::move(soup));
+    Mesh sub(std::move(soup));
+    // The global mesh's coordinate precision, in absolute terms (it is stored relative to a
+    // mesh's size), so that every rank decides planarity as the serial code does.
+    CoordinatePrecision precision = mesh.precision();
+    const double radius = sub.rms_radius();
+    precision.noise = radius > 0 ? std::min<double>(mesh.coordinate_noise() / radius, 0.5) : 0.0;
+    sub = sub.with_precision(precision);
     ops = build_operators(sub, parse_laplacian("ours"), with_gradient);
     out.n_local_faces = sub.n_faces();
     out.n_local_vertices = sub.n_vertices();

@@ -180,14 +180,16 @@ TEST_CASE("allocation-free squared-area weights equal an SVD route and eq. (38)"
     for (int i = 0; i < 3; ++i) z[i] = sigma[i] > 1e-5 * sigma[0] ? z[i] / sigma[i] : 0.0;
     return Eigen::VectorXd(Eigen::VectorXd::Constant(n, 1.0 / n) + svd.matrixU() * z);
   };
-  // The raw-pointer route used by refine().
-  auto fast = [](const PolygonPositions& X) {
+  // The raw-pointer route used by refine(), with the SVD route's fixed relative cut 1e-5 (the
+  // default decision, from the data's precision, is tested in tests/dec/test_planarity.cpp).
+  const PlanarityCut cut{0.0, 1e-5};
+  auto fast = [&cut](const PolygonPositions& X) {
     const int n = int(X.rows());
     std::vector<double> x(3 * n), work(3 * n);
     for (int k = 0; k < n; ++k)
       for (int d = 0; d < 3; ++d) x[3 * k + d] = X(k, d);
     Eigen::VectorXd w(n);
-    squared_area_weights(x.data(), n, w.data(), work.data());
+    squared_area_weights(x.data(), n, w.data(), work.data(), cut);
     return w;
   };
   std::mt19937 rng(42);
@@ -206,7 +208,7 @@ TEST_CASE("allocation-free squared-area weights equal an SVD route and eq. (38)"
       const Eigen::VectorXd w = fast(X), general = svd_route(X);
       CHECK(std::abs(w.sum() - 1.0) < 1e-13);
       CHECK((w - general).norm() < 1e-9 * general.norm());
-      CHECK((squared_area_weights(X) - w).norm() == 0.0);
+      CHECK((squared_area_weights(X, cut) - w).norm() == 0.0);
       if (bump >= 0.05 || bump == 0.0) CHECK((w - reference(X)).norm() < 1e-9 * w.norm());
       // Moved and shrunk: the weights do not depend on position or scale.
       const PolygonPositions Y = (X * 1e-3).rowwise() + Eigen::RowVector3d(2e-3, -1e-3, 5e-4);

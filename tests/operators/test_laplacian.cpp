@@ -172,6 +172,7 @@ TEST_CASE("invariance under rigid motion, relabeling and scaling", "[laplacian]"
     std::iota(perm.begin(), perm.end(), 0);
     std::shuffle(perm.begin(), perm.end(), std::mt19937(5));
     PolygonSoup soup;
+    soup.precision = mesh.precision();  // the same data: what its digits resolve decides planarity
     soup.positions.resize(mesh.n_vertices(), 3);
     for (int v = 0; v < mesh.n_vertices(); ++v) soup.positions.row(perm[v]) = mesh.positions().row(v);
     for (int f = 0; f < mesh.n_faces(); ++f) {

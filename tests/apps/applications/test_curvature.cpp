@@ -26,6 +26,7 @@ double rmse_on(const Mesh& mesh, bool lumped) {
 Mesh reversed(const Mesh& m) {
   PolygonSoup s;
   s.positions = m.positions();
+  s.precision = m.precision();  // the same data
   for (int f = 0; f < m.n_faces(); ++f) {
     std::vector<int> face(m.face(f).begin(), m.face(f).end());
     std::reverse(face.begin(), face.end());
