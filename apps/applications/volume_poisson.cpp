@@ -3,6 +3,7 @@
 #include "polydec/apps/applications/volume_poisson.h"
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "polydec/apps/applications/poisson.h"
@@ -23,7 +24,11 @@ struct Franke3Terms {
   }
 };
 
-double slope(double h0, double h1, double e0, double e1) { return std::log(e1 / e0) / std::log(h1 / h0); }
+// NaN when an error is 0 (a mesh without interior vertices: cube_truncated_1).
+double slope(double h0, double h1, double e0, double e1) {
+  if (!(e0 > 0 && e1 > 0)) return std::numeric_limits<double>::quiet_NaN();
+  return std::log(e1 / e0) / std::log(h1 / h0);
+}
 
 }  // namespace
 }  // namespace volume_poisson_detail

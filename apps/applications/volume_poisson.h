@@ -12,7 +12,9 @@
 //
 // Errors: e = f - f* at the vertices; the mass-weighted L2 error sqrt(e^T M e) and, as polyLaplace
 // reports it, the root mean square of e over all vertices (boundary ones included, where e = 0).
-// h is the mean edge length.
+// h is the mean edge length. M is the Galerkin mass by default (right-hand side and error norm; on
+// the shared cubes only it makes the error decrease from level 1 on, docs/volumes.md);
+// lumped_mass = true uses the lumped mass, as the surface study does by default.
 #pragma once
 
 #include <functional>
@@ -54,9 +56,10 @@ VolumePoissonError volume_franke_poisson(const VolumeMesh& mesh, bool lumped_mas
 
 struct VolumeConvergenceSeries {
   std::string family;
-  std::vector<std::string> levels;            // a label per mesh (file name or resolution)
-  std::vector<VolumePoissonError> errors;     // solution vectors dropped
-  std::vector<double> l2_slopes, rms_slopes;  // log(e_{i+1}/e_i) / log(h_{i+1}/h_i) between levels
+  std::vector<std::string> levels;         // a label per mesh (file name or resolution)
+  std::vector<VolumePoissonError> errors;  // solution vectors dropped
+  std::vector<double> l2_slopes,
+      rms_slopes;  // log(e_{i+1}/e_i) / log(h_{i+1}/h_i) between levels; NaN where an error is 0
 };
 
 // The Franke study over meshes of increasing resolution (labels one per mesh).

@@ -51,7 +51,8 @@ struct BallSpectrum {
   std::string method;
 };
 
-// The k smallest eigenvalues on hex_ball_volume(n) against the unit ball's.
+// The k smallest eigenvalues on hex_ball_volume(n) against the unit ball's (2k + 10 pairs are
+// computed and the k smallest kept, so that no copy of a repeated eigenvalue is missed).
 BallSpectrum ball_spectrum(int n, int k, bool dirichlet, bool lumped_mass = false);
 
 }  // namespace polydec

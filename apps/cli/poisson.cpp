@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <map>
 
 #include "polydec/apps/applications/volume_poisson.h"
@@ -64,7 +65,7 @@ void run_volume(const Options& o) {
     nlohmann::json r = {{"level", s.levels[i]},   {"vertices", e.n_vertices},
                         {"cells", e.n_cells},     {"h", e.h},
                         {"l2_error", e.l2_error}, {"rms_error", e.rms_error}};
-    if (i > 0) {
+    if (i > 0 && std::isfinite(s.l2_slopes[i - 1])) {
       r["l2_slope"] = s.l2_slopes[i - 1];
       r["rms_slope"] = s.rms_slopes[i - 1];
     }
@@ -87,7 +88,8 @@ void run_volume(const Options& o) {
     const auto& e = s.errors[i];
     fmt::print("  {:24s} |V| = {:7d}  |C| = {:7d}  h = {:.5f}  L2 = {:.6e}  RMS = {:.6e}", s.levels[i],
                e.n_vertices, e.n_cells, e.h, e.l2_error, e.rms_error);
-    if (i > 0) fmt::print("  slopes {:.3f} / {:.3f}", s.l2_slopes[i - 1], s.rms_slopes[i - 1]);
+    if (i > 0 && std::isfinite(s.l2_slopes[i - 1]))
+      fmt::print("  slopes {:.3f} / {:.3f}", s.l2_slopes[i - 1], s.rms_slopes[i - 1]);
     fmt::print("\n");
   }
 }

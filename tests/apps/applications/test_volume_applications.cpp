@@ -30,18 +30,30 @@ TEST_CASE("franke3d_laplacian matches central finite differences of franke3d", "
 }
 
 TEST_CASE("3D Franke Poisson on hex grids converges with slope 2 in both norms", "[volume-apps]") {
-  std::vector<VolumeMesh> meshes;
-  for (int n : {4, 8, 16}) meshes.push_back(hex_grid_volume(n, n, n));
-  const auto s = volume_franke_convergence("hex grid", meshes, {"4", "8", "16"});
-  REQUIRE(s.l2_slopes.size() == 2);
-  for (size_t i = 0; i < 2; ++i) {
-    INFO("level " << i << ": l2 slope " << s.l2_slopes[i] << ", rms slope " << s.rms_slopes[i]);
-    CHECK(s.errors[i + 1].l2_error < s.errors[i].l2_error);
-    CHECK(s.errors[i + 1].rms_error < s.errors[i].rms_error);
+  // Lumped mass, n = 4, 8, 16: slopes 2.95 / 2.72 (4 -> 8, pre-asymptotic), then about 2.
+  // Galerkin mass (the default), n = 4, 8, 16, 24: slopes 1.39, 1.69, 1.89: asymptotically 2 from
+  // below, so its test pair is 16 -> 24.
+  for (const bool lumped : {true, false}) {
+    const std::vector<int> ns = lumped ? std::vector<int>{4, 8, 16} : std::vector<int>{8, 16, 24};
+    std::vector<VolumeMesh> meshes;
+    std::vector<std::string> labels;
+    for (int n : ns) {
+      meshes.push_back(hex_grid_volume(n, n, n));
+      labels.push_back(std::to_string(n));
+    }
+    const auto s = volume_franke_convergence("hex grid", meshes, labels, lumped);
+    REQUIRE(s.l2_slopes.size() == 2);
+    for (size_t i = 0; i < 2; ++i) {
+      INFO((lumped ? "lumped" : "Galerkin")
+           << " level " << i << ": l2 slope " << s.l2_slopes[i] << ", rms slope " << s.rms_slopes[i]);
+      CHECK(s.errors[i + 1].l2_error < s.errors[i].l2_error);
+      CHECK(s.errors[i + 1].rms_error < s.errors[i].rms_error);
+    }
+    INFO((lumped ? "lumped" : "Galerkin")
+         << ": last slopes " << s.l2_slopes.back() << " / " << s.rms_slopes.back());
+    CHECK(std::abs(s.l2_slopes.back() - 2) < 0.3);
+    CHECK(std::abs(s.rms_slopes.back() - 2) < 0.3);
   }
-  // The finest pair is in the asymptotic range.
-  CHECK(std::abs(s.l2_slopes.back() - 2) < 0.3);
-  CHECK(std::abs(s.rms_slopes.back() - 2) < 0.3);
 }
 
 TEST_CASE("3D Franke Poisson errors decrease on the shared cubes", "[volume-apps]") {
@@ -130,19 +142,21 @@ TEST_CASE("spherical Bessel functions and their zeros", "[volume-apps]") {
 TEST_CASE("hexahedral ball eigenvalues converge to the unit ball's", "[volume-apps]") {
   const int k = 10;
   for (bool dirichlet : {true, false}) {
-    const BallSpectrum coarse = ball_spectrum(6, k, dirichlet);
-    const BallSpectrum fine = ball_spectrum(12, k, dirichlet);
+    const BallSpectrum coarse = ball_spectrum(8, k, dirichlet);
+    const BallSpectrum fine = ball_spectrum(16, k, dirichlet);
     double max_coarse = 0, max_fine = 0;
     for (int i = dirichlet ? 0 : 1; i < k; ++i) {
       max_coarse = std::max(max_coarse, coarse.relative_error[i]);
       max_fine = std::max(max_fine, fine.relative_error[i]);
     }
     INFO((dirichlet ? "Dirichlet" : "Neumann")
-         << ": max relative error " << max_coarse << " (n = 6), " << max_fine << " (n = 12)");
+         << ": max relative error " << max_coarse << " (n = 8), " << max_fine << " (n = 16)");
     CHECK(max_fine < max_coarse);
     if (dirichlet) CHECK(max_fine < 0.05);
     if (!dirichlet) CHECK(std::abs(fine.eigenvalues[0]) < 1e-8);  // the constants
     for (int i = 0; i + 1 < k; ++i) CHECK(fine.eigenvalues[i] <= fine.eigenvalues[i + 1]);
+    // No copy of a repeated eigenvalue missed: each discrete one lies within 10% of its analytic partner.
+    for (int i = dirichlet ? 0 : 1; i < k; ++i) CHECK(fine.relative_error[i] < 0.1);
   }
 }
 
