@@ -1,13 +1,19 @@
 // apps/cli/poisson.cpp — `polydec poisson`: the convergence study of the paper's section 5.8
-// (Figure 9), Franke's function on triangle, quad and hexagon grids of the unit square.
+// (Figure 9), Franke's function on triangle, quad and hexagon grids of the unit square; with --volume
+// the 3D Franke study (issue 17) on the shared polyhedral cubes or generated grids of the unit cube.
 #include "polydec/apps/applications/poisson.h"
 
 #include <fmt/format.h>
 
+#include <cmath>
+#include <map>
+
+#include "polydec/apps/applications/volume_poisson.h"
 #include "polydec/apps/cli/command.h"
 #include "polydec/apps/pictures/plot.h"
 #include "polydec/apps/pictures/render.h"
 #include "polydec/dec/generators.h"
+#include "polydec/dec/volume_generators.h"
 
 namespace polydec::cli::poisson_command {
 namespace {
@@ -16,9 +22,80 @@ struct Options {
   std::vector<int> resolutions{8, 16, 32, 64};
   std::string plot, png, mass = "lumped", laplacian = "ours";
   bool json = false;
+  // --volume
+  bool volume = false;
+  std::string family = "hex", data;
+  std::vector<int> levels{1, 2, 3};
 };
 
+// The 3D study: the shared cube files DIR/cube_<name>_<level>.ovm with --data, else generated grids
+// (resolutions n: n^3 cubes; truncated: truncated_octahedra_volume(n)).
+void run_volume(const Options& o) {
+  static const std::map<std::string, std::string> files{{"hex", "cube_hexahedron"},
+                                                        {"pyramids", "cube_pyramids"},
+                                                        {"truncated", "cube_truncated"},
+                                                        {"tetrahedra", "cube_tetrahedron"}};
+  const auto it = files.find(o.family);
+  if (it == files.end()) throw UsageError("--family must be hex, pyramids, truncated or tetrahedra");
+  if (o.mass != "lumped" && o.mass != "unlumped") throw UsageError("--mass must be lumped or unlumped");
+  const bool lumped = o.mass == "lumped";
+  std::vector<VolumeMesh> meshes;
+  std::vector<std::string> labels;
+  if (!o.data.empty()) {
+    for (int l : o.levels) {
+      const std::string name = fmt::format("{}_{}.ovm", it->second, l);
+      meshes.push_back(load_volume_mesh(o.data + "/" + name));
+      labels.push_back(name);
+    }
+  } else {
+    for (int n : o.resolutions) {
+      if (n < 1) throw UsageError("--resolutions must be >= 1");
+      meshes.push_back(o.family == "hex"         ? hex_grid_volume(n, n, n)
+                       : o.family == "pyramids"  ? pyramid_grid_volume(n, n, n)
+                       : o.family == "truncated" ? truncated_octahedra_volume(n)
+                                                 : tet_grid_volume(n, n, n));
+      labels.push_back(fmt::format("n = {}", n));
+    }
+  }
+  if (meshes.size() < 2) throw UsageError("the study needs two or more levels");
+  const VolumeConvergenceSeries s = volume_franke_convergence(o.family, meshes, labels, lumped);
+  nlohmann::json rows = nlohmann::json::array();
+  for (size_t i = 0; i < s.errors.size(); ++i) {
+    const auto& e = s.errors[i];
+    nlohmann::json r = {{"level", s.levels[i]},   {"vertices", e.n_vertices},
+                        {"cells", e.n_cells},     {"h", e.h},
+                        {"l2_error", e.l2_error}, {"rms_error", e.rms_error}};
+    if (i > 0 && std::isfinite(s.l2_slopes[i - 1])) {
+      r["l2_slope"] = s.l2_slopes[i - 1];
+      r["rms_slope"] = s.rms_slopes[i - 1];
+    }
+    rows.push_back(r);
+  }
+  const nlohmann::json j = {{"problem", "3D Franke, Dirichlet boundary vertices, unit cube"},
+                            {"family", o.family},
+                            {"source", o.data.empty() ? "generated" : o.data},
+                            {"mass", o.mass},
+                            {"levels", rows}};
+  if (o.json) {
+    print_json(j);
+    return;
+  }
+  fmt::print(
+      "Poisson problem Delta f = b, 3D Franke function, Dirichlet boundary vertices, unit cube; {} ({}), {} "
+      "mass\n",
+      o.family, o.data.empty() ? "generated" : o.data, o.mass);
+  for (size_t i = 0; i < s.errors.size(); ++i) {
+    const auto& e = s.errors[i];
+    fmt::print("  {:24s} |V| = {:7d}  |C| = {:7d}  h = {:.5f}  L2 = {:.6e}  RMS = {:.6e}", s.levels[i],
+               e.n_vertices, e.n_cells, e.h, e.l2_error, e.rms_error);
+    if (i > 0 && std::isfinite(s.l2_slopes[i - 1]))
+      fmt::print("  slopes {:.3f} / {:.3f}", s.l2_slopes[i - 1], s.rms_slopes[i - 1]);
+    fmt::print("\n");
+  }
+}
+
 void run(const Options& o) {
+  if (o.volume) return run_volume(o);
   if (o.mass != "lumped" && o.mass != "unlumped") throw UsageError("--mass must be lumped or unlumped");
   ConvergenceOptions copt;
   copt.resolutions = o.resolutions;
@@ -86,14 +163,25 @@ const RegisterCommand reg(
     "poisson", "Convergence of the Poisson problem for Franke's function (paper section 5.8)",
     [](CLI::App& app) {
       auto o = std::make_shared<Options>();
-      app.add_option("--resolutions", o->resolutions, "grid resolutions n (n x n cells), default 8 16 32 64");
-      app.add_option("--mass", o->mass, "lumped (default) or unlumped mass");
+      auto* res = app.add_option(
+          "--resolutions", o->resolutions,
+          "grid resolutions n (n x n cells), default 8 16 32 64 (--volume: n^3 cells, 4 8 16)");
+      auto* mass = app.add_option("--mass", o->mass, "lumped (default; --volume: unlumped) or unlumped mass");
+      app.add_flag("--volume", o->volume, "the 3D Franke study on polyhedral meshes of the unit cube");
+      app.add_option("--family", o->family, "--volume: hex (default), pyramids, truncated or tetrahedra");
+      app.add_option("--data", o->data,
+                     "--volume: folder of the cube_<family>_<level>.ovm files (else generated grids)");
+      app.add_option("--levels", o->levels, "--volume --data: file levels (default 1 2 3)");
       app.add_option("--laplacian", o->laplacian,
                      "Laplacian: " + fmt::format("{}", fmt::join(laplacian_names(), ", ")));
       app.add_option("--plot", o->plot, "log-log plot of the error against h (.svg or .png)");
       app.add_option("--png", o->png, "picture of the error on the coarsest hexagon grid (.png)");
       app.add_flag("--json", o->json, "print one JSON object instead of text");
-      app.callback([o] { run(*o); });
+      app.callback([o, res, mass] {
+        if (o->volume && res->count() == 0) o->resolutions = {4, 8, 16};
+        if (o->volume && mass->count() == 0) o->mass = "unlumped";
+        run(*o);
+      });
     });
 
 }  // namespace

@@ -1,0 +1,118 @@
+// tests/apps/cli/test_cli_volume_apps.cpp — `polydec poisson --volume` and `polydec volume-spectrum`: their
+// JSON against the library's numbers, the shared-cube branch, and refused options.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "polydec/apps/applications/volume_poisson.h"
+#include "polydec/apps/applications/volume_spectrum.h"
+#include "polydec/dec/io_volume.h"
+#include "polydec/dec/volume_generators.h"
+#include "tests/support.h"
+
+using namespace polydec;
+namespace fs = std::filesystem;
+
+namespace test_cli_volume_apps {
+namespace {
+
+struct Run {
+  int code = -1;
+  std::string out, err;
+};
+
+Run run(const std::string& args) {
+  const fs::path dir = fs::temp_directory_path() / ("polydec_cli_volapps_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
+  const std::string cmd =
+      std::string("'") + POLYDEC_CLI_PATH + "' " + args + " >'" + out.string() + "' 2>'" + err.string() + "'";
+  const int status = std::system(cmd.c_str());
+  Run r;
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::stringstream o, e;
+  o << std::ifstream(out).rdbuf();
+  e << std::ifstream(err).rdbuf();
+  r.out = o.str();
+  r.err = e.str();
+  std::error_code ec;
+  fs::remove_all(dir, ec);
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE("polydec poisson --volume on generated hex grids", "[volume-apps][cli]") {
+  const Run r = run("poisson --volume --resolutions 3 6 --json");
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  REQUIRE(j["levels"].size() == 2);
+  CHECK(j["mass"] == "unlumped");
+  const auto e = volume_franke_poisson(hex_grid_volume(6, 6, 6));
+  CHECK(j["levels"][1]["vertices"] == 343);
+  CHECK(j["levels"][1]["l2_error"].get<double>() == Approx(e.l2_error).epsilon(1e-10));
+  CHECK(j["levels"][1]["rms_error"].get<double>() == Approx(e.rms_error).epsilon(1e-10));
+  const auto e3 = volume_franke_poisson(hex_grid_volume(3, 3, 3));
+  CHECK(j["levels"][1]["l2_slope"].get<double>() ==
+        Approx(std::log(e.l2_error / e3.l2_error) / std::log(e.h / e3.h)).epsilon(1e-10));
+
+  const Run t = run("poisson --volume --family truncated --resolutions 2 3");
+  INFO(t.err);
+  CHECK(t.code == 0);
+  CHECK(t.out.find("slopes") != std::string::npos);
+
+  CHECK(run("poisson --volume --family prisms").code == 2);
+  CHECK(run("poisson --volume --resolutions 4").code == 2);
+  CHECK(run("poisson --volume --data /nonexistent/folder").code == 3);
+}
+
+TEST_CASE("polydec poisson --volume --data reads the shared cubes", "[volume-apps][cli]") {
+  const std::string path = test::shared_path("volume/cube_tetrahedron_1.ovm");
+  if (path.empty()) {
+    WARN("skipped: ../shared/data/volume not found");
+    return;
+  }
+  const std::string dir = fs::path(path).parent_path().string();
+  const Run r = run("poisson --volume --family tetrahedra --levels 1 2 --json --data '" + dir + "'");
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  REQUIRE(j["levels"].size() == 2);
+  const auto e = volume_franke_poisson(read_volume_mesh(dir + "/cube_tetrahedron_2.ovm"));
+  CHECK(j["levels"][1]["level"] == "cube_tetrahedron_2.ovm");
+  CHECK(j["levels"][1]["l2_error"].get<double>() == Approx(e.l2_error).epsilon(1e-10));
+}
+
+TEST_CASE("polydec volume-spectrum on a hexahedral ball", "[volume-apps][cli]") {
+  const Run r = run("volume-spectrum --ball 5 --k 5 --dirichlet --json");
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  REQUIRE(j["eigenvalues"].size() == 5);
+  CHECK(j["boundary"] == "dirichlet");
+  const BallSpectrum b = ball_spectrum(5, 5, true);
+  for (int i = 0; i < 5; ++i) {
+    CHECK(j["eigenvalues"][i]["eigenvalue"].get<double>() == Approx(b.eigenvalues[size_t(i)]).epsilon(1e-8));
+    CHECK(j["eigenvalues"][i]["analytic"].get<double>() ==
+          Approx(b.analytic[size_t(i)].lambda).epsilon(1e-12));
+  }
+  CHECK(j["eigenvalues"][0]["analytic"].get<double>() == Approx(M_PI * M_PI).epsilon(1e-12));
+
+  const Run t = run("volume-spectrum --ball 4 --k 4");
+  INFO(t.err);
+  CHECK(t.code == 0);
+  CHECK(t.out.find("Neumann") != std::string::npos);
+  CHECK(t.out.find("(absolute)") != std::string::npos);
+  CHECK(run("volume-spectrum --ball 1").code == 2);
+  CHECK(run("volume-spectrum --k 0").code == 2);
+}
+
+}  // namespace test_cli_volume_apps
