@@ -108,21 +108,36 @@ def _ratio_two_threads(fn, repeat):
 
 @pytest.mark.skipif((os.cpu_count() or 1) < 2, reason="needs two cores")
 def test_two_threads_assemble_in_parallel(big_mesh):
+    """Two threads assembling take clearly less than twice one thread's time. A wall-time ratio
+    needs two free cores for the whole measurement: each attempt is bracketed by a control (two
+    hashing threads, GIL released) before and after, and counts only when both controls show
+    free cores; up to three attempts; skipped when none counts. With the GIL held the ratio is
+    about 2 in every counted attempt, so the test still fails then."""
     data = os.urandom(16 << 20)
 
     def control():
         for _ in range(4):
             hashlib.sha256(data).digest()
 
-    control_ratio, _ = _ratio_two_threads(control, 3)
-    if control_ratio > 1.3:
-        pytest.skip(f"no two free cores now: two hashing threads (GIL released) took {control_ratio:.2f}x "
-                    "one thread's time; the spinner tests above still check the GIL")
     X, idx, off = big_mesh
 
     def assemble():
         for _ in range(2):
             polydec._polydec.operators(X, idx, off, "ours", {"S", "M", "M_lumped"}, 1)
 
-    ratio, one = _ratio_two_threads(assemble, 5)
-    assert ratio < 1.6, f"two threads took {ratio:.2f}x one thread's {one:.3f} s (control {control_ratio:.2f}x)"
+    counted = []
+    for _ in range(3):
+        before, _ = _ratio_two_threads(control, 3)
+        ratio, one = _ratio_two_threads(assemble, 5)
+        after, _ = _ratio_two_threads(control, 3)
+        if max(before, after) > 1.3:
+            continue
+        counted.append((ratio, one, before, after))
+        if ratio < 1.6:
+            return
+    if not counted:
+        pytest.skip("no two free cores during any attempt (controls above 1.3x); the spinner tests above "
+                    "still check the GIL")
+    ratio, one, before, after = counted[-1]
+    raise AssertionError(f"two threads took {ratio:.2f}x one thread's {one:.3f} s in each of {len(counted)} "
+                         f"attempts with free cores (controls {before:.2f}x, {after:.2f}x)")
