@@ -12,6 +12,7 @@
 
 #include "polydec/dec/generators.h"
 #include "polydec/dec/io.h"
+#include "tests/apps/cli/cli_run.h"
 #include "tests/support.h"
 
 using namespace polydec;
@@ -27,35 +28,13 @@ struct Run {
   std::string out;
 };
 
-// Runs `polydec ARGS` with stdout and stderr captured in files of `dir`.
 Run run(const fs::path& dir, const std::string& args) {
-  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-  const std::string cmd =
-      std::string("'") + POLYDEC_CLI_PATH + "' " + args + " >'" + out.string() + "' 2>'" + err.string() + "'";
-  const int status = std::system(cmd.c_str());
-  Run r;
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream e(err);
-  for (std::string line; std::getline(e, line);) r.err.push_back(line);
-  std::ifstream o(out);
-  std::stringstream ss;
-  ss << o.rdbuf();
-  r.out = ss.str();
-  return r;
+  const test::CliRun r = test::run_cli_in(dir, args);
+  return {r.code, test::split_lines(r.err), r.out};
 }
 
-// A fresh scratch directory, removed at the end of the test case.
-struct Scratch {
-  fs::path dir;
-  Scratch() {
-    dir = fs::temp_directory_path() / ("polydec_cli_test_" + std::to_string(::getpid()));
-    fs::create_directories(dir);
-  }
-  ~Scratch() {
-    std::error_code ec;
-    fs::remove_all(dir, ec);
-  }
-  std::string path(const std::string& name) const { return (dir / name).string(); }
+struct Scratch : test::ScratchDir {
+  Scratch() : ScratchDir("cli_test") {}
 };
 
 void write_text(const std::string& path, const std::string& text) { std::ofstream(path) << text; }

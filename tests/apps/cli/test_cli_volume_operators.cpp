@@ -17,6 +17,7 @@
 #include "polydec/dec/volume_hodge_star.h"
 #include "polydec/operators/volume_laplacian.h"
 #include "tests/dec/volume_test_meshes.h"
+#include "tests/apps/cli/cli_run.h"
 #include "tests/support.h"
 
 using namespace polydec;
@@ -27,37 +28,12 @@ using polydec::test::relative_difference;
 
 namespace {
 
-struct Run {
-  int code = -1;
-  std::string out, err;
-};
+using Run = test::CliRun;
 
-Run run(const fs::path& dir, const std::string& args) {
-  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-  const std::string cmd =
-      std::string("'") + POLYDEC_CLI_PATH + "' " + args + " >'" + out.string() + "' 2>'" + err.string() + "'";
-  const int status = std::system(cmd.c_str());
-  Run r;
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::stringstream o, e;
-  o << std::ifstream(out).rdbuf();
-  e << std::ifstream(err).rdbuf();
-  r.out = o.str();
-  r.err = e.str();
-  return r;
-}
+Run run(const fs::path& dir, const std::string& args) { return test::run_cli_in(dir, args); }
 
-struct Scratch {
-  fs::path dir;
-  Scratch() {
-    dir = fs::temp_directory_path() / ("polydec_cli_volops_" + std::to_string(::getpid()));
-    fs::create_directories(dir);
-  }
-  ~Scratch() {
-    std::error_code ec;
-    fs::remove_all(dir, ec);
-  }
-  std::string path(const std::string& name) const { return (dir / name).string(); }
+struct Scratch : test::ScratchDir {
+  Scratch() : ScratchDir("cli_volops") {}
 };
 
 }  // namespace
