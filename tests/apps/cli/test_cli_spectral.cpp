@@ -18,6 +18,7 @@
 #include "polydec/dec/complex.h"
 #include "polydec/dec/generators.h"
 #include "polydec/dec/io.h"
+#include "tests/apps/cli/cli_run.h"
 #include "tests/dec/feec_meshes.h"
 
 using namespace polydec;
@@ -26,21 +27,9 @@ namespace test_cli_spectral {
 
 namespace {
 
-struct Run {
-  int code;
-  std::string out;
-};
+using Run = test::CliRun;
 
-Run run_cli(const std::string& args, const std::string& dir) {
-  const std::string out = dir + "/stdout.txt";
-  const std::string cmd =
-      std::string(POLYDEC_CLI_PATH) + " " + args + " > " + out + " 2> " + dir + "/stderr.txt";
-  const int status = std::system(cmd.c_str());
-  std::ifstream in(out);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, ss.str()};
-}
+Run run_cli(const std::string& args, const std::string& dir) { return test::run_cli_in(dir, args); }
 
 std::string temp_dir(const std::string& name) {
   const auto p = std::filesystem::temp_directory_path() /

@@ -15,6 +15,7 @@
 #include "polydec/apps/applications/volume_spectrum.h"
 #include "polydec/dec/io_volume.h"
 #include "polydec/dec/volume_generators.h"
+#include "tests/apps/cli/cli_run.h"
 #include "tests/support.h"
 
 using namespace polydec;
@@ -23,28 +24,12 @@ namespace fs = std::filesystem;
 namespace test_cli_volume_apps {
 namespace {
 
-struct Run {
-  int code = -1;
-  std::string out, err;
-};
+using Run = test::CliRun;
 
+// Runs `polydec ARGS` in a scratch folder of its own, removed afterwards.
 Run run(const std::string& args) {
-  const fs::path dir = fs::temp_directory_path() / ("polydec_cli_volapps_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-  const std::string cmd =
-      std::string("'") + POLYDEC_CLI_PATH + "' " + args + " >'" + out.string() + "' 2>'" + err.string() + "'";
-  const int status = std::system(cmd.c_str());
-  Run r;
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::stringstream o, e;
-  o << std::ifstream(out).rdbuf();
-  e << std::ifstream(err).rdbuf();
-  r.out = o.str();
-  r.err = e.str();
-  std::error_code ec;
-  fs::remove_all(dir, ec);
-  return r;
+  const test::ScratchDir scratch("cli_volapps");
+  return test::run_cli_in(scratch.dir, args);
 }
 
 }  // namespace
