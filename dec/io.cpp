@@ -30,12 +30,6 @@ std::string lower(std::string_view s) {
   return e;
 }
 
-}  // namespace io_detail
-
-namespace {
-
-using namespace io_detail;
-
 std::string extension(const std::string& path) {
   const std::string file = std::filesystem::path(path).filename().string();
   const auto dot = file.find_last_of('.');
@@ -53,6 +47,12 @@ std::string slurp(const std::string& path) {
   if (in.bad()) throw FileError(path, 0, -1, "read error");
   return data;
 }
+
+}  // namespace io_detail
+
+namespace {
+
+using namespace io_detail;
 
 SoupRead read_any(std::string_view bytes, std::string_view format, const std::string& name) {
   const std::string f = lower(format);

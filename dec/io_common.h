@@ -37,6 +37,10 @@ std::string write_ply(const Mesh& mesh, const VertexScalars& scalars, bool binar
 
 // Lower-case copy.
 std::string lower(std::string_view s);
+// The file name's extension after the last dot, lower case ("" when none).
+std::string extension(const std::string& path);
+// The whole file as bytes; FileError (line 0) for a directory, an unopenable file or a read error.
+std::string slurp(const std::string& path);
 
 // Drops a leading UTF-8 byte-order mark.
 inline std::string_view strip_bom(std::string_view s) {
@@ -101,8 +105,9 @@ inline bool parse_int(std::string_view t, long long& x) {
 // S and the most decimal places D (after the exponent is applied) any coordinate shows. A file
 // written with a fixed number of decimals resolves 0.5 10^-D everywhere, one written with a fixed
 // number of significant digits half a unit of the S-th digit of each value; the larger of the two
-// at the largest |x| of a non-integer token bounds both. Integers (no '.', no exponent) are taken as exact; a file of integers only,
-// or with 17 or more significant digits, carries the doubles themselves (noise 0: only their round-off).
+// at the largest |x| of a non-integer token bounds both. Integers (no '.', no exponent) are taken as exact; a
+// file of integers only, or with 17 or more significant digits, carries the doubles themselves (noise 0: only
+// their round-off).
 class DigitCounter {
  public:
   // Counts the digits of token t, whose value is x.

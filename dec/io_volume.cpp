@@ -20,30 +20,12 @@ using namespace io_detail;
 
 constexpr const char* kFormats = "ovm, vtk, mesh";
 
-std::string volume_extension(const std::string& path) {
-  const std::string file = std::filesystem::path(path).filename().string();
-  const auto dot = file.find_last_of('.');
-  return dot == std::string::npos ? "" : lower(file.substr(dot + 1));
-}
-
 bool known(const std::string& f) { return f == "ovm" || f == "vtk" || f == "mesh"; }
-
-std::string read_file(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw FileError(path, 0, -1, "is a directory, not a file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw FileError(path, 0, -1, "cannot open file");
-  std::string data;
-  char buf[1 << 16];
-  while (in.read(buf, sizeof buf) || in.gcount() > 0) data.append(buf, size_t(in.gcount()));
-  if (in.bad()) throw FileError(path, 0, -1, "read error");
-  return data;
-}
 
 // The format by extension; for another extension, by the file's first word ("OVM", "# vtk",
 // "MeshVersionFormatted"), so that `--volume` can read a file of any name.
 std::string checked_format(const std::string& path, std::string_view bytes) {
-  const std::string ext = volume_extension(path);
+  const std::string ext = extension(path);
   if (known(ext)) return ext;
   std::string_view t = strip_bom(bytes);
   while (!t.empty() && (is_space(t.front()) || t.front() == '\n')) t.remove_prefix(1);
@@ -86,10 +68,10 @@ VolumeMesh validate(PolyhedronRead r, const std::string& name) {
 
 using namespace io_volume_detail;
 
-bool is_volume_mesh_path(const std::string& path) { return known(volume_extension(path)); }
+bool is_volume_mesh_path(const std::string& path) { return known(extension(path)); }
 
 PolyhedronSoup read_polyhedron_soup(const std::string& path) {
-  const std::string bytes = read_file(path);
+  const std::string bytes = slurp(path);
   return read_any(bytes, checked_format(path, bytes), path).soup;
 }
 
@@ -99,7 +81,7 @@ PolyhedronSoup read_polyhedron_soup_from_memory(std::string_view bytes, std::str
 }
 
 VolumeMesh read_volume_mesh(const std::string& path) {
-  const std::string bytes = read_file(path);
+  const std::string bytes = slurp(path);
   return validate(read_any(bytes, checked_format(path, bytes), path), path);
 }
 
@@ -117,7 +99,7 @@ std::string write_volume_mesh_to_string(const VolumeMesh& mesh, std::string_view
 }
 
 void write_volume_mesh(const VolumeMesh& mesh, const std::string& path) {
-  const std::string f = volume_extension(path);
+  const std::string f = extension(path);
   if (!known(f))
     throw FileError(path, 0, -1, fmt::format("unknown volume mesh format '.{}' ({})", f, kFormats));
   const std::string data =
