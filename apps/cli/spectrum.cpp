@@ -166,6 +166,11 @@ void run_form(const Options& o) {
   fo.k = o.k;
   fo.lumped_mass = o.mass == "lumped";
   const FormSpectrum sp = form_spectrum(mesh, fo);
+  if (sp.quality.n_degenerate > 0)
+    std::cerr << fmt::format(
+        "polydec: warning: {} degenerate fan triangle(s) (zero area, in {} face(s)) carry no Whitney forms: "
+        "zero eigenvalues beyond the Betti number may be spurious\n",
+        sp.quality.n_degenerate, sp.quality.n_faces_affected);
   const CoarseComplex cx(mesh);
   std::vector<double> ev(sp.eigenvalues.data(), sp.eigenvalues.data() + sp.eigenvalues.size());
   nlohmann::json pairs = nlohmann::json::array();
@@ -181,7 +186,8 @@ void run_form(const Options& o) {
                       {"faces", mesh.n_faces()}, {"cells", o.form == 1 ? cx.n_pairs() : cx.n_triples()},
                       {"rank", sp.rank},         {"k", o.k},
                       {"shift", sp.shift},       {"method", sp.method},
-                      {"eigenvalues", ev},       {"eigenpairs", pairs}};
+                      {"eigenvalues", ev},       {"eigenpairs", pairs},
+                      {"fan_degenerate", sp.quality.n_degenerate}};
   if (!o.out.empty()) {
     std::filesystem::create_directories(o.out);
     {
