@@ -15,14 +15,18 @@ namespace {
 
 using Vec3 = Eigen::Vector3d;
 
-// Least-norm affine weights of x over the rows of X: minimum-norm solution of [X^T; 1^T] w = [x; 1].
+// Least-norm affine weights of x over the rows of X: minimum-norm solution of [X^T; 1^T] w = [x; 1],
+// in coordinates relative to the mean of X (uncentred, the decomposition's rank decision compares
+// a planar face's round-off with the coordinates' magnitude instead of the face's size, and on
+// small faces far from the origin takes them for non-planar: weights off by percents).
 Eigen::VectorXd affine_weights(const Eigen::MatrixXd& X, const Vec3& x) {
   const int n = int(X.rows());
+  const Eigen::RowVector3d mean = X.colwise().mean();
   Eigen::MatrixXd K(4, n);
-  K.topRows(3) = X.transpose();
+  K.topRows(3) = (X.rowwise() - mean).transpose();
   K.row(3).setOnes();
   Eigen::VectorXd r(4);
-  r.head(3) = x;
+  r.head(3) = x - mean.transpose();
   r(3) = 1.0;
   return K.completeOrthogonalDecomposition().solve(r);
 }

@@ -71,8 +71,11 @@ namespace volume_laplacian_detail {
 namespace {
 
 // Reused buffers of the cell kernel (no allocation per cell once they have grown).
+using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
 struct CellWorkspace {
-  Eigen::MatrixXd W;       // (nf + 1) x m: face rows and the cell row of the local prolongation
+  RowMatrix W;             // (nf + 1) x m: face rows and the cell row of the local prolongation
+  Eigen::Matrix3Xd X;      // the cell's vertex positions (columns), gathered once
   Eigen::MatrixXd As, Am;  // r x r fine matrices over [cell vertices, face points, cell point]
   Eigen::MatrixXd T;       // r x m
   std::vector<int> face_local;
@@ -80,11 +83,11 @@ struct CellWorkspace {
 
 // P_c^T A P_c with P_c = [I_m; W]: T = A [I; W], result = T_top + W^T T_bottom, by loops over
 // the non-zero weights (a face row has only the face's corners; the sizes are too small for GEMM).
-void coarsen(const Eigen::MatrixXd& A, const Eigen::MatrixXd& W, Eigen::MatrixXd& T, Eigen::MatrixXd& out) {
+void coarsen(const Eigen::MatrixXd& A, const RowMatrix& W, Eigen::MatrixXd& T, Eigen::MatrixXd& out) {
   const long m = W.cols(), k = W.rows(), r = A.rows();
   T = A.leftCols(m);
-  for (long j = 0; j < m; ++j)
-    for (long q = 0; q < k; ++q) {
+  for (long q = 0; q < k; ++q)
+    for (long j = 0; j < m; ++j) {
       const double w = W(q, j);
       if (w == 0) continue;
       const double* a = A.data() + (m + q) * r;
@@ -97,7 +100,8 @@ void coarsen(const Eigen::MatrixXd& A, const Eigen::MatrixXd& W, Eigen::MatrixXd
     double* o = out.data() + b * m;
     for (long q = 0; q < k; ++q) {
       const double tb = t[q];
-      for (long a = 0; a < m; ++a) o[a] += W(q, a) * tb;
+      const double* wq = W.data() + q * m;
+      for (long a = 0; a < m; ++a) o[a] += wq[a] * tb;
     }
   }
 }
@@ -108,6 +112,8 @@ void cell_kernel(const VolumeMesh& mesh, const VolumeRefinement& refinement, int
   const auto cell = mesh.cell(c);
   const int m = int(verts.size()), nf = int(cell.size()), r = m + nf + 1;
   ws.W.setZero(nf + 1, m);
+  ws.X.resize(3, m);
+  for (int i = 0; i < m; ++i) ws.X.col(i) = mesh.positions().row(verts[i]).transpose();
   const auto wc = refinement.weights_of_cell(c);
   for (int i = 0; i < m; ++i) ws.W(nf, i) = wc[i];
   if (S) ws.As.setZero(r, r);
@@ -130,8 +136,8 @@ void cell_kernel(const VolumeMesh& mesh, const VolumeRefinement& refinement, int
       int ia = i, ib = (i + 1) % n;
       if (hf & 1) std::swap(ia, ib);
       const int loc[4] = {ws.face_local[ia], ws.face_local[ib], m + k, m + nf};
-      const Eigen::Vector3d pa = mesh.position(face[ia]);
-      const Eigen::Vector3d e1 = mesh.position(face[ib]) - pa, e2 = xf - pa, e3 = xc - pa;
+      const Eigen::Vector3d pa = ws.X.col(loc[0]);
+      const Eigen::Vector3d e1 = ws.X.col(loc[1]) - pa, e2 = xf - pa, e3 = xc - pa;
       const Eigen::Vector3d c23 = e2.cross(e3), c31 = e3.cross(e1), c12 = e1.cross(e2);
       const double det = e1.dot(c23), vol = std::abs(det) / 6.0;
       if (M) {

@@ -19,13 +19,12 @@ namespace {
 nlohmann::json number(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
 
 struct CubeFamily {
-  const char* name;  // the report's name
+  const char* name;  // the report's name: `polydec poisson --volume --family NAME`
   const char* file;  // cube_<file>_<level>.ovm
   int levels;        // full run; quick: at most 3
 };
 constexpr CubeFamily kFamilies[] = {
-    {"hexahedra", "hexahedron", 4}, {"pyramids", "pyramids", 4}, {"truncated octahedra", "truncated", 4},
-    {"tetrahedra", "tetrahedron", 2}};
+    {"hex", "hexahedron", 4}, {"pyramids", "pyramids", 4}, {"truncated", "truncated", 4}, {"tetrahedra", "tetrahedron", 2}};
 
 nlohmann::json poisson_rows(const VolumeConvergenceSeries& s) {
   nlohmann::json rows = nlohmann::json::array();
@@ -94,7 +93,8 @@ std::string volume_tables_markdown(const nlohmann::json& results) {
        "Delta f = b in the unit cube, f = f* at the boundary vertices, S f = M b at the interior ones "
        "(apps/applications/volume_poisson.h). Errors at the vertices: L2 = sqrt(e^T M e), RMS = polyLaplace's "
        "sqrt(sum_v e_v^2 / |V|) over all vertices; h = mean edge length; slopes log(e_{i+1}/e_i) / log(h_{i+1}/h_i) "
-       "per refinement step (2 expected asymptotically). Command: `" +
+       "per refinement step (2 expected asymptotically). The `truncated` files hold, per cube of a grid, a "
+       "cuboctahedron and its 8 corner tetrahedra (docs/volumes.md). Command: `" +
        v["setup"]["poisson"].get<std::string>() + "`.\n\n";
   for (const auto& [mass, families] : v["poisson"].items()) {
     s += fmt::format("{} mass:\n\n", mass == "galerkin" ? "Galerkin" : "Lumped");
