@@ -107,7 +107,8 @@ Eigen::Vector3d squared_volume_minimizer(const Eigen::MatrixX3d& A, const Eigen:
                                          const Eigen::MatrixX3d& C);
 
 // Least-norm affine weights w (sum 1) of the points X (m x 3) reproducing x: w = 1/m + Xc^+ (x - mean)
-// with Xc the centred points (pseudo-inverse by complete orthogonal decomposition). Invariant under
+// with Xc the centred points (pseudo-inverse Xc (Xc^T Xc)^-1 through the 3x3 Gram matrix when it is
+// well conditioned, else by complete orthogonal decomposition). Invariant under
 // translations, rotations and uniform scalings of X and x together.
 Eigen::VectorXd least_norm_affine_weights(const Eigen::MatrixX3d& X, const Eigen::Vector3d& x);
 
