@@ -34,9 +34,11 @@ void run_volume(const Options& o) {
   static const std::map<std::string, std::string> files{{"hex", "cube_hexahedron"},
                                                         {"pyramids", "cube_pyramids"},
                                                         {"truncated", "cube_truncated"},
+                                                        {"cuboctahedra", "cube_truncated"},
                                                         {"tetrahedra", "cube_tetrahedron"}};
   const auto it = files.find(o.family);
-  if (it == files.end()) throw UsageError("--family must be hex, pyramids, truncated or tetrahedra");
+  if (it == files.end())
+    throw UsageError("--family must be hex, pyramids, truncated, cuboctahedra or tetrahedra");
   if (o.mass != "lumped" && o.mass != "unlumped") throw UsageError("--mass must be lumped or unlumped");
   const bool lumped = o.mass == "lumped";
   std::vector<VolumeMesh> meshes;
@@ -53,6 +55,7 @@ void run_volume(const Options& o) {
       meshes.push_back(o.family == "hex"         ? hex_grid_volume(n, n, n)
                        : o.family == "pyramids"  ? pyramid_grid_volume(n, n, n)
                        : o.family == "truncated" ? truncated_octahedra_volume(n)
+                       : o.family == "cuboctahedra" ? cuboctahedra_volume(n)
                                                  : tet_grid_volume(n, n, n));
       labels.push_back(fmt::format("n = {}", n));
     }
@@ -168,7 +171,8 @@ const RegisterCommand reg(
           "grid resolutions n (n x n cells), default 8 16 32 64 (--volume: n^3 cells, 4 8 16)");
       auto* mass = app.add_option("--mass", o->mass, "lumped (default; --volume: unlumped) or unlumped mass");
       app.add_flag("--volume", o->volume, "the 3D Franke study on polyhedral meshes of the unit cube");
-      app.add_option("--family", o->family, "--volume: hex (default), pyramids, truncated or tetrahedra");
+      app.add_option("--family", o->family, "--volume: hex (default), pyramids, truncated, cuboctahedra (generated: the structure of the "
+                     "cube_truncated files) or tetrahedra");
       app.add_option("--data", o->data,
                      "--volume: folder of the cube_<family>_<level>.ovm files (else generated grids)");
       app.add_option("--levels", o->levels, "--volume --data: file levels (default 1 2 3)");
