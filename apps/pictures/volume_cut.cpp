@@ -81,15 +81,26 @@ void cut_tet(Builder& B, const int v[4], const Eigen::Vector3d& normal) {
     poly = {B.crossing(front[0], back[0]), B.crossing(front[0], back[1]), B.crossing(front[1], back[1]),
             B.crossing(front[1], back[0])};
   }
-  // Orientation: the polygon's area vector along +n.
+  // Orientation: the polygon's area vector along +n; a piece without area (the plane through an
+  // edge and a vertex of the tetrahedron only) is dropped.
+  const Eigen::Vector3d o = B.points[poly[0]];
   Eigen::Vector3d area = Eigen::Vector3d::Zero();
-  for (size_t i = 0; i < poly.size(); ++i) area += B.points[poly[i]].cross(B.points[poly[(i + 1) % poly.size()]]);
+  double perimeter = 0;
+  for (size_t i = 0; i < poly.size(); ++i) {
+    const Eigen::Vector3d p = B.points[poly[i]] - o, q = B.points[poly[(i + 1) % poly.size()]] - o;
+    area += p.cross(q);
+    perimeter += (q - p).norm();
+  }
+  if (!(area.norm() > 1e-12 * perimeter * perimeter)) return;
   if (area.dot(normal) < 0) std::reverse(poly.begin(), poly.end());
   B.add(std::move(poly));
 }
 
+// Degenerate (flat) sub-tetrahedra have no section area; skipped, so their zero-area pieces, of
+// arbitrary orientation, do not enter the surface.
 void cut_all(Builder& B, const Eigen::Vector3d& normal) {
-  for (const RefinedTet& t : refined_tets(B.mesh, B.refinement)) cut_tet(B, t.v, normal);
+  for (const RefinedTet& t : refined_tets(B.mesh, B.refinement))
+    if (t.quality != SubTet::Degenerate) cut_tet(B, t.v, normal);
 }
 
 double polygon_area(const Eigen::MatrixX3d& X, std::span<const int> p) {
