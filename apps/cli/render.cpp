@@ -49,6 +49,21 @@ RenderOptions picture_options(const Options& o) {
   return r;
 }
 
+// --scalar x|y|z: that coordinate of every vertex (label set in r); none: empty.
+Eigen::VectorXd coordinate_scalar(const Options& o, const Eigen::MatrixX3d& X, RenderOptions& r) {
+  if (o.scalar == "none") return {};
+  if (o.scalar != "x" && o.scalar != "y" && o.scalar != "z") throw UsageError("--scalar must be x, y, z or none");
+  r.scalar_label = o.scalar;
+  return X.col(o.scalar[0] - 'x');
+}
+
+// The options given after the scalar's defaults: --isolines, --isoline-spacing, --view.
+void finish_options(const Options& o, RenderOptions& r) {
+  if (o.isolines >= 0) r.isolines = o.isolines;
+  r.isoline_spacing = o.spacing;
+  if (!o.view.empty()) r.view_direction = vec3(o.view, "--view");
+}
+
 // A volume mesh: the solid behind the cut plane, the scalar on the section and the boundary.
 void run_volume(const Options& o) {
   if (o.repair) throw UsageError("--repair applies to surface meshes only");
@@ -74,15 +89,10 @@ void run_volume(const Options& o) {
             .distance(o.source);
     r.scalar_label = "distance";
     r.isolines = 15;
-  } else if (o.scalar == "x" || o.scalar == "y" || o.scalar == "z") {
-    s = mesh.positions().col(o.scalar[0] - 'x');
-    r.scalar_label = o.scalar;
-  } else if (o.scalar != "none") {
-    throw UsageError("--scalar must be x, y, z or none");
+  } else {
+    s = coordinate_scalar(o, mesh.positions(), r);
   }
-  if (o.isolines >= 0) r.isolines = o.isolines;
-  r.isoline_spacing = o.spacing;
-  if (!o.view.empty()) r.view_direction = vec3(o.view, "--view");
+  finish_options(o, r);
   render_volume_cut_png(o.png, mesh, s, plane, r);
   if (o.json)
     print_json({{"mesh", o.mesh},
@@ -106,15 +116,10 @@ void run(const Options& o) {
     r.scalar_label = "distance";
     r.isolines = 15;
     r.view_direction = view_facing_vertex(mesh, o.source, r.up);
-  } else if (o.scalar == "x" || o.scalar == "y" || o.scalar == "z") {
-    s = mesh.positions().col(o.scalar[0] - 'x');
-    r.scalar_label = o.scalar;
-  } else if (o.scalar != "none") {
-    throw UsageError("--scalar must be x, y, z or none");
+  } else {
+    s = coordinate_scalar(o, mesh.positions(), r);
   }
-  if (o.isolines >= 0) r.isolines = o.isolines;
-  r.isoline_spacing = o.spacing;
-  if (!o.view.empty()) r.view_direction = vec3(o.view, "--view");
+  finish_options(o, r);
   render_png(o.png, mesh, s, r);
   if (o.json)
     print_json({{"mesh", o.mesh}, {"png", o.png}, {"width", r.width}, {"height", r.height}});

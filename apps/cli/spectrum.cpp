@@ -48,6 +48,19 @@ void report(const Options& o, const Mesh& mesh, const std::string& laplacian, in
 
 void run_form(const Options& o);
 
+// Picture options of eigenfunction --png-index (surfaces add smooth shading).
+RenderOptions eigenfunction_picture(const Options& o, const std::vector<double>& ev, const std::string& laplacian) {
+  RenderOptions ropt;
+  ropt.width = 640;
+  ropt.height = 480;
+  ropt.isolines = 10;
+  ropt.colormap = Colormap::turbo;
+  ropt.scalar_label = fmt::format("u{}", o.png_index);
+  ropt.title = fmt::format("eigenfunction {}, lambda = {:.4g} ({}, {} mass)", o.png_index, ev[o.png_index], laplacian,
+                           o.mass);
+  return ropt;
+}
+
 void write_eigenvalues(const std::string& path, const std::vector<double>& ev) {
   std::ofstream f(path);
   if (!f) throw FileError(path, 0, -1, "cannot open file for writing");
@@ -82,16 +95,8 @@ void run_volume(const Options& o) {
     j["files"] = {"eigenvalues.txt", "eigenvectors.mtx", "eigenvectors.vtk"};
   }
   if (!o.png.empty()) {
-    RenderOptions ropt;
-    ropt.width = 640;
-    ropt.height = 480;
-    ropt.isolines = 10;
-    ropt.colormap = Colormap::turbo;
-    ropt.scalar_label = fmt::format("u{}", o.png_index);
-    ropt.title = fmt::format("eigenfunction {}, lambda = {:.4g} ({}, {} mass)", o.png_index, ev[o.png_index],
-                             ops.name, o.mass);
     render_volume_cut_png(o.png, mesh, sp.eigenvectors.col(o.png_index),
-                          centre_plane(mesh, Eigen::Vector3d::UnitZ()), ropt);
+                          centre_plane(mesh, Eigen::Vector3d::UnitZ()), eigenfunction_picture(o, ev, ops.name));
     j["png"] = o.png;
   }
   if (o.json) {
@@ -159,14 +164,7 @@ void report(const Options& o, const Mesh& mesh, const std::string& laplacian, in
   }
   if (!o.png.empty()) {
     if (o.png_index < 0 || o.png_index >= o.k) throw UsageError("--png-index must lie in [0, k)");
-    RenderOptions ropt;
-    ropt.width = 640;
-    ropt.height = 480;
-    ropt.isolines = 10;
-    ropt.colormap = Colormap::turbo;
-    ropt.scalar_label = fmt::format("u{}", o.png_index);
-    ropt.title = fmt::format("eigenfunction {}, lambda = {:.4g} ({}, {} mass)", o.png_index, ev[o.png_index], laplacian,
-                             o.mass);
+    RenderOptions ropt = eigenfunction_picture(o, ev, laplacian);
     ropt.smooth_shading = true;
     render_png(o.png, mesh, sp.eigenvectors.col(o.png_index).head(n_in), ropt);
     j["png"] = o.png;
