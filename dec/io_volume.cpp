@@ -115,14 +115,15 @@ void write_volume_mesh(const VolumeMesh& mesh, const std::string& path) {
   write_bytes(path, data);
 }
 
-void write_volume_vtk_with_point_data(const VolumeMesh& mesh, const std::string& path, const VertexScalars& scalars) {
+void write_volume_vtk_with_point_data(const VolumeMesh& mesh, const std::string& path,
+                                      const VertexScalars& scalars) {
   if (extension(path) != "vtk") throw FileError(path, 0, -1, "point data needs a VTK file (.vtk)");
   std::string data = io_detail::write_vtk(mesh);
   if (!scalars.empty()) data += fmt::format("POINT_DATA {}\n", mesh.n_vertices());
   for (const auto& [name, values] : scalars) {
     if (values.size() != mesh.n_vertices())
-      throw std::invalid_argument(fmt::format("point data '{}': {} values for {} vertices", name, values.size(),
-                                              mesh.n_vertices()));
+      throw std::invalid_argument(
+          fmt::format("point data '{}': {} values for {} vertices", name, values.size(), mesh.n_vertices()));
     if (name.empty() || name.find_first_of(" \t\n") != std::string::npos)
       throw std::invalid_argument(fmt::format("point data name '{}' is empty or has white space", name));
     data += fmt::format("SCALARS {} double 1\nLOOKUP_TABLE default\n", name);

@@ -39,7 +39,8 @@ void write_volume_mesh(const VolumeMesh& mesh, const std::string& path);
 // section with one "SCALARS NAME double 1" array per entry (|V| values each, 17 significant digits;
 // non-finite values written as nan/inf). The reader ignores that section, so the file reads back
 // as the mesh. Throws std::invalid_argument for an array of the wrong size or a name with spaces.
-void write_volume_vtk_with_point_data(const VolumeMesh& mesh, const std::string& path, const VertexScalars& scalars);
+void write_volume_vtk_with_point_data(const VolumeMesh& mesh, const std::string& path,
+                                      const VertexScalars& scalars);
 // The file's bytes for `format` ("ovm", "vtk" or "mesh").
 std::string write_volume_mesh_to_string(const VolumeMesh& mesh, std::string_view format);
 

@@ -1,8 +1,9 @@
 // operators/volume_laplacians.cpp — the volume method registry, gradient and divergence.
 #include "polydec/operators/volume_laplacians.h"
 
-#include <cmath>
 #include <fmt/format.h>
+
+#include <cmath>
 #include <stdexcept>
 
 #include "polydec/dec/volume_whitney.h"
@@ -36,14 +37,10 @@ struct VolumeMethod {
   OperatorSet (*build)(const VolumeMesh&, bool with_gradient, SubTetQuality*);
 };
 const VolumeMethod kVolumeMethods[] = {
-    {"ours",
-     [](const VolumeMesh& m, bool g, SubTetQuality* q) {
-       return refined_operators(m, CellPointRule::SquaredVolume, g, q);
-     }},
-    {"polylaplace",
-     [](const VolumeMesh& m, bool g, SubTetQuality* q) {
-       return refined_operators(m, CellPointRule::PolyLaplace, g, q);
-     }},
+    {"ours", [](const VolumeMesh& m, bool g,
+                SubTetQuality* q) { return refined_operators(m, CellPointRule::SquaredVolume, g, q); }},
+    {"polylaplace", [](const VolumeMesh& m, bool g,
+                       SubTetQuality* q) { return refined_operators(m, CellPointRule::PolyLaplace, g, q); }},
 };
 
 const VolumeMethod* find_volume_method(const std::string& name) {
@@ -74,7 +71,8 @@ OperatorSet build_volume_operators(const VolumeMesh& mesh, const LaplacianChoice
                                    SubTetQuality* quality) {
   const auto* m = volume_laplacians_detail::find_volume_method(choice.method);
   if (!m || choice.has_parameter)
-    throw std::invalid_argument(fmt::format("unknown volume Laplacian '{}' (known: {})", choice.canonical_name(),
+    throw std::invalid_argument(fmt::format("unknown volume Laplacian '{}' (known: {})",
+                                            choice.canonical_name(),
                                             fmt::join(volume_laplacian_names(), ", ")));
   OperatorSet ops = m->build(mesh, with_gradient, quality);
   ops.name = m->name;
@@ -106,9 +104,10 @@ Eigen::VectorXd sub_tet_volumes(const VolumeMesh& mesh, const VolumeRefinement& 
   Eigen::VectorXd w = Eigen::VectorXd::Zero(Eigen::Index(tets.size()));
   for (size_t k = 0; k < tets.size(); ++k)
     if (tets[k].quality != SubTet::Degenerate)
-      w[Eigen::Index(k)] = std::abs(tet_signed_volume(
-          refined_position(mesh, refinement, tets[k].v[0]), refined_position(mesh, refinement, tets[k].v[1]),
-          refined_position(mesh, refinement, tets[k].v[2]), refined_position(mesh, refinement, tets[k].v[3])));
+      w[Eigen::Index(k)] = std::abs(tet_signed_volume(refined_position(mesh, refinement, tets[k].v[0]),
+                                                      refined_position(mesh, refinement, tets[k].v[1]),
+                                                      refined_position(mesh, refinement, tets[k].v[2]),
+                                                      refined_position(mesh, refinement, tets[k].v[3])));
   return w;
 }
 
@@ -116,7 +115,8 @@ SparseMatrix volume_divergence(const SparseMatrix& G, const Eigen::VectorXd& sub
   if (G.rows() != 3 * sub_tet_volumes.size())
     throw std::invalid_argument("volume divergence: one volume per three gradient rows expected");
   Eigen::VectorXd w(G.rows());
-  for (Eigen::Index k = 0; k < sub_tet_volumes.size(); ++k) w.segment<3>(3 * k).setConstant(sub_tet_volumes[k]);
+  for (Eigen::Index k = 0; k < sub_tet_volumes.size(); ++k)
+    w.segment<3>(3 * k).setConstant(sub_tet_volumes[k]);
   return SparseMatrix(-(G.transpose() * w.asDiagonal()));
 }
 

@@ -35,8 +35,8 @@ LaplacianChoice parse_volume_laplacian(const std::string& spec);
 
 // Builds the operator set of `choice` on `mesh`; `with_gradient` asks for G and D too. Throws
 // std::invalid_argument for a method that is not a volume method.
-OperatorSet build_volume_operators(const VolumeMesh& mesh, const LaplacianChoice& choice, bool with_gradient = true,
-                                   SubTetQuality* quality = nullptr);
+OperatorSet build_volume_operators(const VolumeMesh& mesh, const LaplacianChoice& choice,
+                                   bool with_gradient = true, SubTetQuality* quality = nullptr);
 
 // Gradient G = G^tet P, (3T) x |V| (T = number of sub-tetrahedra), see above.
 SparseMatrix volume_gradient(const VolumeMesh& mesh, const VolumeRefinement& refinement);

@@ -82,9 +82,11 @@ VolumePoissonError volume_dirichlet_poisson(const OperatorSet& ops, const Volume
   return e;
 }
 
-VolumePoissonError volume_franke_poisson(const VolumeMesh& mesh, bool lumped_mass, const LaplacianChoice& laplacian) {
+VolumePoissonError volume_franke_poisson(const VolumeMesh& mesh, bool lumped_mass,
+                                         const LaplacianChoice& laplacian) {
   return volume_dirichlet_poisson(
-      build_volume_operators(mesh, laplacian, false), mesh, [](const Eigen::Vector3d& p) { return franke3d(p.x(), p.y(), p.z()); },
+      build_volume_operators(mesh, laplacian, false), mesh,
+      [](const Eigen::Vector3d& p) { return franke3d(p.x(), p.y(), p.z()); },
       [](const Eigen::Vector3d& p) { return franke3d_laplacian(p.x(), p.y(), p.z()); }, lumped_mass);
 }
 

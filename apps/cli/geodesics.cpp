@@ -2,17 +2,19 @@
 // distances (paper section 5.5) written as a per-vertex PLY property and/or a picture (--png); on a
 // volume mesh (.ovm, .vtk, .mesh or --volume) with the volume operators (operators/volume_laplacians.h),
 // written as VTK point data and pictured on a planar cut (apps/pictures/volume_cut.h).
-#include "polydec/apps/cli/command.h"
 #include "polydec/apps/applications/geodesics.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "polydec/apps/cli/command.h"
 #include "polydec/apps/cli/engine.h"
 #include "polydec/apps/pictures/render.h"
 #include "polydec/apps/pictures/volume_cut.h"
 #include "polydec/dec/io.h"
 #include "polydec/dec/io_volume.h"
 #include "polydec/operators/volume_laplacians.h"
-
-#include <cmath>
-#include <fmt/format.h>
 
 namespace polydec::cli::geodesics_command {
 namespace {
@@ -74,10 +76,12 @@ double euclidean_rmse(const Eigen::MatrixX3d& X, int source, const Eigen::Vector
 
 // A volume mesh: the volume operators, VTK point data, a picture of a cut through the centre.
 void run_volume(const Options& o) {
-  if (o.engine.engine != "serial") throw UsageError("--engine petsc: volume meshes run on the serial engine only");
+  if (o.engine.engine != "serial")
+    throw UsageError("--engine petsc: volume meshes run on the serial engine only");
   if (o.repair) throw UsageError("--repair applies to surface meshes only");
   if (o.mass != "lumped" && o.mass != "unlumped") throw UsageError("--mass must be lumped or unlumped");
-  if (o.time_step_edges != "input") throw UsageError("--time-step-edges: volume meshes use the input's edges only");
+  if (o.time_step_edges != "input")
+    throw UsageError("--time-step-edges: volume meshes use the input's edges only");
   const VolumeMesh mesh = load_volume_mesh(o.mesh);
   for (int s : o.sources)
     if (s < 0 || s >= mesh.n_vertices())
@@ -91,12 +95,18 @@ void run_volume(const Options& o) {
                            mesh.mean_edge_length(), hopt);
   const Eigen::VectorXd d = heat.distance(o.sources);
   const Stats st = stats(d);
-  nlohmann::json j = {{"mesh", o.mesh},           {"laplacian", heat.operators().name},
-                      {"sources", o.sources},     {"time_step", heat.time_step()},
-                      {"min", st.min},            {"max", st.max},
-                      {"mean", st.mean},          {"unreached", st.unreached},
-                      {"vertices", mesh.n_vertices()}, {"cells", mesh.n_cells()},
-                      {"subtet_degenerate", quality.n_degenerate}, {"subtet_inverted", quality.n_inverted}};
+  nlohmann::json j = {{"mesh", o.mesh},
+                      {"laplacian", heat.operators().name},
+                      {"sources", o.sources},
+                      {"time_step", heat.time_step()},
+                      {"min", st.min},
+                      {"max", st.max},
+                      {"mean", st.mean},
+                      {"unreached", st.unreached},
+                      {"vertices", mesh.n_vertices()},
+                      {"cells", mesh.n_cells()},
+                      {"subtet_degenerate", quality.n_degenerate},
+                      {"subtet_inverted", quality.n_inverted}};
   if (o.euclidean) j["rmse_vs_euclidean"] = euclidean_rmse(mesh.positions(), o.sources[0], d);
   if (!o.out.empty()) {
     write_volume_vtk_with_point_data(mesh, o.out, {{"distance", d}});
@@ -114,10 +124,11 @@ void run_volume(const Options& o) {
     print_json(j);
     return;
   }
-  fmt::print("{}: {} vertices, {} cells (volume), time step {:.6g}\n", o.mesh, mesh.n_vertices(), mesh.n_cells(),
-             heat.time_step());
+  fmt::print("{}: {} vertices, {} cells (volume), time step {:.6g}\n", o.mesh, mesh.n_vertices(),
+             mesh.n_cells(), heat.time_step());
   fmt::print("distance: min {:.6g}, max {:.6g}, mean {:.6g}\n", st.min, st.max, st.mean);
-  if (o.euclidean) fmt::print("RMSE against Euclidean distance: {:.6g}\n", j["rmse_vs_euclidean"].get<double>());
+  if (o.euclidean)
+    fmt::print("RMSE against Euclidean distance: {:.6g}\n", j["rmse_vs_euclidean"].get<double>());
   if (!o.out.empty()) fmt::print("wrote {} (VTK point data 'distance')\n", o.out);
   if (!o.png.empty()) fmt::print("wrote {}\n", o.png);
 }
@@ -155,9 +166,15 @@ void report(const Options& o, const Mesh& mesh, const std::vector<int>& sources,
             const std::string& laplacian, double time_step, const FanQuality& quality, const nlohmann::json* engine) {
   const Stats st = stats(d);
   const double mn = st.min, mx = st.max;
-  nlohmann::json j = {{"mesh", o.mesh}, {"laplacian", laplacian}, {"sources", o.sources},       {"time_step", time_step},
-                      {"min", mn},              {"max", mx},                  {"mean", st.mean},
-                      {"unreached", st.unreached}, {"fan_degenerate", quality.n_degenerate},
+  nlohmann::json j = {{"mesh", o.mesh},
+                      {"laplacian", laplacian},
+                      {"sources", o.sources},
+                      {"time_step", time_step},
+                      {"min", mn},
+                      {"max", mx},
+                      {"mean", st.mean},
+                      {"unreached", st.unreached},
+                      {"fan_degenerate", quality.n_degenerate},
                       {"fan_inverted", quality.n_inverted}};
   if (engine) j["engine"] = *engine;
   if (o.euclidean) {
@@ -195,15 +212,17 @@ const RegisterCommand reg("geodesics", "Geodesic distances by the heat method (p
   auto o = std::make_shared<Options>();
   app.add_option("mesh", o->mesh, "input mesh (.obj, .off, .ply; volumes: .ovm, .vtk, .mesh)")->required();
   app.add_option("--source", o->sources, "source vertex (0-based; repeat for several)")->required();
-  app.add_option("--out", o->out,
-                 "output mesh with a 'distance' vertex property (.ply; volumes: .vtk with POINT_DATA 'distance')");
-  app.add_option("--png", o->png,
-                 "picture of the distance with isolines and a colour bar (.png; volumes: the solid cut by the plane "
-                 "z = centre, front half removed)");
+  app.add_option(
+      "--out", o->out,
+      "output mesh with a 'distance' vertex property (.ply; volumes: .vtk with POINT_DATA 'distance')");
+  app.add_option(
+      "--png", o->png,
+      "picture of the distance with isolines and a colour bar (.png; volumes: the solid cut by the plane "
+      "z = centre, front half removed)");
   app.add_option("--mass", o->mass, "lumped (default) or unlumped mass in the heat step");
   app.add_option("--laplacian", o->laplacian,
-                 "Laplacian: " + fmt::format("{}", fmt::join(laplacian_names(), ", ")) + " (volumes: " +
-                     fmt::format("{}", fmt::join(volume_laplacian_names(), ", ")) + ")");
+                 "Laplacian: " + fmt::format("{}", fmt::join(laplacian_names(), ", ")) +
+                     " (volumes: " + fmt::format("{}", fmt::join(volume_laplacian_names(), ", ")) + ")");
   app.add_flag("--volume", o->volume, "read the file as a volume mesh (implied by .ovm, .vtk, .mesh)");
   app.add_flag("--delta-source", o->delta_source,
                "heat step (M - t S) u = delta instead of M delta (as the paper authors' program; matters with --mass unlumped)");

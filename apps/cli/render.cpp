@@ -7,8 +7,8 @@
 
 #include <fmt/format.h>
 
-#include "polydec/apps/cli/command.h"
 #include "polydec/apps/applications/geodesics.h"
+#include "polydec/apps/cli/command.h"
 #include "polydec/apps/pictures/volume_cut.h"
 #include "polydec/dec/io.h"
 #include "polydec/dec/io_volume.h"
@@ -52,7 +52,8 @@ RenderOptions picture_options(const Options& o) {
 // --scalar x|y|z: that coordinate of every vertex (label set in r); none: empty.
 Eigen::VectorXd coordinate_scalar(const Options& o, const Eigen::MatrixX3d& X, RenderOptions& r) {
   if (o.scalar == "none") return {};
-  if (o.scalar != "x" && o.scalar != "y" && o.scalar != "z") throw UsageError("--scalar must be x, y, z or none");
+  if (o.scalar != "x" && o.scalar != "y" && o.scalar != "z")
+    throw UsageError("--scalar must be x, y, z or none");
   r.scalar_label = o.scalar;
   return X.col(o.scalar[0] - 'x');
 }
@@ -83,9 +84,10 @@ void run_volume(const Options& o) {
   if (o.source >= 0) {
     if (o.scalar != "none") throw UsageError("--distance-from and --scalar exclude each other");
     if (o.source >= mesh.n_vertices())
-      throw std::out_of_range(
-          fmt::format("source vertex {} is out of range (the mesh has {} vertices)", o.source, mesh.n_vertices()));
-    s = HeatGeodesics(build_volume_operators(mesh, parse_volume_laplacian(o.laplacian)), mesh.mean_edge_length())
+      throw std::out_of_range(fmt::format("source vertex {} is out of range (the mesh has {} vertices)",
+                                          o.source, mesh.n_vertices()));
+    s = HeatGeodesics(build_volume_operators(mesh, parse_volume_laplacian(o.laplacian)),
+                      mesh.mean_edge_length())
             .distance(o.source);
     r.scalar_label = "distance";
     r.isolines = 15;
@@ -130,16 +132,20 @@ void run(const Options& o) {
 const RegisterCommand reg(
     "render", "Picture of a mesh (PNG), optionally with a colour-mapped scalar field", [](CLI::App& app) {
       auto o = std::make_shared<Options>();
-      app.add_option("mesh", o->mesh, "input mesh (.obj, .off, .ply; volumes: .ovm, .vtk, .mesh)")->required();
+      app.add_option("mesh", o->mesh, "input mesh (.obj, .off, .ply; volumes: .ovm, .vtk, .mesh)")
+          ->required();
       app.add_flag("--volume", o->volume, "read the file as a volume mesh (implied by .ovm, .vtk, .mesh)");
-      app.add_option("--cut-plane", o->cut_plane,
-                     "volumes: cut plane through PX PY PZ with normal NX NY NZ; the half the normal points into "
-                     "is removed")
+      app.add_option(
+             "--cut-plane", o->cut_plane,
+             "volumes: cut plane through PX PY PZ with normal NX NY NZ; the half the normal points into "
+             "is removed")
           ->expected(6);
-      app.add_option("--cut-axis", o->cut_axis,
-                     "volumes: cut by the plane through the bounding-box centre normal to x, y or z (default z)");
-      app.add_option("--laplacian", o->laplacian,
-                     "volumes, --distance-from: " + fmt::format("{}", fmt::join(volume_laplacian_names(), ", ")));
+      app.add_option(
+          "--cut-axis", o->cut_axis,
+          "volumes: cut by the plane through the bounding-box centre normal to x, y or z (default z)");
+      app.add_option(
+          "--laplacian", o->laplacian,
+          "volumes, --distance-from: " + fmt::format("{}", fmt::join(volume_laplacian_names(), ", ")));
       app.add_option("--png", o->png, "output picture (.png)")->required();
       app.add_option("--scalar", o->scalar, "colour by a coordinate: x, y, z, or none (default)");
       app.add_option("--distance-from", o->source,
@@ -147,8 +153,9 @@ const RegisterCommand reg(
       app.add_option("--colormap", o->colormap, "viridis (default) or turbo");
       app.add_option("--isolines", o->isolines, "number of isolines (default 15 for distances, else 0)");
       app.add_option("--isoline-spacing", o->spacing, "isolines at multiples of this value instead");
-      app.add_option("--view", o->view,
-                     "view direction X Y Z (default: -z, or straight at a flat mesh; volumes: at the cut, tilted)")
+      app.add_option(
+             "--view", o->view,
+             "view direction X Y Z (default: -z, or straight at a flat mesh; volumes: at the cut, tilted)")
           ->expected(3);
       app.add_option("--up", o->up, "screen-up direction X Y Z (default 0 1 0)")->expected(3);
       app.add_flag("--perspective", o->perspective, "perspective instead of orthographic projection");

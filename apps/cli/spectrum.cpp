@@ -49,15 +49,16 @@ void report(const Options& o, const Mesh& mesh, const std::string& laplacian, in
 void run_form(const Options& o);
 
 // Picture options of eigenfunction --png-index (surfaces add smooth shading).
-RenderOptions eigenfunction_picture(const Options& o, const std::vector<double>& ev, const std::string& laplacian) {
+RenderOptions eigenfunction_picture(const Options& o, const std::vector<double>& ev,
+                                    const std::string& laplacian) {
   RenderOptions ropt;
   ropt.width = 640;
   ropt.height = 480;
   ropt.isolines = 10;
   ropt.colormap = Colormap::turbo;
   ropt.scalar_label = fmt::format("u{}", o.png_index);
-  ropt.title = fmt::format("eigenfunction {}, lambda = {:.4g} ({}, {} mass)", o.png_index, ev[o.png_index], laplacian,
-                           o.mass);
+  ropt.title = fmt::format("eigenfunction {}, lambda = {:.4g} ({}, {} mass)", o.png_index, ev[o.png_index],
+                           laplacian, o.mass);
   return ropt;
 }
 
@@ -67,12 +68,15 @@ void write_eigenvalues(const std::string& path, const std::vector<double>& ev) {
   for (double e : ev) f << fmt::format("{:.17g}\n", e);
 }
 
-// A volume mesh: Neumann eigenpairs of the volume operators, files and picture as described in docs/volumes.md.
+// A volume mesh: Neumann eigenpairs of the volume operators, files and picture as described in
+// docs/volumes.md.
 void run_volume(const Options& o) {
   if (o.form != 0) throw UsageError("--form: volume meshes have function spectra only (--form 0)");
-  if (o.engine.engine != "serial") throw UsageError("--engine petsc: volume meshes run on the serial engine only");
+  if (o.engine.engine != "serial")
+    throw UsageError("--engine petsc: volume meshes run on the serial engine only");
   if (o.repair) throw UsageError("--repair applies to surface meshes only");
-  if (!o.png.empty() && (o.png_index < 0 || o.png_index >= o.k)) throw UsageError("--png-index must lie in [0, k)");
+  if (!o.png.empty() && (o.png_index < 0 || o.png_index >= o.k))
+    throw UsageError("--png-index must lie in [0, k)");
   const VolumeMesh mesh = load_volume_mesh(o.mesh);
   const OperatorSet ops = build_volume_operators(mesh, parse_volume_laplacian(o.laplacian), false);
   SpectrumOptions sopt;
@@ -96,21 +100,23 @@ void run_volume(const Options& o) {
   }
   if (!o.png.empty()) {
     render_volume_cut_png(o.png, mesh, sp.eigenvectors.col(o.png_index),
-                          centre_plane(mesh, Eigen::Vector3d::UnitZ()), eigenfunction_picture(o, ev, ops.name));
+                          centre_plane(mesh, Eigen::Vector3d::UnitZ()),
+                          eigenfunction_picture(o, ev, ops.name));
     j["png"] = o.png;
   }
   if (o.json) {
     print_json(j);
     return;
   }
-  fmt::print("{}: {} vertices, {} cells (volume); Laplacian {}, {} mass, shift {:.6g}\n", o.mesh, mesh.n_vertices(),
-             mesh.n_cells(), ops.name, o.mass, sp.shift);
+  fmt::print("{}: {} vertices, {} cells (volume); Laplacian {}, {} mass, shift {:.6g}\n", o.mesh,
+             mesh.n_vertices(), mesh.n_cells(), ops.name, o.mass, sp.shift);
   fmt::print("{} smallest eigenvalues of -S x = lambda M x (Neumann):\n", o.k);
   for (int i = 0; i < o.k; ++i) fmt::print("  {:4d}  {:.10g}\n", i, ev[i]);
   if (!o.png.empty()) fmt::print("wrote {}\n", o.png);
   if (!o.out.empty())
-    fmt::print("wrote eigenvalues.txt, eigenvectors.mtx (|V| x k) and eigenvectors.vtk (point data u000..) to {}\n",
-               o.out);
+    fmt::print(
+        "wrote eigenvalues.txt, eigenvectors.mtx (|V| x k) and eigenvectors.vtk (point data u000..) to {}\n",
+        o.out);
 }
 
 void run(const Options& o) {
@@ -322,7 +328,8 @@ const RegisterCommand reg(
     "spectrum", "Smallest eigenpairs of the Laplacian, -S x = lambda M x (Spectra shift-invert)",
     [](CLI::App& app) {
       auto o = std::make_shared<Options>();
-      app.add_option("mesh", o->mesh, "input mesh (.obj, .off, .ply; volumes: .ovm, .vtk, .mesh)")->required();
+      app.add_option("mesh", o->mesh, "input mesh (.obj, .off, .ply; volumes: .ovm, .vtk, .mesh)")
+          ->required();
       app.add_flag("--volume", o->volume, "read the file as a volume mesh (implied by .ovm, .vtk, .mesh)");
       app.add_option("--k", o->k, "number of eigenpairs (default 10)");
       app.add_option(
@@ -334,8 +341,8 @@ const RegisterCommand reg(
                      "eigenvectors.vtk with point data u000..)");
       app.add_option("--mass", o->mass, "lumped (default) or unlumped mass");
       app.add_option("--laplacian", o->laplacian,
-                     "Laplacian: " + fmt::format("{}", fmt::join(laplacian_names(), ", ")) + " (volumes: " +
-                         fmt::format("{}", fmt::join(volume_laplacian_names(), ", ")) + ")");
+                     "Laplacian: " + fmt::format("{}", fmt::join(laplacian_names(), ", ")) +
+                         " (volumes: " + fmt::format("{}", fmt::join(volume_laplacian_names(), ", ")) + ")");
       app.add_option(
           "--png", o->png,
           "picture of one eigenfunction with isolines (.png); --form 1: the eigen 1-form as arrows, "

@@ -2,8 +2,9 @@
 // refinement, and the clipped solid behind the plane.
 #include "polydec/apps/pictures/volume_cut.h"
 
-#include <cmath>
 #include <fmt/format.h>
+
+#include <cmath>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -25,13 +26,14 @@ struct Builder {
   std::vector<double> values;
   std::vector<int> offsets{0}, indices;
 
-  Builder(const VolumeMesh& m, const VolumeRefinement& r, const Eigen::VectorXd& vertex_values, const CutPlane& plane)
+  Builder(const VolumeMesh& m, const VolumeRefinement& r, const Eigen::VectorXd& vertex_values,
+          const CutPlane& plane)
       : mesh(m), refinement(r) {
     if (!plane.normal.allFinite() || !(plane.normal.norm() > 0) || !plane.point.allFinite())
       throw std::invalid_argument("volume cut: the plane needs a finite point and a non-zero finite normal");
     if (vertex_values.size() != 0 && vertex_values.size() != m.n_vertices())
-      throw std::invalid_argument(fmt::format("volume cut: {} values for {} vertices", vertex_values.size(),
-                                              m.n_vertices()));
+      throw std::invalid_argument(
+          fmt::format("volume cut: {} values for {} vertices", vertex_values.size(), m.n_vertices()));
     const int n = m.n_vertices() + m.n_faces() + m.n_cells();
     const Eigen::Vector3d nn = plane.normal.normalized();
     s.resize(n);
@@ -42,14 +44,17 @@ struct Builder {
   // The point where the plane crosses refined edge (a, b) (s[a], s[b] of opposite signs or zero);
   // the refined vertex itself when it lies on the plane.
   int crossing(int a, int b) {
-    if (s[a] == 0) b = a;
-    else if (s[b] == 0) a = b;
+    if (s[a] == 0)
+      b = a;
+    else if (s[b] == 0)
+      a = b;
     if (a > b) std::swap(a, b);
     const std::uint64_t key = std::uint64_t(a) * std::uint64_t(s.size()) + std::uint64_t(b);
     const auto [it, inserted] = index.try_emplace(key, int(points.size()));
     if (inserted) {
       const double t = a == b ? 0.0 : s[a] / (s[a] - s[b]);
-      points.push_back((1 - t) * refined_position(mesh, refinement, a) + t * refined_position(mesh, refinement, b));
+      points.push_back((1 - t) * refined_position(mesh, refinement, a) +
+                       t * refined_position(mesh, refinement, b));
       if (u.size()) values.push_back((1 - t) * u[a] + t * u[b]);
     }
     return it->second;
@@ -113,7 +118,8 @@ double polygon_area(const Eigen::MatrixX3d& X, std::span<const int> p) {
 std::string plane_miss_message(const Builder& B, const CutPlane& plane) {
   const Eigen::VectorXd sv = B.s.head(B.mesh.n_vertices());
   return fmt::format(
-      "the cut plane through ({:.6g}, {:.6g}, {:.6g}) with normal ({:.6g}, {:.6g}, {:.6g}) {} the volume mesh "
+      "the cut plane through ({:.6g}, {:.6g}, {:.6g}) with normal ({:.6g}, {:.6g}, {:.6g}) {} the volume "
+      "mesh "
       "(signed distances of its vertices from {:.6g} to {:.6g})",
       plane.point.x(), plane.point.y(), plane.point.z(), plane.normal.x(), plane.normal.y(), plane.normal.z(),
       sv.minCoeff() > 0 ? "keeps nothing of" : "misses", sv.minCoeff(), sv.maxCoeff());
@@ -125,13 +131,14 @@ std::string plane_miss_message(const Builder& B, const CutPlane& plane) {
 double VolumeCut::area() const {
   double a = 0;
   for (int k = 0; k < n_polygons(); ++k)
-    a += volume_cut_detail::polygon_area(positions, std::span<const int>(indices).subspan(
-                                                        size_t(offsets[k]), size_t(offsets[k + 1] - offsets[k])));
+    a += volume_cut_detail::polygon_area(
+        positions,
+        std::span<const int>(indices).subspan(size_t(offsets[k]), size_t(offsets[k + 1] - offsets[k])));
   return a;
 }
 
-VolumeCut cut_volume(const VolumeMesh& mesh, const VolumeRefinement& refinement, const Eigen::VectorXd& vertex_values,
-                     const CutPlane& plane) {
+VolumeCut cut_volume(const VolumeMesh& mesh, const VolumeRefinement& refinement,
+                     const Eigen::VectorXd& vertex_values, const CutPlane& plane) {
   using namespace volume_cut_detail;
   Builder B(mesh, refinement, vertex_values, plane);
   cut_all(B, plane.normal);
@@ -144,8 +151,8 @@ VolumeCut cut_volume(const VolumeMesh& mesh, const VolumeRefinement& refinement,
   return cut;
 }
 
-Mesh cut_solid(const VolumeMesh& mesh, const VolumeRefinement& refinement, const Eigen::VectorXd& vertex_values,
-               const CutPlane& plane, Eigen::VectorXd* values) {
+Mesh cut_solid(const VolumeMesh& mesh, const VolumeRefinement& refinement,
+               const Eigen::VectorXd& vertex_values, const CutPlane& plane, Eigen::VectorXd* values) {
   using namespace volume_cut_detail;
   Builder B(mesh, refinement, vertex_values, plane);
   cut_all(B, plane.normal);
@@ -190,8 +197,9 @@ Eigen::Vector3d cut_view_direction(const CutPlane& plane, const Eigen::Vector3d&
   return -n - 0.5 * u - 0.35 * n.cross(u);
 }
 
-void render_volume_cut_png(const std::string& path, const VolumeMesh& mesh, const Eigen::VectorXd& vertex_values,
-                           const CutPlane& plane, RenderOptions options) {
+void render_volume_cut_png(const std::string& path, const VolumeMesh& mesh,
+                           const Eigen::VectorXd& vertex_values, const CutPlane& plane,
+                           RenderOptions options) {
   Eigen::VectorXd values;
   const Mesh solid = cut_solid(mesh, refine_volume(mesh), vertex_values, plane, &values);
   if (options.view_direction.isZero()) options.view_direction = cut_view_direction(plane, options.up);

@@ -43,26 +43,29 @@ struct VolumeCut {
 // collapse to a point or a segment (the plane touching a sub-tetrahedron at a vertex or an edge) are
 // dropped. Empty when the plane misses the mesh. Throws std::invalid_argument for a zero or
 // non-finite normal or a scalar of the wrong size.
-VolumeCut cut_volume(const VolumeMesh& mesh, const VolumeRefinement& refinement, const Eigen::VectorXd& vertex_values,
-                     const CutPlane& plane);
+VolumeCut cut_volume(const VolumeMesh& mesh, const VolumeRefinement& refinement,
+                     const Eigen::VectorXd& vertex_values, const CutPlane& plane);
 
 // The solid behind the plane as a surface: the boundary faces of `mesh` clipped to the kept half
 // (faces lying in the plane dropped: the section replaces them), plus the section's polygons, with
 // the scalar in *values (if given). Throws std::invalid_argument, with the range of the vertices'
 // signed distances from the plane, when the plane misses the mesh (no section) or keeps nothing.
-Mesh cut_solid(const VolumeMesh& mesh, const VolumeRefinement& refinement, const Eigen::VectorXd& vertex_values,
-               const CutPlane& plane, Eigen::VectorXd* values = nullptr);
+Mesh cut_solid(const VolumeMesh& mesh, const VolumeRefinement& refinement,
+               const Eigen::VectorXd& vertex_values, const CutPlane& plane,
+               Eigen::VectorXd* values = nullptr);
 
 // The plane through the centre of the mesh's bounding box with normal `normal`.
 CutPlane centre_plane(const VolumeMesh& mesh, const Eigen::Vector3d& normal);
 
 // A view direction for pictures of a cut: from the removed half, looking along -n, tilted so that the
 // kept boundary shows too (-n - 0.5 u - 0.35 w with u the component of `up` orthogonal to n, w = n x u).
-Eigen::Vector3d cut_view_direction(const CutPlane& plane, const Eigen::Vector3d& up = Eigen::Vector3d::UnitY());
+Eigen::Vector3d cut_view_direction(const CutPlane& plane,
+                                   const Eigen::Vector3d& up = Eigen::Vector3d::UnitY());
 
 // cut_solid rendered to a PNG (render_png) with the scalar colour-mapped (empty: plain grey); a zero
 // options.view_direction is replaced by cut_view_direction.
-void render_volume_cut_png(const std::string& path, const VolumeMesh& mesh, const Eigen::VectorXd& vertex_values,
-                           const CutPlane& plane, RenderOptions options);
+void render_volume_cut_png(const std::string& path, const VolumeMesh& mesh,
+                           const Eigen::VectorXd& vertex_values, const CutPlane& plane,
+                           RenderOptions options);
 
 }  // namespace polydec

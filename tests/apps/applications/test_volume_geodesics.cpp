@@ -67,7 +67,8 @@ TEST_CASE("volume heat geodesics in a box converge to the Euclidean distance", "
     }
 }
 
-TEST_CASE("volume heat geodesics: symmetry d(a, b) ~ d(b, a) relative to the diameter", "[volume-geodesics]") {
+TEST_CASE("volume heat geodesics: symmetry d(a, b) ~ d(b, a) relative to the diameter",
+          "[volume-geodesics]") {
   const VolumeMesh mesh = box(8, 0.25);
   const HeatGeodesics g = heat(mesh);
   const int pts[4] = {nearest_vertex(mesh, {0, 0, 0}), nearest_vertex(mesh, {2, 1, 1}),

@@ -44,13 +44,15 @@ TEST_CASE("polydec geodesics on a volume mesh", "[volume-cli]") {
   const std::string file = scratch.path("grid.vtk");
   write_volume_mesh(mesh, file);
   for (const std::string method : {"ours", "polylaplace"}) {
-    const auto r = test::run_cli_in(scratch.dir, "geodesics '" + file + "' --source 0 --source 7 --laplacian " +
-                                                     method + " --euclidean --json --out '" +
-                                                     scratch.path("d.vtk") + "' --png '" + scratch.path("d.png") + "'");
+    const auto r =
+        test::run_cli_in(scratch.dir, "geodesics '" + file + "' --source 0 --source 7 --laplacian " + method +
+                                          " --euclidean --json --out '" + scratch.path("d.vtk") +
+                                          "' --png '" + scratch.path("d.png") + "'");
     INFO(r.err);
     REQUIRE(r.code == 0);
     const auto j = nlohmann::json::parse(r.out);
-    const HeatGeodesics heat(build_volume_operators(mesh, parse_volume_laplacian(method)), mesh.mean_edge_length());
+    const HeatGeodesics heat(build_volume_operators(mesh, parse_volume_laplacian(method)),
+                             mesh.mean_edge_length());
     const Eigen::VectorXd d = heat.distance(std::vector<int>{0, 7});
     CHECK(j["laplacian"] == method);
     CHECK(j["cells"] == mesh.n_cells());
@@ -66,11 +68,13 @@ TEST_CASE("polydec geodesics on a volume mesh", "[volume-cli]") {
   }
   // A volume file of another extension with --volume.
   fs::copy_file(file, scratch.path("grid.txt"));
-  CHECK(test::run_cli_in(scratch.dir, "geodesics --volume '" + scratch.path("grid.txt") + "' --source 3").code == 0);
+  CHECK(test::run_cli_in(scratch.dir, "geodesics --volume '" + scratch.path("grid.txt") + "' --source 3")
+            .code == 0);
   // Refused: a surface method, a source out of range, --out .ply, --engine petsc.
   CHECK(test::run_cli_in(scratch.dir, "geodesics '" + file + "' --source 0 --laplacian cotan").code == 2);
   CHECK(test::run_cli_in(scratch.dir, "geodesics '" + file + "' --source 9999").code == 3);
-  CHECK(test::run_cli_in(scratch.dir, "geodesics '" + file + "' --source 0 --out '" + scratch.path("d.ply") + "'")
+  CHECK(test::run_cli_in(scratch.dir,
+                         "geodesics '" + file + "' --source 0 --out '" + scratch.path("d.ply") + "'")
             .code == 3);
   CHECK(test::run_cli_in(scratch.dir, "geodesics '" + file + "' --source 0 --engine petsc").code == 2);
 }
@@ -80,8 +84,9 @@ TEST_CASE("polydec spectrum on a volume mesh", "[volume-cli]") {
   const VolumeMesh mesh = hex_grid_volume(4, 4, 4);
   const std::string file = scratch.path("grid.ovm");
   write_volume_mesh(mesh, file);
-  const auto r = test::run_cli_in(scratch.dir, "spectrum '" + file + "' --k 5 --mass unlumped --json --out '" +
-                                                   scratch.path("out") + "' --png '" + scratch.path("u.png") + "'");
+  const auto r =
+      test::run_cli_in(scratch.dir, "spectrum '" + file + "' --k 5 --mass unlumped --json --out '" +
+                                        scratch.path("out") + "' --png '" + scratch.path("u.png") + "'");
   INFO(r.err);
   REQUIRE(r.code == 0);
   const auto j = nlohmann::json::parse(r.out);
@@ -90,7 +95,8 @@ TEST_CASE("polydec spectrum on a volume mesh", "[volume-cli]") {
   sopt.lumped_mass = false;
   const Spectrum sp = laplacian_spectrum(build_volume_operators(mesh, LaplacianChoice{}, false), sopt);
   REQUIRE(j["eigenvalues"].size() == 5);
-  for (int i = 1; i < 5; ++i) CHECK(j["eigenvalues"][i].get<double>() == Approx(sp.eigenvalues[i]).epsilon(1e-8));
+  for (int i = 1; i < 5; ++i)
+    CHECK(j["eigenvalues"][i].get<double>() == Approx(sp.eigenvalues[i]).epsilon(1e-8));
   // Neumann: lambda_0 = 0; the unit cube's first nonzero eigenvalue pi^2 (three times), within 8% on
   // this 4^3 grid (measured 5.2% above, Galerkin mass).
   CHECK(std::abs(j["eigenvalues"][0].get<double>()) < 1e-8 * sp.eigenvalues[1]);
@@ -118,22 +124,25 @@ TEST_CASE("polydec render on a volume mesh", "[volume-cli]") {
                                           "' --scalar x --cut-plane 0.3 0.3 0.3 1 1 1")
             .code == 0);
   // A plane missing the mesh: bad input naming the plane.
-  const auto miss = test::run_cli_in(scratch.dir, "render '" + file + "' --png '" + scratch.path("c.png") +
-                                                      "' --cut-plane 0 0 5 0 0 1");
+  const auto miss = test::run_cli_in(
+      scratch.dir, "render '" + file + "' --png '" + scratch.path("c.png") + "' --cut-plane 0 0 5 0 0 1");
   CHECK(miss.code == 2);
   CHECK(miss.err.find("misses the volume mesh") != std::string::npos);
-  CHECK(test::run_cli_in(scratch.dir, "render '" + file + "' --png '" + scratch.path("c.png") + "' --cut-axis w")
+  CHECK(test::run_cli_in(scratch.dir,
+                         "render '" + file + "' --png '" + scratch.path("c.png") + "' --cut-axis w")
             .code == 2);
 }
 
 TEST_CASE("polydec poisson --volume --laplacian", "[volume-cli]") {
   const test::ScratchDir scratch("cli_volpoisson");
-  const auto r = test::run_cli_in(scratch.dir, "poisson --volume --resolutions 3 4 --laplacian polylaplace --json");
+  const auto r =
+      test::run_cli_in(scratch.dir, "poisson --volume --resolutions 3 4 --laplacian polylaplace --json");
   INFO(r.err);
   REQUIRE(r.code == 0);
   const auto j = nlohmann::json::parse(r.out);
   CHECK(j["laplacian"] == "polylaplace");
-  const auto e = volume_franke_poisson(hex_grid_volume(4, 4, 4), false, parse_volume_laplacian("polylaplace"));
+  const auto e =
+      volume_franke_poisson(hex_grid_volume(4, 4, 4), false, parse_volume_laplacian("polylaplace"));
   CHECK(j["levels"][1]["l2_error"].get<double>() == Approx(e.l2_error).epsilon(1e-10));
   CHECK(test::run_cli_in(scratch.dir, "poisson --volume --resolutions 3 4 --laplacian aw11:0.5").code == 2);
 }

@@ -15,8 +15,9 @@ using namespace polydec;
 namespace test_volume_cut {
 
 TEST_CASE("volume cut: area of the centre section of a unit cube is 1", "[volume-render]") {
-  for (const auto& mesh : {hex_grid_volume(4, 4, 4), hex_grid_volume(5, 3, 2, {0.25, 3}), pyramid_grid_volume(3, 3, 3),
-                           truncated_octahedra_volume(2), tet_grid_volume(3, 3, 3, {0.2, 9})}) {
+  for (const auto& mesh :
+       {hex_grid_volume(4, 4, 4), hex_grid_volume(5, 3, 2, {0.25, 3}), pyramid_grid_volume(3, 3, 3),
+        truncated_octahedra_volume(2), tet_grid_volume(3, 3, 3, {0.2, 9})}) {
     const VolumeRefinement r = refine_volume(mesh);
     for (int axis = 0; axis < 3; ++axis) {
       // Through the centre (on a layer of faces for even counts) and off the layers.
@@ -55,7 +56,8 @@ TEST_CASE("volume cut: a linear field is reproduced on the section", "[volume-re
   // The clipped solid carries the same field at all its vertices (boundary ones included).
   Eigen::VectorXd values;
   const Mesh solid = cut_solid(mesh, r, u, p, &values);
-  const Eigen::VectorXd exact_solid = solid.positions() * a + Eigen::VectorXd::Constant(solid.n_vertices(), 0.7);
+  const Eigen::VectorXd exact_solid =
+      solid.positions() * a + Eigen::VectorXd::Constant(solid.n_vertices(), 0.7);
   CHECK((values - exact_solid).cwiseAbs().maxCoeff() < 1e-12 * u.cwiseAbs().maxCoeff());
   // Nothing of the solid lies in front of the plane.
   const Eigen::VectorXd s = (solid.positions().rowwise() - p.point.transpose()) * p.normal.normalized();
@@ -72,7 +74,8 @@ TEST_CASE("volume cut: the solid behind the plane is closed with the section's a
   for (int f = 0; f < solid.n_faces(); ++f) {
     const auto face = solid.face(f);
     Eigen::Vector3d a = Eigen::Vector3d::Zero();
-    for (size_t i = 0; i < face.size(); ++i) a += solid.position(face[i]).cross(solid.position(face[(i + 1) % face.size()]));
+    for (size_t i = 0; i < face.size(); ++i)
+      a += solid.position(face[i]).cross(solid.position(face[(i + 1) % face.size()]));
     area += 0.5 * a.norm();
   }
   CHECK(area == Approx(4.0).epsilon(1e-12));
