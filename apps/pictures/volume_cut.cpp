@@ -122,7 +122,7 @@ std::string plane_miss_message(const Builder& B, const CutPlane& plane) {
       "mesh "
       "(signed distances of its vertices from {:.6g} to {:.6g})",
       plane.point.x(), plane.point.y(), plane.point.z(), plane.normal.x(), plane.normal.y(), plane.normal.z(),
-      sv.minCoeff() > 0 ? "keeps nothing of" : "misses", sv.minCoeff(), sv.maxCoeff());
+      sv.minCoeff() >= 0 ? "keeps nothing of" : "misses", sv.minCoeff(), sv.maxCoeff());
 }
 
 }  // namespace
