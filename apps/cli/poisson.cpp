@@ -14,6 +14,7 @@
 #include "polydec/apps/pictures/render.h"
 #include "polydec/dec/generators.h"
 #include "polydec/dec/volume_generators.h"
+#include "polydec/operators/volume_laplacians.h"
 
 namespace polydec::cli::poisson_command {
 namespace {
@@ -61,7 +62,8 @@ void run_volume(const Options& o) {
     }
   }
   if (meshes.size() < 2) throw UsageError("the study needs two or more levels");
-  const VolumeConvergenceSeries s = volume_franke_convergence(o.family, meshes, labels, lumped);
+  const LaplacianChoice laplacian = parse_volume_laplacian(o.laplacian);
+  const VolumeConvergenceSeries s = volume_franke_convergence(o.family, meshes, labels, lumped, laplacian);
   nlohmann::json rows = nlohmann::json::array();
   for (size_t i = 0; i < s.errors.size(); ++i) {
     const auto& e = s.errors[i];
@@ -78,6 +80,7 @@ void run_volume(const Options& o) {
                             {"family", o.family},
                             {"source", o.data.empty() ? "generated" : o.data},
                             {"mass", o.mass},
+                            {"laplacian", laplacian.canonical_name()},
                             {"levels", rows}};
   if (o.json) {
     print_json(j);
@@ -85,8 +88,8 @@ void run_volume(const Options& o) {
   }
   fmt::print(
       "Poisson problem Delta f = b, 3D Franke function, Dirichlet boundary vertices, unit cube; {} ({}), {} "
-      "mass\n",
-      o.family, o.data.empty() ? "generated" : o.data, o.mass);
+      "mass, Laplacian {}\n",
+      o.family, o.data.empty() ? "generated" : o.data, o.mass, laplacian.canonical_name());
   for (size_t i = 0; i < s.errors.size(); ++i) {
     const auto& e = s.errors[i];
     fmt::print("  {:24s} |V| = {:7d}  |C| = {:7d}  h = {:.5f}  L2 = {:.6e}  RMS = {:.6e}", s.levels[i],
@@ -177,7 +180,8 @@ const RegisterCommand reg(
                      "--volume: folder of the cube_<family>_<level>.ovm files (else generated grids)");
       app.add_option("--levels", o->levels, "--volume --data: file levels (default 1 2 3)");
       app.add_option("--laplacian", o->laplacian,
-                     "Laplacian: " + fmt::format("{}", fmt::join(laplacian_names(), ", ")));
+                     "Laplacian: " + fmt::format("{}", fmt::join(laplacian_names(), ", ")) +
+                         " (--volume: " + fmt::format("{}", fmt::join(volume_laplacian_names(), ", ")) + ")");
       app.add_option("--plot", o->plot, "log-log plot of the error against h (.svg or .png)");
       app.add_option("--png", o->png, "picture of the error on the coarsest hexagon grid (.png)");
       app.add_flag("--json", o->json, "print one JSON object instead of text");
