@@ -17,6 +17,7 @@
 #include "polydec/dec/io.h"
 #include "polydec/dec/union_find.h"
 #include "polydec/operators/cholesky.h"
+#include "polydec/operators/gradient.h"
 #include "polydec/operators/laplacians.h"
 #include "polydec/operators/petsc/petsc_check.h"
 
@@ -384,10 +385,9 @@ DistributedOperators assemble_operators(MPI_Comm comm, const MeshView& mesh, con
       edge_sum[1] += 1;
     }
     std::vector<InterfaceHalfedge>().swap(interface);
-    ops = build_operators(sub, parse_laplacian("ours"), with_gradient);
+    ops = build_operators(sub, parse_laplacian("ours"), false);
     out.n_local_faces = sub.n_faces();
     out.n_local_vertices = sub.n_vertices();
-    sub = Mesh();
   });
   MPI_Allreduce(MPI_IN_PLACE, edge_sum, 2, MPI_DOUBLE, MPI_SUM, comm);
   out.mean_edge_length = edge_sum[1] > 0 ? edge_sum[0] / edge_sum[1] : 0.0;
@@ -415,10 +415,19 @@ DistributedOperators assemble_operators(MPI_Comm comm, const MeshView& mesh, con
         "VecSetValues");
   check(VecAssemblyBegin(out.M_lumped.get()), "VecAssemblyBegin");
   check(VecAssemblyEnd(out.M_lumped.get()), "VecAssemblyEnd");
-  if (with_gradient) {
-    out.G = std::move(ops.G);
-    out.D = std::move(ops.D);
-  }
+  ops.M_lumped.resize(0);
+  // The gradient after S and M have gone to PETSc (the peak is the larger of the two phases, not
+  // their sum): the refinement of "ours" again, G and the fan areas; D is -G^T W when applied.
+  if (with_gradient)
+    agree(comm, [&] {
+      RefinementOptions ro;
+      ro.rule = VirtualVertexRule::SquaredArea;  // "ours", as build_operators
+      const Refinement r = refine(sub, ro);
+      SparseMatrix G = gradient(sub, r);
+      out.G.swap(G);  // swap, not move: std::move copies an Eigen 3.4 SparseMatrix
+      out.fan_area = fan_areas(sub, r);
+    });
+  sub = Mesh();
   int q[3] = {ops.quality.n_degenerate, ops.quality.n_inverted, ops.quality.n_faces_affected};
   MPI_Allreduce(MPI_IN_PLACE, q, 3, MPI_INT, MPI_SUM, comm);
   out.quality = {q[0], q[1], q[2]};
@@ -455,7 +464,8 @@ void divergence_of_gradient(const DistributedOperators& ops, Vec u, Vec b, bool 
       g[k + 1] = -s1 / norm;
       g[k + 2] = -s2 / norm;
     }
-  x = ops.D * g;
+  for (Eigen::Index k = 0; k < g.size(); ++k) g[k] *= -ops.fan_area[k / 3];  // D = -G^T W
+  x = ops.G.transpose() * g;
   check(VecRestoreArray(ul.get(), &a), "VecRestoreArray");
   // The local sums into the owners' rows.
   check(VecSet(b, 0.0), "VecSet");

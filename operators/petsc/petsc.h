@@ -135,12 +135,14 @@ class Handle {
 
 // The operators of "ours" on the distributed mesh, in the global vertex numbering: S, M (N x N,
 // MPIAIJ, rows owned as in the partition), lumped M (Vec); with_gradient, this rank's gradient G
-// (3 rows per fan triangle of its faces) and divergence D = -G^T W as local Eigen matrices of its
-// sub-mesh (local vertex numbering, local_to_global), applied by divergence_of_gradient.
+// (3 rows per fan triangle of its faces, operators/gradient.h) as a local Eigen matrix of its
+// sub-mesh (local vertex numbering, local_to_global) and the fan triangles' areas W, so that the
+// divergence is D = -G^T W (no copy of D); applied by divergence_of_gradient.
 struct DistributedOperators {
   Handle<Mat> S, M;
   Handle<Vec> M_lumped;
-  Eigen::SparseMatrix<double> G, D;     // with_gradient only: this rank's sub-mesh, local vertices
+  Eigen::SparseMatrix<double> G;        // with_gradient only: this rank's sub-mesh, local vertices
+  Eigen::VectorXd fan_area;             // with_gradient only: one per fan triangle (row triple of G)
   std::vector<PetscInt> local_to_global;  // n_local_vertices: global index of each local vertex
   double mean_edge_length = 0;          // of the whole mesh (every undirected edge once)
   FanQuality quality;       // summed over the ranks
