@@ -308,7 +308,8 @@ void check_interface(const std::vector<InterfaceHalfedge>& e, const Partition& p
 
 }  // namespace
 
-DistributedOperators assemble_operators(MPI_Comm comm, const MeshView& mesh, const Partition& part, bool with_gradient) {
+DistributedOperators assemble_operators(MPI_Comm comm, const MeshView& mesh, const Partition& part, bool with_gradient,
+                                        bool with_galerkin_mass) {
   int rank = 0, size = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
@@ -402,10 +403,12 @@ DistributedOperators assemble_operators(MPI_Comm comm, const MeshView& mesh, con
     out.S = coo_matrix(comm, n_own, n_own, N, N, I, J, V);
     SparseMatrix().swap(ops.S);  // the local copies go as soon as PETSc holds the entries
     check(MatSetOption(out.S.get(), MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
-    coo_entries(ops.M, g, g, I, J, V);
-    out.M = coo_matrix(comm, n_own, n_own, N, N, I, J, V);
+    if (with_galerkin_mass) {
+      coo_entries(ops.M, g, g, I, J, V);
+      out.M = coo_matrix(comm, n_own, n_own, N, N, I, J, V);
+      check(MatSetOption(out.M.get(), MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
+    }
     SparseMatrix().swap(ops.M);
-    check(MatSetOption(out.M.get(), MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
   }  // and the COO arrays with them
   out.local_to_global.assign(l2g.begin(), l2g.end());
   check(VecCreateMPI(comm, n_own, N, out.M_lumped.out()), "VecCreateMPI");

@@ -155,8 +155,9 @@ struct DistributedOperators {
 // validation), and the edges between ranks' faces (those whose both ends touch faces of two ranks,
 // gathered on every rank) are shared by at most two faces in opposite directions, so that the
 // whole mesh passes the serial validation. Bad input raises the same error on every rank.
+// Without with_galerkin_mass, M stays empty (the lumped mass alone: default heat geodesics and spectrum).
 DistributedOperators assemble_operators(MPI_Comm comm, const MeshView& mesh, const Partition& partition,
-                                        bool with_gradient = true);
+                                        bool with_gradient = true, bool with_galerkin_mass = true);
 
 // b = D X with X = G u (normalized = false; then b = S u) or X = -G u / |G u| per fan triangle, zero
 // where the gradient vanishes (normalized = true: eq. 32), computed on each rank's faces with u

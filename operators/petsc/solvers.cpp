@@ -57,7 +57,8 @@ void configure_ksp(KSP ksp, LinearSolver solver, double rtol) {
   }
 }
 
-Handle<KSP> make_ksp(MPI_Comm comm, Mat A, const char* prefix, LinearSolver solver, double rtol) {
+Handle<KSP> make_ksp(MPI_Comm comm, Mat A, const char* prefix, LinearSolver solver, double rtol,
+                     PCType pc_type = nullptr) {
   // GAMG's coarsest level of a singular operator (the Poisson step's null space): a pseudo-inverse
   // (SVD) instead of LU, unless the user chose otherwise.
   MatNullSpace ns = nullptr;
@@ -74,6 +75,11 @@ Handle<KSP> make_ksp(MPI_Comm comm, Mat A, const char* prefix, LinearSolver solv
   check(KSPSetOperators(ksp.get(), A, A), "KSPSetOperators");
   check(KSPSetOptionsPrefix(ksp.get(), prefix), "KSPSetOptionsPrefix");
   configure_ksp(ksp.get(), solver, rtol);
+  if (pc_type) {
+    PC pc = nullptr;
+    check(KSPGetPC(ksp.get(), &pc), "KSPGetPC");
+    check(PCSetType(pc, pc_type), "PCSetType");
+  }
   check(KSPSetFromOptions(ksp.get()), "KSPSetFromOptions");
   check(KSPSetUp(ksp.get()), std::string(prefix).append(" solver set-up (factorization)").c_str());
   return ksp;
@@ -123,12 +129,15 @@ HeatGeodesics::HeatGeodesics(MPI_Comm comm, const Partition& part, const Distrib
     check(MatScale(heat_matrix_.get(), -t_), "MatScale");
     check(MatDiagonalSet(heat_matrix_.get(), ops.M_lumped.get(), ADD_VALUES), "MatDiagonalSet");
   } else {
+    if (!ops.M.get()) throw std::invalid_argument("heat geodesics: Galerkin mass requested, not assembled");
     check(MatDuplicate(ops.M.get(), MAT_COPY_VALUES, heat_matrix_.out()), "MatDuplicate");
     check(MatAXPY(heat_matrix_.get(), -t_, ops.S.get(), SAME_NONZERO_PATTERN), "MatAXPY");
   }
   check(MatZeroRowsColumns(heat_matrix_.get(), PetscInt(uncoupled.size()), uncoupled.data(), 1.0, nullptr, nullptr),
         "MatZeroRowsColumns");
   check(MatSetOption(heat_matrix_.get(), MAT_SPD, PETSC_TRUE), "MatSetOption");
+  // (-heat_pc_type jacobi saves the heat step's hierarchy: M - t S with t ~ h^2 is well conditioned,
+  // but its far field came out 5% less accurate in tests/mpi; docs/scale.md.)
   heat_ = make_ksp(comm, heat_matrix_.get(), "heat_", options.solver, options.rtol);
 
   // Poisson operator -S. Per component, the vertex of least global index that has stiffness.
@@ -287,6 +296,7 @@ Spectrum spectrum(MPI_Comm comm, const Partition& part, const DistributedOperato
     check(MatAssemblyBegin(B.get(), MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
     check(MatAssemblyEnd(B.get(), MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
   } else {
+    if (!ops.M.get()) throw std::invalid_argument("spectrum: Galerkin mass requested, not assembled");
     check(MatDuplicate(ops.M.get(), MAT_COPY_VALUES, B.out()), "MatDuplicate");
   }
   check(MatSetOption(B.get(), MAT_SPD, PETSC_TRUE), "MatSetOption");

@@ -146,7 +146,7 @@ void petsc_geodesics(const std::string& mesh_path, bool repair, const std::vecto
   petsc::Partition part;
   petsc::agree(comm, [&] { part = petsc::partition_mesh(mesh, session.size()); });
   const double t_partition = laps.lap();
-  const petsc::DistributedOperators ops = petsc::assemble_operators(comm, mesh, part);
+  const petsc::DistributedOperators ops = petsc::assemble_operators(comm, mesh, part, true, !lumped_mass);
   const double t_assembly = laps.lap();
   const petsc::HeatGeodesics heat(comm, part, ops, ops.mean_edge_length, go);
   const double t_setup = laps.lap();
@@ -191,7 +191,7 @@ void petsc_spectrum(const std::string& mesh_path, bool repair, int k, bool lumpe
                                          mesh_path, mesh.n_vertices() - part.n_global()));
   });
   const double t_partition = laps.lap();
-  const petsc::DistributedOperators ops = petsc::assemble_operators(comm, mesh, part, false);
+  const petsc::DistributedOperators ops = petsc::assemble_operators(comm, mesh, part, false, !lumped_mass);
   const double t_assembly = laps.lap();
   const petsc::Spectrum ps = petsc::spectrum(comm, part, ops, so);
   const double t_solve = laps.lap();
