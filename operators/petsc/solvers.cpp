@@ -136,8 +136,9 @@ HeatGeodesics::HeatGeodesics(MPI_Comm comm, const Partition& part, const Distrib
   check(MatZeroRowsColumns(heat_matrix_.get(), PetscInt(uncoupled.size()), uncoupled.data(), 1.0, nullptr, nullptr),
         "MatZeroRowsColumns");
   check(MatSetOption(heat_matrix_.get(), MAT_SPD, PETSC_TRUE), "MatSetOption");
-  // (-heat_pc_type jacobi saves the heat step's hierarchy: M - t S with t ~ h^2 is well conditioned,
-  // but its far field came out 5% less accurate in tests/mpi; docs/scale.md.)
+  // (-heat_pc_type jacobi saves the heat step's hierarchy, M - t S with t ~ h^2 being well
+  // conditioned, but its far field missed tests/mpi's 1e-6 of the diameter on suzanne-half at 3
+  // ranks: 1.05e-6; docs/scale.md.)
   heat_ = make_ksp(comm, heat_matrix_.get(), "heat_", options.solver, options.rtol);
 
   // Poisson operator -S. Per component, the vertex of least global index that has stiffness.
