@@ -158,7 +158,7 @@ Mesh hex_sphere(int level) {
   return project_to_unit_sphere(dual(Mesh(std::move(s))));
 }
 
-Mesh torus(int n_major, int n_minor, double R, double r) {
+PolygonSoup torus_soup(int n_major, int n_minor, double R, double r) {
   if (n_major < 3 || n_minor < 3 || !(R > r) || !(r > 0)) throw std::invalid_argument("torus: bad parameters");
   std::vector<Eigen::Vector3d> p;
   for (int i = 0; i < n_major; ++i)
@@ -173,8 +173,10 @@ Mesh torus(int n_major, int n_minor, double R, double r) {
       const std::array<int, 4> q{id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)};
       s.add_face(q);
     }
-  return Mesh(std::move(s));
+  return s;
 }
+
+Mesh torus(int n_major, int n_minor, double R, double r) { return Mesh(torus_soup(n_major, n_minor, R, r)); }
 
 Mesh genus2(int subdivisions) {
   // Occupancy of a 5 x 3 x 1 block with the cubes (1,1,0) and (3,1,0) removed.

@@ -30,6 +30,8 @@ Mesh hex_sphere(int level);
 
 // Quad torus with n_major x n_minor faces, radii R > r > 0, around the z axis.
 Mesh torus(int n_major, int n_minor, double R = 1.0, double r = 0.4);
+// Its soup (no validation or topology: the compact form the distributed engine generates).
+PolygonSoup torus_soup(int n_major, int n_minor, double R = 1.0, double r = 0.4);
 // A closed genus-2 quad surface: the boundary of a 5 x 3 x 1 block of unit cubes with two
 // cubes removed (two holes), optionally smoothed by `subdivisions` Catmull-Clark steps.
 Mesh genus2(int subdivisions = 1);

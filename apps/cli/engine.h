@@ -1,6 +1,7 @@
 // apps/cli/engine.h — the `--engine petsc` runs of `polydec geodesics` and `polydec spectrum` under
 // mpirun (apps/cli/petsc/engine.cpp, compiled only with -DPOLYDEC_WITH_PETSC=ON; without it the
-// commands answer --engine petsc with a usage error). Every rank reads the mesh; rank 0 writes the
+// commands answer --engine petsc with a usage error). Every rank reads the mesh in compact form (or
+// generates it: MESH = generate:torus:NU,NV, the quad torus of bench/scale_torus.sh); rank 0 writes the
 // same outputs as the serial command, through the command's own output code (the `write` callback,
 // run on rank 0 inside the engine's error agreement, so a failure there ends every rank alike).
 #pragma once
@@ -37,9 +38,17 @@ inline void add_engine_options(CLI::App& app, EngineOptions& e) {
                  "poisson_, st_, eps_); PETSC_OPTIONS in the environment works too");
 }
 
+// A mesh's counts, and the whole Mesh built only when an output needs it (files, pictures): the
+// engine holds the mesh in compact form only, and rank 0 builds the Mesh on the first get().
+struct LazyMesh {
+  int n_vertices = 0, n_faces = 0;
+  std::function<const Mesh&()> get;
+  static LazyMesh of(const Mesh& m) { return {m.n_vertices(), m.n_faces(), [&m]() -> const Mesh& { return m; }}; }
+};
+
 // What rank 0 hands to the geodesics command's output code.
 struct EngineGeodesics {
-  const Mesh& mesh;
+  LazyMesh mesh;
   const std::vector<int>& sources;  // mesh vertices
   const Eigen::VectorXd& distance;  // |V|, mesh order
   double time_step;
@@ -54,7 +63,7 @@ void petsc_geodesics(const std::string& mesh_path, bool repair, const std::vecto
 
 // What rank 0 hands to the spectrum command's output code.
 struct EngineSpectrum {
-  const Mesh& mesh;
+  LazyMesh mesh;
   const Spectrum& spectrum;  // eigenvectors |V| x k in mesh order, M-orthonormal
   nlohmann::json summary;
 };

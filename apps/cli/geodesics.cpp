@@ -28,7 +28,7 @@ struct Options {
   EngineOptions engine;  // --engine, --solver, --petsc-options
 };
 
-void report(const Options& o, const Mesh& mesh, const std::vector<int>& sources, const Eigen::VectorXd& d,
+void report(const Options& o, const LazyMesh& mesh, const std::vector<int>& sources, const Eigen::VectorXd& d,
             const std::string& laplacian, double time_step, const FanQuality& quality, const nlohmann::json* engine);
 
 // --engine petsc: the distributed run (apps/cli/engine.h); rank 0 reports as the serial run does.
@@ -158,11 +158,11 @@ void run(const Options& o) {
   const double h = o.time_step_edges == "input" ? mesh.mean_edge_length() : ops.mean_edge_length;
   const HeatGeodesics heat(std::move(ops), h, hopt);
   const Eigen::VectorXd d = heat.distance(sources);
-  report(o, mesh, sources, d, heat.operators().name, heat.time_step(), heat.operators().quality, nullptr);
+  report(o, LazyMesh::of(mesh), sources, d, heat.operators().name, heat.time_step(), heat.operators().quality, nullptr);
 }
 
 // The outputs of both engines: text or JSON (with the engine's summary), the PLY, the picture.
-void report(const Options& o, const Mesh& mesh, const std::vector<int>& sources, const Eigen::VectorXd& d,
+void report(const Options& o, const LazyMesh& mesh, const std::vector<int>& sources, const Eigen::VectorXd& d,
             const std::string& laplacian, double time_step, const FanQuality& quality, const nlohmann::json* engine) {
   const Stats st = stats(d);
   const double mn = st.min, mx = st.max;
@@ -179,10 +179,10 @@ void report(const Options& o, const Mesh& mesh, const std::vector<int>& sources,
   if (engine) j["engine"] = *engine;
   if (o.euclidean) {
     // Error against the Euclidean distance from the first source, shifted to minimum 0 (planar meshes).
-    j["rmse_vs_euclidean"] = euclidean_rmse(mesh.positions(), sources[0], d);
+    j["rmse_vs_euclidean"] = euclidean_rmse(mesh.get().positions(), sources[0], d);
   }
   if (!o.out.empty()) {
-    write_mesh(o.out, mesh, {{"distance", d}});
+    write_mesh(o.out, mesh.get(), {{"distance", d}});
     j["out"] = o.out;
   }
   if (!o.png.empty()) {
@@ -190,15 +190,15 @@ void report(const Options& o, const Mesh& mesh, const std::vector<int>& sources,
     ropt.isolines = 15;
     ropt.scalar_label = "distance";
     ropt.title = fmt::format("heat geodesics ({})", laplacian);
-    ropt.view_direction = view_facing_vertex(mesh, sources[0]);
-    render_png(o.png, mesh, d, ropt);
+    ropt.view_direction = view_facing_vertex(mesh.get(), sources[0]);
+    render_png(o.png, mesh.get(), d, ropt);
     j["png"] = o.png;
   }
   if (o.json) {
     print_json(j);
     return;
   }
-  fmt::print("{}: {} vertices, {} faces, time step {:.6g}\n", o.mesh, mesh.n_vertices(), mesh.n_faces(), time_step);
+  fmt::print("{}: {} vertices, {} faces, time step {:.6g}\n", o.mesh, mesh.n_vertices, mesh.n_faces, time_step);
   if (engine)
     fmt::print("engine petsc: {} ranks, solver {}\n", (*engine)["ranks"].get<int>(),
                (*engine)["solver"].get<std::string>());

@@ -43,7 +43,7 @@ void write_dense_matrix_market(const std::string& path, const Eigen::MatrixXd& A
   if (!out) throw FileError(path, 0, -1, "write failed");
 }
 
-void report(const Options& o, const Mesh& mesh, const std::string& laplacian, int n_in, const Spectrum& sp,
+void report(const Options& o, const LazyMesh& mesh, const std::string& laplacian, int n_in, const Spectrum& sp,
             const nlohmann::json* engine);
 
 void run_form(const Options& o);
@@ -132,7 +132,7 @@ void run(const Options& o) {
     if (!o.png.empty() && (o.png_index < 0 || o.png_index >= o.k)) throw UsageError("--png-index must lie in [0, k)");
 #ifdef POLYDEC_HAVE_PETSC
     petsc_spectrum(o.mesh, o.repair, o.k, o.mass == "lumped", o.engine, [&](const EngineSpectrum& r) {
-      report(o, r.mesh, "ours", r.mesh.n_vertices(), r.spectrum, &r.summary);
+      report(o, r.mesh, "ours", r.mesh.n_vertices, r.spectrum, &r.summary);
     });
     return;
 #else
@@ -146,16 +146,16 @@ void run(const Options& o) {
   sopt.k = o.k;
   sopt.lumped_mass = o.mass == "lumped";
   const Spectrum sp = laplacian_spectrum(ops, sopt);
-  report(o, mesh, ops.name, ops.n_input_vertices, sp, nullptr);
+  report(o, LazyMesh::of(mesh), ops.name, ops.n_input_vertices, sp, nullptr);
 }
 
 // The outputs of both engines: text or JSON (with the engine's summary), the files, the picture.
-void report(const Options& o, const Mesh& mesh, const std::string& laplacian, int n_in, const Spectrum& sp,
+void report(const Options& o, const LazyMesh& mesh, const std::string& laplacian, int n_in, const Spectrum& sp,
             const nlohmann::json* engine) {
   std::vector<double> ev(sp.eigenvalues.data(), sp.eigenvalues.data() + sp.eigenvalues.size());
   nlohmann::json j = {{"mesh", o.mesh},          {"laplacian", laplacian},
-                      {"mass", o.mass},          {"vertices", mesh.n_vertices()},
-                      {"faces", mesh.n_faces()}, {"k", o.k},
+                      {"mass", o.mass},          {"vertices", mesh.n_vertices},
+                      {"faces", mesh.n_faces}, {"k", o.k},
                       {"shift", sp.shift},       {"eigenvalues", ev}};
   if (engine) j["engine"] = *engine;
   if (!o.out.empty()) {
@@ -164,7 +164,7 @@ void report(const Options& o, const Mesh& mesh, const std::string& laplacian, in
     write_dense_matrix_market(o.out + "/eigenvectors.mtx", sp.eigenvectors.topRows(n_in));
     VertexScalars props;
     for (int i = 0; i < o.k; ++i) props[fmt::format("u{:03d}", i)] = sp.eigenvectors.col(i).head(n_in);
-    write_mesh(o.out + "/eigenvectors.ply", mesh, props);
+    write_mesh(o.out + "/eigenvectors.ply", mesh.get(), props);
     j["out"] = o.out;
     j["files"] = {"eigenvalues.txt", "eigenvectors.mtx", "eigenvectors.ply"};
   }
@@ -172,15 +172,15 @@ void report(const Options& o, const Mesh& mesh, const std::string& laplacian, in
     if (o.png_index < 0 || o.png_index >= o.k) throw UsageError("--png-index must lie in [0, k)");
     RenderOptions ropt = eigenfunction_picture(o, ev, laplacian);
     ropt.smooth_shading = true;
-    render_png(o.png, mesh, sp.eigenvectors.col(o.png_index).head(n_in), ropt);
+    render_png(o.png, mesh.get(), sp.eigenvectors.col(o.png_index).head(n_in), ropt);
     j["png"] = o.png;
   }
   if (o.json) {
     print_json(j);
     return;
   }
-  fmt::print("{}: {} vertices, {} faces; Laplacian {}, {} mass, shift {:.6g}\n", o.mesh, mesh.n_vertices(),
-             mesh.n_faces(), laplacian, o.mass, sp.shift);
+  fmt::print("{}: {} vertices, {} faces; Laplacian {}, {} mass, shift {:.6g}\n", o.mesh, mesh.n_vertices,
+             mesh.n_faces, laplacian, o.mass, sp.shift);
   if (engine) fmt::print("engine petsc: {} ranks, {}\n", (*engine)["ranks"].get<int>(), sp.method);
   fmt::print("{} smallest eigenvalues of -S x = lambda M x:\n", o.k);
   for (int i = 0; i < o.k; ++i) fmt::print("  {:4d}  {:.10g}\n", i, ev[i]);

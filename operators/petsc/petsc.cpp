@@ -7,14 +7,17 @@
 #include <sys/resource.h>
 
 #include <algorithm>
-#include <limits>
+#include <cmath>
 #include <cstdint>
+#include <limits>
+#include <tuple>
 #include <numeric>
 #include <stdexcept>
 
 #include "polydec/dec/io.h"
 #include "polydec/dec/union_find.h"
 #include "polydec/operators/cholesky.h"
+#include "polydec/operators/gradient.h"
 #include "polydec/operators/laplacians.h"
 #include "polydec/operators/petsc/petsc_check.h"
 
@@ -123,14 +126,20 @@ std::uint64_t spread_bits(std::uint64_t x) {
 
 }  // namespace
 
-Partition partition_mesh(const Mesh& mesh, int n_ranks) {
+double MeshView::rms_radius() const {
+  if (n_vertices() == 0) return 0.0;
+  const Eigen::RowVector3d c = positions.colwise().mean();
+  return std::sqrt((positions.rowwise() - c).rowwise().squaredNorm().mean());
+}
+
+Partition partition_mesh(const MeshView& mesh, int n_ranks) {
   if (n_ranks < 1) throw std::invalid_argument("partition: at least one rank needed");
   const int nf = mesh.n_faces(), nv = mesh.n_vertices();
   if (nf < n_ranks)
     throw std::invalid_argument(fmt::format("partition: {} faces cannot be split over {} ranks", nf, n_ranks));
-  const int* offsets = mesh.face_offsets().data();
-  const int* indices = mesh.face_indices().data();
-  const Eigen::MatrixX3d& X = mesh.positions();
+  const int* offsets = mesh.face_offsets.data();
+  const int* indices = mesh.face_indices.data();
+  const Eigen::MatrixX3d& X = mesh.positions;
   Eigen::MatrixX3d c(nf, 3);
   for (int f = 0; f < nf; ++f) {
     Eigen::RowVector3d s = Eigen::RowVector3d::Zero();
@@ -147,6 +156,7 @@ Partition partition_mesh(const Mesh& mesh, int n_ranks) {
     }
     code[size_t(f)] = key;
   }
+  c.resize(0, 3);
   Partition p;
   p.n_ranks = n_ranks;
   p.face_order.resize(static_cast<size_t>(nf));
@@ -225,7 +235,81 @@ void coo_entries(const SparseMatrix& A, RowMap row, ColMap col, std::vector<Pets
 
 }  // namespace
 
-DistributedOperators assemble_operators(MPI_Comm comm, const Mesh& mesh, const Partition& part, bool with_gradient) {
+namespace {
+
+// One halfedge (a -> b, global vertex indices) of a face of `rank` whose both ends touch faces of
+// two or more ranks: the edges across which the ranks' sub-meshes meet.
+struct InterfaceHalfedge {
+  int a, b, face, rank;  // face: in the mesh's numbering
+};
+
+// Every rank's interface halfedges, on every rank, sorted by undirected edge, then rank, face, a.
+std::vector<InterfaceHalfedge> gather_interface(MPI_Comm comm, const MeshView& mesh, const Partition& part, int rank) {
+  const int* offsets = mesh.face_offsets.data();
+  const int* indices = mesh.face_indices.data();
+  // A vertex touches two ranks iff a rank other than its owner (the first to touch it) holds a face with it.
+  auto owner = [&](int v) {
+    return int(std::upper_bound(part.vertex_begin.begin(), part.vertex_begin.end(), part.global_index[size_t(v)]) -
+               part.vertex_begin.begin()) - 1;
+  };
+  std::vector<unsigned char> shared(size_t(mesh.n_vertices()), 0);
+  for (int r = 0; r < part.n_ranks; ++r)
+    for (int i = part.face_begin[size_t(r)]; i < part.face_begin[size_t(r) + 1]; ++i) {
+      const int f = part.face_order[size_t(i)];
+      for (int h = offsets[f]; h < offsets[f + 1]; ++h)
+        if (!shared[size_t(indices[h])] && owner(indices[h]) != r) shared[size_t(indices[h])] = 1;
+    }
+  std::vector<int> mine;
+  for (int i = part.face_begin[size_t(rank)]; i < part.face_begin[size_t(rank) + 1]; ++i) {
+    const int f = part.face_order[size_t(i)];
+    for (int h = offsets[f]; h < offsets[f + 1]; ++h) {
+      const int a = indices[h], b = indices[h + 1 < offsets[f + 1] ? h + 1 : offsets[f]];
+      if (shared[size_t(a)] && shared[size_t(b)])
+        mine.insert(mine.end(), {part.global_index[size_t(a)], part.global_index[size_t(b)], f, rank});
+    }
+  }
+  int size = 1;
+  MPI_Comm_size(comm, &size);
+  int n = int(mine.size());
+  std::vector<int> counts(static_cast<size_t>(size)), displs(static_cast<size_t>(size) + 1, 0);
+  MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
+  for (int r = 0; r < size; ++r) displs[size_t(r) + 1] = displs[size_t(r)] + counts[size_t(r)];
+  std::vector<int> all(size_t(displs[size_t(size)]));
+  MPI_Allgatherv(mine.data(), n, MPI_INT, all.data(), counts.data(), displs.data(), MPI_INT, comm);
+  std::vector<InterfaceHalfedge> out(all.size() / 4);
+  for (size_t k = 0; k < out.size(); ++k) out[k] = {all[4 * k], all[4 * k + 1], all[4 * k + 2], all[4 * k + 3]};
+  auto key = [](const InterfaceHalfedge& e) { return std::tuple(std::min(e.a, e.b), std::max(e.a, e.b), e.rank, e.face, e.a); };
+  std::sort(out.begin(), out.end(), [&](const auto& x, const auto& y) { return key(x) < key(y); });
+  return out;
+}
+
+// The serial validation of the edges across ranks (Mesh's messages, mesh vertex and face numbers).
+void check_interface(const std::vector<InterfaceHalfedge>& e, const Partition& part) {
+  for (size_t k = 0; k < e.size();) {
+    size_t l = k;
+    auto same = [&](size_t m) { return std::min(e[m].a, e[m].b) == std::min(e[k].a, e[k].b) && std::max(e[m].a, e[m].b) == std::max(e[k].a, e[k].b); };
+    while (l < e.size() && same(l)) ++l;
+    const int a = part.mesh_vertex[size_t(std::min(e[k].a, e[k].b))], b = part.mesh_vertex[size_t(std::max(e[k].a, e[k].b))];
+    std::vector<int> faces;
+    for (size_t m = k; m < l; ++m) faces.push_back(e[m].face);
+    std::sort(faces.begin(), faces.end());
+    if (l - k > 2)
+      throw InvalidMeshError("edge", 0,
+                             fmt::format("edge ({}, {}) is shared by {} faces (non-manifold; faces {}, {}, {}...)",
+                                         std::min(a, b), std::max(a, b), l - k, faces[0], faces[1], faces[2]));
+    if (l - k == 2 && e[k].a == e[k + 1].a)
+      throw InvalidMeshError(
+          "edge", 0,
+          fmt::format("faces {} and {} traverse edge ({}, {}) in the same direction (inconsistent orientation)",
+                      faces[0], faces[1], std::min(a, b), std::max(a, b)));
+    k = l;
+  }
+}
+
+}  // namespace
+
+DistributedOperators assemble_operators(MPI_Comm comm, const MeshView& mesh, const Partition& part, bool with_gradient,
+                                        bool with_galerkin_mass) {
   int rank = 0, size = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
@@ -235,10 +319,13 @@ DistributedOperators assemble_operators(MPI_Comm comm, const Mesh& mesh, const P
   DistributedOperators out;
   OperatorSet ops;
   std::vector<int> l2g;  // local vertex -> global index
-  // The sub-mesh of this rank's faces, through the serial code: any failure is agreed first.
+  double edge_sum[2] = {0, 0};  // lengths and count of the edges this rank counts
+  // The sub-mesh of this rank's faces, through the serial code (its validation included), then the
+  // edges between ranks, then the operators: any failure is agreed.
+  Mesh sub;
   agree(comm, [&] {
-    const int* offsets = mesh.face_offsets().data();
-    const int* indices = mesh.face_indices().data();
+    const int* offsets = mesh.face_offsets.data();
+    const int* indices = mesh.face_indices.data();
     std::vector<int> local(size_t(mesh.n_vertices()), -1);
     std::vector<int> verts;
     PolygonSoup soup;
@@ -254,65 +341,139 @@ DistributedOperators assemble_operators(MPI_Comm comm, const Mesh& mesh, const P
       }
       soup.face_offsets.push_back(int(soup.face_indices.size()));
     }
+    std::vector<int>().swap(local);
     soup.positions.resize(Eigen::Index(verts.size()), 3);
     l2g.resize(verts.size());
     for (size_t l = 0; l < verts.size(); ++l) {
-      soup.positions.row(Eigen::Index(l)) = mesh.positions().row(verts[l]);
+      soup.positions.row(Eigen::Index(l)) = mesh.positions.row(verts[l]);
       l2g[l] = part.global_index[size_t(verts[l])];
     }
-    Mesh sub(std::move(soup));
+    try {
+      sub = Mesh(std::move(soup));
+    } catch (const InvalidMeshError&) {
+      // The sub-mesh numbers vertices and faces its own way: for the serial message (file
+      // numbering), validate the whole mesh on this rank. Only on this failure path.
+      PolygonSoup whole;
+      whole.positions = mesh.positions;
+      whole.face_offsets.assign(mesh.face_offsets.begin(), mesh.face_offsets.end());
+      whole.face_indices.assign(mesh.face_indices.begin(), mesh.face_indices.end());
+      const Mesh whole_mesh(std::move(whole));
+      throw;  // not reached: the whole mesh is invalid where its faces are
+    }
     // The global mesh's coordinate precision, in absolute terms (it is stored relative to a
     // mesh's size), so that every rank decides planarity as the serial code does.
-    CoordinatePrecision precision = mesh.precision();
+    CoordinatePrecision precision = mesh.precision;
     const double radius = sub.rms_radius();
     precision.noise = radius > 0 ? std::min<double>(mesh.coordinate_noise() / radius, 0.5) : 0.0;
     sub = sub.with_precision(precision);
-    ops = build_operators(sub, parse_laplacian("ours"), with_gradient);
+  });
+  std::vector<InterfaceHalfedge> interface = gather_interface(comm, mesh, part, rank);
+  agree(comm, [&] {
+    check_interface(interface, part);
+    // Edges: inside this rank's faces counted here; an edge between ranks by the lowest of them.
+    for (int e = 0; e < sub.n_edges(); ++e) {
+      const int ga = l2g[size_t(sub.edges()(e, 0))], gb = l2g[size_t(sub.edges()(e, 1))];
+      if (sub.is_boundary_edge(e)) {
+        const InterfaceHalfedge probe{std::min(ga, gb), std::max(ga, gb), -1, -1};
+        auto it = std::lower_bound(interface.begin(), interface.end(), probe, [](const auto& x, const auto& y) {
+          return std::pair(std::min(x.a, x.b), std::max(x.a, x.b)) < std::pair(std::min(y.a, y.b), std::max(y.a, y.b));
+        });
+        if (it != interface.end() && std::min(it->a, it->b) == probe.a && std::max(it->a, it->b) == probe.b &&
+            it->rank < rank)
+          continue;
+      }
+      edge_sum[0] += (sub.position(sub.edges()(e, 0)) - sub.position(sub.edges()(e, 1))).norm();
+      edge_sum[1] += 1;
+    }
+    std::vector<InterfaceHalfedge>().swap(interface);
+    ops = build_operators(sub, parse_laplacian("ours"), false);
     out.n_local_faces = sub.n_faces();
     out.n_local_vertices = sub.n_vertices();
   });
+  MPI_Allreduce(MPI_IN_PLACE, edge_sum, 2, MPI_DOUBLE, MPI_SUM, comm);
+  out.mean_edge_length = edge_sum[1] > 0 ? edge_sum[0] / edge_sum[1] : 0.0;
   const PetscInt n_own = part.vertex_begin[size_t(rank) + 1] - part.vertex_begin[size_t(rank)];
   const PetscInt N = part.n_global();
-  std::vector<PetscInt> I, J;
-  std::vector<PetscScalar> V;
-  auto g = [&](int l) { return l2g[size_t(l)]; };
-  coo_entries(ops.S, g, g, I, J, V);
-  out.n_coo_entries = long(I.size());
-  out.S = coo_matrix(comm, n_own, n_own, N, N, I, J, V);
-  SparseMatrix().swap(ops.S);  // the local copies go as soon as PETSc holds the entries
-  check(MatSetOption(out.S.get(), MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
-  coo_entries(ops.M, g, g, I, J, V);
-  out.M = coo_matrix(comm, n_own, n_own, N, N, I, J, V);
-  SparseMatrix().swap(ops.M);
-  check(MatSetOption(out.M.get(), MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
+  {
+    std::vector<PetscInt> I, J;
+    std::vector<PetscScalar> V;
+    auto g = [&](int l) { return l2g[size_t(l)]; };
+    coo_entries(ops.S, g, g, I, J, V);
+    out.n_coo_entries = long(I.size());
+    out.S = coo_matrix(comm, n_own, n_own, N, N, I, J, V);
+    SparseMatrix().swap(ops.S);  // the local copies go as soon as PETSc holds the entries
+    check(MatSetOption(out.S.get(), MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
+    if (with_galerkin_mass) {
+      coo_entries(ops.M, g, g, I, J, V);
+      out.M = coo_matrix(comm, n_own, n_own, N, N, I, J, V);
+      check(MatSetOption(out.M.get(), MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
+    }
+    SparseMatrix().swap(ops.M);
+  }  // and the COO arrays with them
+  out.local_to_global.assign(l2g.begin(), l2g.end());
   check(VecCreateMPI(comm, n_own, N, out.M_lumped.out()), "VecCreateMPI");
   check(VecSet(out.M_lumped.get(), 0.0), "VecSet");
-  {
-    std::vector<PetscInt> rows(l2g.begin(), l2g.end());
-    check(VecSetValues(out.M_lumped.get(), PetscInt(rows.size()), rows.data(), ops.M_lumped.data(), ADD_VALUES),
-          "VecSetValues");
-    check(VecAssemblyBegin(out.M_lumped.get()), "VecAssemblyBegin");
-    check(VecAssemblyEnd(out.M_lumped.get()), "VecAssemblyEnd");
-  }
-  if (with_gradient) {
-    // G's rows are this rank's fan triangles (3 each), numbered after the lower ranks'.
-    long rows_local = long(ops.G.rows()), first = 0, total = 0;
-    MPI_Exscan(&rows_local, &first, 1, MPI_LONG, MPI_SUM, comm);
-    if (rank == 0) first = 0;
-    MPI_Allreduce(&rows_local, &total, 1, MPI_LONG, MPI_SUM, comm);
-    if (total > long(std::numeric_limits<PetscInt>::max()))
-      throw SolverError("assemble_operators: the gradient has more rows than PetscInt indexes");
-    auto t = [&](int r) { return PetscInt(first + r); };
-    coo_entries(ops.G, t, g, I, J, V);
-    out.G = coo_matrix(comm, PetscInt(rows_local), n_own, PetscInt(total), N, I, J, V);
-    SparseMatrix().swap(ops.G);
-    coo_entries(ops.D, g, t, I, J, V);
-    out.D = coo_matrix(comm, n_own, PetscInt(rows_local), N, PetscInt(total), I, J, V);
-  }
+  check(VecSetValues(out.M_lumped.get(), PetscInt(l2g.size()), out.local_to_global.data(), ops.M_lumped.data(),
+                     ADD_VALUES),
+        "VecSetValues");
+  check(VecAssemblyBegin(out.M_lumped.get()), "VecAssemblyBegin");
+  check(VecAssemblyEnd(out.M_lumped.get()), "VecAssemblyEnd");
+  ops.M_lumped.resize(0);
+  // The gradient after S and M have gone to PETSc (the peak is the larger of the two phases, not
+  // their sum): the refinement of "ours" again, G and the fan areas; D is -G^T W when applied.
+  if (with_gradient)
+    agree(comm, [&] {
+      RefinementOptions ro;
+      ro.rule = VirtualVertexRule::SquaredArea;  // "ours", as build_operators
+      const Refinement r = refine(sub, ro);
+      SparseMatrix G = gradient(sub, r);
+      out.G.swap(G);  // swap, not move: std::move copies an Eigen 3.4 SparseMatrix
+      out.fan_area = fan_areas(sub, r);
+    });
+  sub = Mesh();
   int q[3] = {ops.quality.n_degenerate, ops.quality.n_inverted, ops.quality.n_faces_affected};
   MPI_Allreduce(MPI_IN_PLACE, q, 3, MPI_INT, MPI_SUM, comm);
   out.quality = {q[0], q[1], q[2]};
   return out;
+}
+
+void divergence_of_gradient(const DistributedOperators& ops, Vec u, Vec b, bool normalized) {
+  if (ops.G.size() == 0 && ops.n_local_faces > 0)
+    throw std::invalid_argument("divergence_of_gradient: the operators were assembled without gradient");
+  const PetscInt n = PetscInt(ops.local_to_global.size());
+  // u at this rank's vertices (owned and shared): one scatter from the global vector.
+  Handle<IS> from;
+  Handle<Vec> ul;
+  Handle<VecScatter> scatter;
+  check(ISCreateGeneral(PETSC_COMM_SELF, n, ops.local_to_global.data(), PETSC_USE_POINTER, from.out()), "ISCreateGeneral");
+  check(VecCreateSeq(PETSC_COMM_SELF, n, ul.out()), "VecCreateSeq");
+  check(VecScatterCreate(u, from.get(), ul.get(), nullptr, scatter.out()), "VecScatterCreate");
+  check(VecScatterBegin(scatter.get(), u, ul.get(), INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
+  check(VecScatterEnd(scatter.get(), u, ul.get(), INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
+  PetscScalar* a = nullptr;
+  check(VecGetArray(ul.get(), &a), "VecGetArray");
+  Eigen::Map<Eigen::VectorXd> x(a, n);
+  Eigen::VectorXd g = ops.G * x;
+  if (normalized)
+    for (Eigen::Index k = 0; k + 2 < g.size(); k += 3) {
+      const double m = std::max({std::abs(g[k]), std::abs(g[k + 1]), std::abs(g[k + 2])});
+      if (!(m > 0) || !std::isfinite(m)) {
+        g[k] = g[k + 1] = g[k + 2] = 0.0;
+        continue;
+      }
+      const double s0 = g[k] / m, s1 = g[k + 1] / m, s2 = g[k + 2] / m;
+      const double norm = std::sqrt(s0 * s0 + s1 * s1 + s2 * s2);
+      g[k] = -s0 / norm;
+      g[k + 1] = -s1 / norm;
+      g[k + 2] = -s2 / norm;
+    }
+  for (Eigen::Index k = 0; k < g.size(); ++k) g[k] *= -ops.fan_area[k / 3];  // D = -G^T W
+  x = ops.G.transpose() * g;
+  check(VecRestoreArray(ul.get(), &a), "VecRestoreArray");
+  // The local sums into the owners' rows.
+  check(VecSet(b, 0.0), "VecSet");
+  check(VecScatterBegin(scatter.get(), ul.get(), b, ADD_VALUES, SCATTER_REVERSE), "VecScatterBegin");
+  check(VecScatterEnd(scatter.get(), ul.get(), b, ADD_VALUES, SCATTER_REVERSE), "VecScatterEnd");
 }
 
 Eigen::VectorXd gather_to_root(Vec x, const Partition& part, double fill) {

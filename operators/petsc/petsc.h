@@ -1,11 +1,13 @@
 // operators/petsc/petsc.h — the distributed engine on PETSc, SLEPc and MPI (built with
 // -DPOLYDEC_WITH_PETSC=ON, library polydec_petsc): the mesh partition, the distributed assembly of
-// S, M, lumped M, G and D with the serial per-face code, heat geodesics (eq. 31-33) with MUMPS
-// Cholesky or CG + algebraic multigrid, the smallest eigenpairs of -S x = lambda M x with SLEPc,
-// and the agreement of errors across ranks.
+// S, M, lumped M with the serial per-face code, the heat method's gradient and divergence applied
+// face by face on each rank's faces, heat geodesics (eq. 31-33) with MUMPS Cholesky or CG +
+// algebraic multigrid, the smallest eigenpairs of -S x = lambda M x with SLEPc, and the agreement
+// of errors across ranks.
 //
-// Every rank holds the whole mesh (every rank reads the file; a parallel reader is a later step).
-// The faces are ordered along a Morton (Z-order) curve of their centroids and cut into equal blocks,
+// Every rank holds the mesh in compact form only (MeshView: positions and face index lists, no
+// topology; every rank reads the file, a parallel reader is a later step) and builds a validated
+// Mesh only of its own faces. The faces are ordered along a Morton (Z-order) curve of their centroids and cut into equal blocks,
 // one per rank, by a rule every rank evaluates alike without communication. Each rank owns a
 // contiguous range of renumbered vertices ("global" numbering: vertices in the order in which the
 // curve's faces first touch them), builds the operators of its faces with build_operators on the
@@ -56,6 +58,25 @@ class Session {
 // a failure on one rank would leave the others waiting in.
 void agree(MPI_Comm comm, const std::function<void()>& f);
 
+// The compact form of a mesh that every rank holds: positions, face index lists and coordinate
+// precision (a PolygonSoup's or a Mesh's arrays, not copied; no topology). Must outlive its use.
+struct MeshView {
+  MeshView(const PolygonSoup& soup)  // NOLINT: implicit, so that Mesh and soup both pass
+      : positions(soup.positions), face_offsets(soup.face_offsets), face_indices(soup.face_indices),
+        precision(soup.precision) {}
+  MeshView(const Mesh& mesh)  // NOLINT
+      : positions(mesh.positions()), face_offsets(mesh.face_offsets()), face_indices(mesh.face_indices()),
+        precision(mesh.precision()) {}
+  const Eigen::MatrixX3d& positions;
+  std::span<const int> face_offsets, face_indices;
+  CoordinatePrecision precision;
+  int n_vertices() const { return int(positions.rows()); }
+  int n_faces() const { return int(face_offsets.size()) - 1; }
+  // As Mesh::rms_radius and Mesh::coordinate_noise.
+  double rms_radius() const;
+  double coordinate_noise() const { return precision.noise * rms_radius(); }
+};
+
 // The partition of a mesh's faces into `n_ranks` blocks and the vertex numbering that follows.
 struct Partition {
   int n_ranks = 1;
@@ -70,7 +91,7 @@ struct Partition {
 };
 
 // The partition; identical on every rank that calls it with the same mesh and count.
-Partition partition_mesh(const Mesh& mesh, int n_ranks);
+Partition partition_mesh(const MeshView& mesh, int n_ranks);
 
 // Destruction of the PETSc objects a Handle holds.
 inline void destroy(Mat* x) { MatDestroy(x); }
@@ -79,6 +100,7 @@ inline void destroy(KSP* x) { KSPDestroy(x); }
 inline void destroy(EPS* x) { EPSDestroy(x); }
 inline void destroy(MatNullSpace* x) { MatNullSpaceDestroy(x); }
 inline void destroy(VecScatter* x) { VecScatterDestroy(x); }
+inline void destroy(IS* x) { ISDestroy(x); }
 
 // A PETSc object destroyed with its owner.
 template <class T>
@@ -112,20 +134,36 @@ class Handle {
 };
 
 // The operators of "ours" on the distributed mesh, in the global vertex numbering: S, M (N x N,
-// MPIAIJ, rows owned as in the partition), lumped M (Vec), and with_gradient G (3 rows per fan
-// triangle of the rank's faces, 3H x N) and D = -G^T W (N x 3H), with S = D G as in the serial set.
+// MPIAIJ, rows owned as in the partition), lumped M (Vec); with_gradient, this rank's gradient G
+// (3 rows per fan triangle of its faces, operators/gradient.h) as a local Eigen matrix of its
+// sub-mesh (local vertex numbering, local_to_global) and the fan triangles' areas W, so that the
+// divergence is D = -G^T W (no copy of D); applied by divergence_of_gradient.
 struct DistributedOperators {
-  Handle<Mat> S, M, G, D;
+  Handle<Mat> S, M;
   Handle<Vec> M_lumped;
+  Eigen::SparseMatrix<double> G;        // with_gradient only: this rank's sub-mesh, local vertices
+  Eigen::VectorXd fan_area;             // with_gradient only: one per fan triangle (row triple of G)
+  std::vector<PetscInt> local_to_global;  // n_local_vertices: global index of each local vertex
+  double mean_edge_length = 0;          // of the whole mesh (every undirected edge once)
   FanQuality quality;       // summed over the ranks
   int n_local_faces = 0;    // this rank's faces
   int n_local_vertices = 0; // vertices of this rank's faces (owned and shared)
   long n_coo_entries = 0;   // this rank's entries handed to MatSetValuesCOO (S and M each)
 };
 
-// Collective. Bad input (a face block that is not a valid mesh) raises the same error on every rank.
-DistributedOperators assemble_operators(MPI_Comm comm, const Mesh& mesh, const Partition& partition,
-                                        bool with_gradient = true);
+// Collective. Validates the mesh across ranks: each rank's faces form a valid Mesh (the serial
+// validation), and the edges between ranks' faces (those whose both ends touch faces of two ranks,
+// gathered on every rank) are shared by at most two faces in opposite directions, so that the
+// whole mesh passes the serial validation. Bad input raises the same error on every rank.
+// Without with_galerkin_mass, M stays empty (the lumped mass alone: default heat geodesics and spectrum).
+DistributedOperators assemble_operators(MPI_Comm comm, const MeshView& mesh, const Partition& partition,
+                                        bool with_gradient = true, bool with_galerkin_mass = true);
+
+// b = D X with X = G u (normalized = false; then b = S u) or X = -G u / |G u| per fan triangle, zero
+// where the gradient vanishes (normalized = true: eq. 32), computed on each rank's faces with u
+// gathered at their vertices (one VecScatter) and summed into b with ADD_VALUES. Collective; needs
+// operators assembled with_gradient; u and b are laid out as ops.M_lumped.
+void divergence_of_gradient(const DistributedOperators& ops, Vec u, Vec b, bool normalized);
 
 // On rank 0: the distributed vector x (global numbering) in mesh vertex order, `fill` at
 // unreferenced vertices; other ranks get an empty vector. Collective.
@@ -161,6 +199,7 @@ struct GeodesicsOptions {
 // steps and get +infinity, like unreferenced vertices and components without a source.
 class HeatGeodesics {
  public:
+  // mean_edge_length <= 0: the operators' (the whole mesh's).
   HeatGeodesics(MPI_Comm comm, const Partition& partition, const DistributedOperators& ops, double mean_edge_length,
                 const GeodesicsOptions& options = {});
   // Collective: the distances from mesh vertices `sources` (mesh indices), on rank 0 in mesh

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # tests/mpi/cli_mpi.sh MPIEXEC POLYDEC N SHARED_DATA — `polydec ... --engine petsc` under mpirun at N
-# ranks: bad input on the last rank only (a file it cannot read, a non-manifold mesh, another mesh
-# than the others') ends every rank with the same one-line error and exit code 3, without a hang;
+# ranks: bad input (a file the last rank cannot read, another mesh on the last rank than the others',
+# a non-manifold mesh whose bad edge joins faces of different ranks) ends every rank with the same
+# one-line error and exit code 3, without a hang;
 # a good run gives the serial command's numbers (distances 1e-8 of the largest, eigenvalues 1e-8).
 set -u
 MPIEXEC=$1 POLYDEC=$2 N=$3 DATA=$4
@@ -22,12 +23,12 @@ cat > "$TMP/rank.sh" <<RANK
 echo \$? > "$TMP/rc.\$OMPI_COMM_WORLD_RANK"
 RANK
 
-# Ranks 0 .. N-2 read GOOD, rank N-1 reads $1; expects exit code 3 on every rank and N identical
-# error lines containing $2.
+# Ranks 0 .. N-2 read $3 (default GOOD), rank N-1 reads $1; expects exit code 3 on every rank and N
+# identical error lines containing $2.
 bad_last_rank() {
-  local bad=$1 expect=$2
+  local bad=$1 expect=$2 others=${3:-$GOOD}
   rm -f "$TMP"/err.* "$TMP"/rc.*
-  mpi -n $((N - 1)) bash "$TMP/rank.sh" "$GOOD" : -n 1 bash "$TMP/rank.sh" "$bad"
+  mpi -n $((N - 1)) bash "$TMP/rank.sh" "$others" : -n 1 bash "$TMP/rank.sh" "$bad"
   local rc=$?
   [ "$rc" -ne 124 ] || fail "$bad: timed out (hang)"
   for r in $(seq 0 $((N - 1))); do
@@ -41,7 +42,7 @@ bad_last_rank() {
   echo "ok: $bad on rank $((N - 1)) of $N: $(echo "$lines" | sed 's/^ *[0-9]* //')"
 }
 bad_last_rank "$TMP/missing.obj" "missing.obj"
-bad_last_rank "$TMP/nonmanifold.obj" "non-manifold"
+bad_last_rank "$TMP/nonmanifold.obj" "non-manifold" "$TMP/nonmanifold.obj"  # every rank reads it
 bad_last_rank "$DATA/quad-plane.obj" "different meshes"
 
 # Good runs against the serial command.

@@ -1,14 +1,19 @@
 // apps/cli/petsc/engine.cpp — `polydec geodesics|spectrum MESH --engine petsc` under mpirun: every rank
-// reads the mesh (errors and the mesh itself agreed across ranks), the distributed operators and
+// reads (or generates) the mesh in compact form (errors and the mesh itself agreed across ranks), the distributed operators and
 // solvers of operators/petsc/, and a JSON summary with every rank's timings and peak memory; rank 0
 // writes the outputs through the command's own code.
 #include <fmt/format.h>
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numeric>
+#include <optional>
 
 #include "polydec/apps/cli/command.h"
 #include "polydec/apps/cli/engine.h"
+#include "polydec/dec/generators.h"
 #include "polydec/dec/io.h"
 #include "polydec/operators/petsc/petsc.h"
 
@@ -27,15 +32,49 @@ struct Laps {
   }
 };
 
-// The mesh, read on every rank; a rank that cannot read it, or that reads another mesh than the
-// others (the ranks must see the same file), ends every rank with the same error.
-Mesh read_everywhere(MPI_Comm comm, const std::string& path, bool repair, std::vector<int>* vertex_map) {
-  Mesh mesh;
-  petsc::agree(comm, [&] { mesh = load_mesh(path, repair, vertex_map); });
-  double fp[3] = {double(mesh.n_vertices()), double(mesh.n_faces()), 0.0};
-  const Eigen::MatrixX3d& X = mesh.positions();
+// "generate:torus:NU,NV": the quad torus of bench/scale_torus.sh (NU x NV quads, radii 1 and 0.4)
+// generated on every rank instead of read; an empty optional for other paths.
+std::optional<PolygonSoup> generated(const std::string& path) {
+  const std::string prefix = "generate:torus:";
+  if (path.rfind(prefix, 0) != 0) return std::nullopt;
+  int nu = 0, nv = 0;
+  char tail = 0;
+  if (std::sscanf(path.c_str() + prefix.size(), "%d,%d%c", &nu, &nv, &tail) != 2 || nu < 3 || nv < 3 ||
+      long(nu) * long(nv) > long(std::numeric_limits<int>::max() / 4))
+    throw std::invalid_argument(fmt::format("{}: expected generate:torus:NU,NV with 3 <= NU, NV", path));
+  return torus_soup(nu, nv);
+}
+
+// The mesh in compact form (positions and face index lists, no topology), read or generated on
+// every rank; a rank that cannot read it, or that reads another mesh than the others (the ranks
+// must see the same file), ends every rank with the same error. Validation follows per rank's
+// faces in assemble_operators. With --repair, each rank repairs through the serial load_mesh (the
+// whole Mesh for a while) and keeps the compact arrays.
+PolygonSoup read_everywhere(MPI_Comm comm, const std::string& path, bool repair, std::vector<int>* vertex_map) {
+  PolygonSoup soup;
+  petsc::agree(comm, [&] {
+    if (std::optional<PolygonSoup> g = generated(path)) {
+      soup = std::move(*g);
+    } else if (!repair) {
+      soup = read_polygon_soup(path);
+    } else {
+      const Mesh mesh = load_mesh(path, true, vertex_map);
+      soup.positions = mesh.positions();
+      soup.face_offsets = mesh.face_offsets();
+      soup.face_indices = mesh.face_indices();
+      soup.precision = mesh.precision();
+      return;
+    }
+    if (global_options().planarity_tolerance > 0) soup.precision.planarity_tolerance = global_options().planarity_tolerance;
+    if (vertex_map) {
+      vertex_map->resize(size_t(soup.n_vertices()));
+      std::iota(vertex_map->begin(), vertex_map->end(), 0);
+    }
+  });
+  double fp[3] = {double(soup.n_vertices()), double(soup.n_faces()), 0.0};
+  const Eigen::MatrixX3d& X = soup.positions;
   for (Eigen::Index v = 0; v < X.rows(); ++v) fp[2] += (X(v, 0) + 2 * X(v, 1) + 3 * X(v, 2)) * double(v % 101 + 1);
-  const std::vector<int>& idx = mesh.face_indices();
+  const std::vector<int>& idx = soup.face_indices;
   for (size_t h = 0; h < idx.size(); ++h) fp[2] += double(idx[h]) * double(h % 97 + 1);
   double lo[3], hi[3];
   MPI_Allreduce(fp, lo, 3, MPI_DOUBLE, MPI_MIN, comm);
@@ -48,7 +87,15 @@ Mesh read_everywhere(MPI_Comm comm, const std::string& path, bool repair, std::v
                                            "every rank must read the same file",
                                            path, lo[0], hi[0], lo[1], hi[1]));
   });
-  return mesh;
+  return soup;
+}
+
+// The whole Mesh of the compact arrays, built on the first call (rank 0's file and picture outputs).
+LazyMesh lazy_mesh(const PolygonSoup& soup, std::optional<Mesh>& cache) {
+  return {soup.n_vertices(), soup.n_faces(), [&soup, &cache]() -> const Mesh& {
+            if (!cache) cache.emplace(PolygonSoup(soup));
+            return *cache;
+          }};
 }
 
 // Per-rank figures: [faces, local vertices, owned vertices, COO entries, read, partition, assembly,
@@ -84,7 +131,7 @@ void petsc_geodesics(const std::string& mesh_path, bool repair, const std::vecto
   const MPI_Comm comm = session.comm();
   Laps laps;
   std::vector<int> vertex_map;
-  const Mesh mesh = read_everywhere(comm, mesh_path, repair, &vertex_map);
+  const PolygonSoup mesh = read_everywhere(comm, mesh_path, repair, &vertex_map);
   std::vector<int> sources = file_sources;
   petsc::agree(comm, [&] {
     for (int& s : sources) {
@@ -99,9 +146,9 @@ void petsc_geodesics(const std::string& mesh_path, bool repair, const std::vecto
   petsc::Partition part;
   petsc::agree(comm, [&] { part = petsc::partition_mesh(mesh, session.size()); });
   const double t_partition = laps.lap();
-  const petsc::DistributedOperators ops = petsc::assemble_operators(comm, mesh, part);
+  const petsc::DistributedOperators ops = petsc::assemble_operators(comm, mesh, part, true, !lumped_mass);
   const double t_assembly = laps.lap();
-  const petsc::HeatGeodesics heat(comm, part, ops, mesh.mean_edge_length(), go);
+  const petsc::HeatGeodesics heat(comm, part, ops, ops.mean_edge_length, go);
   const double t_setup = laps.lap();
   const Eigen::VectorXd d = heat.distance(sources);
   const double t_solve = laps.lap();
@@ -117,7 +164,8 @@ void petsc_geodesics(const std::string& mesh_path, bool repair, const std::vecto
                                    double(ops.n_coo_entries), t_read, t_partition, t_assembly, t_setup, t_solve,
                                    petsc::peak_rss_mb()})}};
   petsc::agree(comm, [&] {
-    if (r == 0) write({mesh, sources, d, heat.time_step(), ops.quality, summary});
+    std::optional<Mesh> whole;
+    if (r == 0) write({lazy_mesh(mesh, whole), sources, d, heat.time_step(), ops.quality, summary});
   });
 }
 
@@ -131,7 +179,7 @@ void petsc_spectrum(const std::string& mesh_path, bool repair, int k, bool lumpe
   const petsc::Session session(engine.petsc_options);
   const MPI_Comm comm = session.comm();
   Laps laps;
-  const Mesh mesh = read_everywhere(comm, mesh_path, repair, nullptr);
+  const PolygonSoup mesh = read_everywhere(comm, mesh_path, repair, nullptr);
   const double t_read = laps.lap();
   petsc::Partition part;
   petsc::agree(comm, [&] {
@@ -143,7 +191,7 @@ void petsc_spectrum(const std::string& mesh_path, bool repair, int k, bool lumpe
                                          mesh_path, mesh.n_vertices() - part.n_global()));
   });
   const double t_partition = laps.lap();
-  const petsc::DistributedOperators ops = petsc::assemble_operators(comm, mesh, part, false);
+  const petsc::DistributedOperators ops = petsc::assemble_operators(comm, mesh, part, false, !lumped_mass);
   const double t_assembly = laps.lap();
   const petsc::Spectrum ps = petsc::spectrum(comm, part, ops, so);
   const double t_solve = laps.lap();
@@ -166,7 +214,8 @@ void petsc_spectrum(const std::string& mesh_path, bool repair, int k, bool lumpe
                                    double(ops.n_coo_entries), t_read, t_partition, t_assembly, 0.0, t_solve,
                                    petsc::peak_rss_mb()})}};
   petsc::agree(comm, [&] {
-    if (r == 0) write({mesh, sp, summary});
+    std::optional<Mesh> whole;
+    if (r == 0) write({lazy_mesh(mesh, whole), sp, summary});
   });
 }
 
