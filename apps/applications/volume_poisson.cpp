@@ -94,22 +94,23 @@ VolumePoissonError volume_dirichlet_poisson(const OperatorSet& ops, const Volume
   return e;
 }
 
-VolumePoissonError volume_franke_poisson(const VolumeMesh& mesh, bool lumped_mass) {
+VolumePoissonError volume_franke_poisson(const VolumeMesh& mesh, bool lumped_mass, const VolumeOperatorBuilder& build) {
   return volume_dirichlet_poisson(
-      volume_operator_set(mesh), mesh, [](const Eigen::Vector3d& p) { return franke3d(p.x(), p.y(), p.z()); },
+      build ? build(mesh) : volume_operator_set(mesh), mesh, [](const Eigen::Vector3d& p) { return franke3d(p.x(), p.y(), p.z()); },
       [](const Eigen::Vector3d& p) { return franke3d_laplacian(p.x(), p.y(), p.z()); }, lumped_mass);
 }
 
 VolumeConvergenceSeries volume_franke_convergence(const std::string& family,
                                                   const std::vector<VolumeMesh>& meshes,
-                                                  const std::vector<std::string>& labels, bool lumped_mass) {
+                                                  const std::vector<std::string>& labels, bool lumped_mass,
+                                                  const VolumeOperatorBuilder& build) {
   if (meshes.size() != labels.size())
     throw std::invalid_argument("volume convergence study: one label per mesh");
   VolumeConvergenceSeries s;
   s.family = family;
   s.levels = labels;
   for (const VolumeMesh& mesh : meshes) {
-    VolumePoissonError e = volume_franke_poisson(mesh, lumped_mass);
+    VolumePoissonError e = volume_franke_poisson(mesh, lumped_mass, build);
     e.solution.resize(0);
     e.exact.resize(0);
     s.errors.push_back(std::move(e));

@@ -51,8 +51,13 @@ struct VolumePoissonError {
 VolumePoissonError volume_dirichlet_poisson(const OperatorSet& operators, const VolumeMesh& mesh,
                                             const ScalarField3& exact, const ScalarField3& laplacian,
                                             bool lumped_mass = false);
+// Builds the operators of a volume method on a mesh (e.g. volume_diamond_operators); empty means
+// volume_operator_set (the polyhedral Laplacian).
+using VolumeOperatorBuilder = std::function<OperatorSet(const VolumeMesh&)>;
+
 // The Franke problem (franke3d, franke3d_laplacian) on a mesh of the unit cube.
-VolumePoissonError volume_franke_poisson(const VolumeMesh& mesh, bool lumped_mass = false);
+VolumePoissonError volume_franke_poisson(const VolumeMesh& mesh, bool lumped_mass = false,
+                                         const VolumeOperatorBuilder& build = {});
 
 struct VolumeConvergenceSeries {
   std::string family;
@@ -66,6 +71,6 @@ struct VolumeConvergenceSeries {
 VolumeConvergenceSeries volume_franke_convergence(const std::string& family,
                                                   const std::vector<VolumeMesh>& meshes,
                                                   const std::vector<std::string>& labels,
-                                                  bool lumped_mass = false);
+                                                  bool lumped_mass = false, const VolumeOperatorBuilder& build = {});
 
 }  // namespace polydec

@@ -46,13 +46,14 @@ const std::vector<std::string> kAllMethods = {"ours",
                                               "aw11:0.1",
                                               "aw11:0.5",
                                               "aw11:1",
-                                              "degoes20:1"};
+                                              "degoes20:1",
+                                              "diamond"};
 // Table 6: the virtual-vertex choices (trace-min is Bunge et al. 2024, not in the paper).
 const std::vector<std::string> kVariants = {"ours", "convex", "centroid", "abs-area", "trace-min"};
 // Table 5: the paper's six columns first.
 const std::vector<std::string> kTimed = {"ours",     "convex",     "centroid",           "abs-area",
                                          "aw11:0.5", "triangulated-minarea", "trace-min", "intrinsic-delaunay",
-                                         "degoes20:1", "refined"};
+                                         "degoes20:1", "refined",    "diamond"};
 // Methods whose operators act on the input's vertices (the curvature flow and parametrization
 // need that).
 bool on_input_vertices(const std::string& m) { return m != "refined"; }
@@ -627,7 +628,7 @@ std::string paper_report_markdown(const json& r) {
   const std::vector<std::string> baselines = {"ours",     "triangulated-minarea", "aw11:0.1", "aw11:0.5",
                                               "aw11:1",   "intrinsic-delaunay",   "centroid", "abs-area",
                                               "convex",   "trace-min",            "triangulated-maxminangle",
-                                              "refined",  "degoes20:1"};
+                                              "refined",  "degoes20:1",           "diamond"};
   std::string s;
   s += "# Polygon Laplacian Made Simple — the evaluation, reproduced by polydec\n\n";
   s += "Made by `polydec paper`. Each cell: our value, then in parentheses the paper's printed value and our "
