@@ -24,6 +24,13 @@ void coarsen_diamonds(const FineDiamonds& fine, const SparseMatrix& P, SparseMat
   if (D) *D = Dc;
 }
 
+void fill_diamond_operators(const FineDiamonds& fine, const SparseMatrix& P, bool with_gradient, OperatorSet& ops) {
+  ops.n_degenerate_triangles = fine.n_degenerate;
+  ops.n_folded_triangles = fine.n_folded;
+  coarsen_diamonds(fine, P, ops.S, ops.M, ops.M_lumped, with_gradient ? &ops.G : nullptr,
+                   with_gradient ? &ops.D : nullptr);
+}
+
 namespace {
 
 Eigen::Vector3d face_vector_area(const Mesh& mesh, int f) {
@@ -98,11 +105,7 @@ OperatorSet diamond_operators(const Mesh& mesh, bool with_gradient) {
   ops.n_input_vertices = mesh.n_vertices();
   const Refinement r = refine(mesh);
   ops.quality = r.quality;
-  const FineDiamonds fine = surface_diamonds(mesh, r);
-  ops.n_degenerate_triangles = fine.n_degenerate;
-  ops.n_folded_triangles = fine.n_folded;
-  coarsen_diamonds(fine, prolongation(mesh, r), ops.S, ops.M, ops.M_lumped, with_gradient ? &ops.G : nullptr,
-                   with_gradient ? &ops.D : nullptr);
+  fill_diamond_operators(surface_diamonds(mesh, r), prolongation(mesh, r), with_gradient, ops);
   return ops;
 }
 

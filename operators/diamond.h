@@ -48,6 +48,10 @@ struct FineDiamonds {
 void coarsen_diamonds(const FineDiamonds& fine, const SparseMatrix& P, SparseMatrix& S, SparseMatrix& M,
                       Eigen::VectorXd& M_lumped, SparseMatrix* G, SparseMatrix* D);
 
+// coarsen_diamonds into `ops` (S, M, M_lumped, G and D with_gradient), with the fine diamonds'
+// degenerate and folded counts in ops.n_degenerate_triangles and ops.n_folded_triangles.
+void fill_diamond_operators(const FineDiamonds& fine, const SparseMatrix& P, bool with_gradient, OperatorSet& ops);
+
 // The fine diamonds of a polygon mesh (one per edge, in the mesh's edge order) for a refinement.
 FineDiamonds surface_diamonds(const Mesh& mesh, const Refinement& refinement);
 

@@ -95,11 +95,7 @@ OperatorSet volume_diamond_operators(const VolumeMesh& mesh, bool with_gradient)
   ops.n_input_vertices = mesh.n_vertices();
   ops.mean_edge_length = mesh.mean_edge_length();
   const VolumeRefinement R = refine_volume(mesh);
-  const FineDiamonds fine = volume_diamonds(mesh, R);
-  ops.n_degenerate_triangles = fine.n_degenerate;
-  ops.n_folded_triangles = fine.n_folded;
-  coarsen_diamonds(fine, volume_prolongation(mesh, R), ops.S, ops.M, ops.M_lumped, with_gradient ? &ops.G : nullptr,
-                   with_gradient ? &ops.D : nullptr);
+  fill_diamond_operators(volume_diamonds(mesh, R), volume_prolongation(mesh, R), with_gradient, ops);
   return ops;
 }
 

@@ -41,6 +41,19 @@ double surface_area(const Mesh& mesh) {
   return a;
 }
 
+// Appends the shared meshes ../shared/data/PREFIX + NAME read by `read` (skipped with a warning where missing).
+template <class AnyMesh, class Reader>
+void add_shared(std::vector<std::pair<std::string, AnyMesh>>& meshes, const std::string& prefix,
+                const std::vector<std::string>& names, Reader read) {
+  for (const std::string& name : names) {
+    const std::string path = test::shared_path(prefix + name);
+    if (path.empty())
+      WARN("skipped: ../shared/data/" << prefix << name << " not found");
+    else
+      meshes.emplace_back(name, read(path));
+  }
+}
+
 // Unit vector-area normal of face f.
 Eigen::Vector3d face_normal(const Mesh& mesh, int f) {
   const auto face = mesh.face(f);
@@ -109,13 +122,8 @@ TEST_CASE("diamond (surface): symmetric, S 1 = 0, negative semi-definite, S = D 
                                                    {"noisy uv sphere", add_noise(uv_sphere(6, 8), 0.2, 3)},
                                                    {"cube sphere", cube_sphere(3)},
                                                    {"torus", torus(8, 6)}};
-  for (const char* name : {"L-plane.obj", "tetris_2.obj", "noisy-sphere.off"}) {
-    const std::string path = test::shared_path(name);
-    if (path.empty())
-      WARN("skipped: ../shared/data/" << name << " not found");
-    else
-      meshes.emplace_back(name, read_mesh(path));
-  }
+  add_shared(meshes, "", {"L-plane.obj", "tetris_2.obj", "noisy-sphere.off"},
+             [](const std::string& p) { return read_mesh(p); });
   for (const auto& [name, mesh] : meshes) {
     INFO(name);
     const OperatorSet ops = build_operators(mesh, parse_laplacian("diamond"));
@@ -138,13 +146,8 @@ TEST_CASE("diamond (surface): linear precision at interior vertices of planar po
                                                    {"jittered hex grid", planar_jitter(hex_grid(7, 6), 0.15, 2)},
                                                    {"jittered quad grid", planar_jitter(quad_grid(6, 7), 0.2, 3)},
                                                    {"jittered triangle grid", planar_jitter(triangle_grid(6, 6), 0.15, 4)}};
-  for (const char* name : {"quad-plane.obj", "L-plane.obj", "tetris.obj", "tetris_2.obj"}) {
-    const std::string path = test::shared_path(name);
-    if (path.empty())
-      WARN("skipped: ../shared/data/" << name << " not found");
-    else
-      meshes.emplace_back(name, read_mesh(path));
-  }
+  add_shared(meshes, "", {"quad-plane.obj", "L-plane.obj", "tetris.obj", "tetris_2.obj"},
+             [](const std::string& p) { return read_mesh(p); });
   for (const auto& [name, mesh] : meshes) {
     INFO(name);
     const OperatorSet ops = diamond_operators(mesh);
@@ -243,14 +246,10 @@ TEST_CASE("diamond (volume): symmetric, null space, semi-definite, S = D G, mass
       {"truncated octahedra", truncated_octahedra_volume(2)},
       {"tets", tet_grid_volume(3, 3, 3)},
       {"jittered tets", tet_grid_volume(3, 3, 3, VolumeJitter{0.2, 6})}};
-  for (const char* name : {"cube_hexahedron_2.ovm", "cube_pyramids_2.ovm", "cube_truncated_2.ovm",
-                           "cube_tetrahedron_1.ovm", "noisycube.ovm"}) {
-    const std::string path = test::shared_path(std::string("volume/") + name);
-    if (path.empty())
-      WARN("skipped: ../shared/data/volume/" << name << " not found");
-    else
-      meshes.emplace_back(name, read_volume_mesh(path));
-  }
+  add_shared(meshes, "volume/",
+             {"cube_hexahedron_2.ovm", "cube_pyramids_2.ovm", "cube_truncated_2.ovm", "cube_tetrahedron_1.ovm",
+              "noisycube.ovm"},
+             [](const std::string& p) { return read_volume_mesh(p); });
   for (const auto& [name, mesh] : meshes) {
     INFO(name);
     const OperatorSet ops = volume_diamond_operators(mesh);
@@ -314,17 +313,16 @@ TEST_CASE("diamond (volume): Franke study on the shared cubes, printed", "[.][di
                                                                        {"cube_truncated", {1, 2, 3, 4}},
                                                                        {"cube_tetrahedron", {1, 2}}};
   for (const auto& [family, levels] : families) {
+    std::vector<std::string> names;
+    for (int l : levels) names.push_back(family + "_" + std::to_string(l) + ".ovm");
+    std::vector<std::pair<std::string, VolumeMesh>> loaded;
+    add_shared(loaded, "volume/", names, [](const std::string& p) { return read_volume_mesh(p); });
+    if (loaded.size() != names.size()) return;
     std::vector<VolumeMesh> meshes;
     std::vector<std::string> labels;
-    for (int l : levels) {
-      const std::string name = family + "_" + std::to_string(l) + ".ovm";
-      const std::string path = test::shared_path("volume/" + name);
-      if (path.empty()) {
-        WARN("skipped: ../shared/data/volume/" << name << " not found");
-        return;
-      }
-      meshes.push_back(read_volume_mesh(path));
-      labels.push_back(name);
+    for (auto& [label, mesh] : loaded) {
+      labels.push_back(label);
+      meshes.push_back(std::move(mesh));
     }
     for (const bool lumped : {false, true})
       for (const bool diamond : {true, false}) {
