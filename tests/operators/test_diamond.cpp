@@ -164,7 +164,7 @@ TEST_CASE("diamond (surface): linear precision at interior vertices of planar po
   }
 }
 
-TEST_CASE("diamond (surface): rigid motions leave S, M unchanged; scaling leaves S unchanged", "[diamond]") {
+TEST_CASE("diamond (surface): rigid motions leave S, M unchanged, scaling leaves S unchanged", "[diamond]") {
   const Mesh mesh = add_noise(cube_sphere(3), 0.15, 7);
   const OperatorSet ops = diamond_operators(mesh);
   const Eigen::Matrix3d R = Eigen::AngleAxisd(0.9, Eigen::Vector3d(1, -2, 0.5).normalized()).toRotationMatrix();
@@ -272,7 +272,7 @@ TEST_CASE("diamond (volume): symmetric, null space, semi-definite, S = D G, mass
   }
 }
 
-TEST_CASE("diamond (volume): S scales like h, M like h^3; rigid motions change nothing", "[diamond][volume]") {
+TEST_CASE("diamond (volume): S scales like h, M like h^3, rigid motions change nothing", "[diamond][volume]") {
   const VolumeMesh mesh = truncated_octahedra_volume(2, VolumeJitter{0.15, 9});
   const OperatorSet ops = volume_diamond_operators(mesh, false);
   for (double scale : {1e-4, 1e4}) {
