@@ -24,7 +24,8 @@ void coarsen_diamonds(const FineDiamonds& fine, const SparseMatrix& P, SparseMat
   if (D) *D = Dc;
 }
 
-void fill_diamond_operators(const FineDiamonds& fine, const SparseMatrix& P, bool with_gradient, OperatorSet& ops) {
+void fill_diamond_operators(const FineDiamonds& fine, const SparseMatrix& P, bool with_gradient,
+                            OperatorSet& ops) {
   ops.n_degenerate_triangles = fine.n_degenerate;
   ops.n_folded_triangles = fine.n_folded;
   coarsen_diamonds(fine, P, ops.S, ops.M, ops.M_lumped, with_gradient ? &ops.G : nullptr,
@@ -61,7 +62,8 @@ FineDiamonds surface_diamonds(const Mesh& mesh, const Refinement& refinement) {
     const int g = o >= 0 ? mesh.halfedge_face(o) : -1;
     const Eigen::Vector3d xi = mesh.position(i), xj = mesh.position(j);
     const Eigen::Vector3d xf = refinement.virtual_points.row(f).transpose();
-    const Eigen::Vector3d xg = g >= 0 ? Eigen::Vector3d(refinement.virtual_points.row(g).transpose()) : 0.5 * (xi + xj);
+    const Eigen::Vector3d xg =
+        g >= 0 ? Eigen::Vector3d(refinement.virtual_points.row(g).transpose()) : 0.5 * (xi + xj);
     // Diagonals: d1 along the edge, d2 from the right tip to the left one; a = d1 x d2 / 2 is the
     // vector area of the closed quadrilateral (x_i, x_g, x_j, x_f).
     const Eigen::Vector3d d1 = xj - xi, d2 = xf - xg, a2 = d1.cross(d2);

@@ -34,12 +34,12 @@ inline constexpr double kDiamondDegenerateTolerance = 1e-8;
 // The diamond operators before coarsening, on the refined points (mesh vertices, then face points,
 // then, for volumes, cell points).
 struct FineDiamonds {
-  int n_points = 0;                               // columns of the fine gradient
-  std::vector<Eigen::Triplet<double>> gradient;   // rows 3k, 3k+1, 3k+2: the gradient on diamond k
-  Eigen::VectorXd weight;                         // |D_k| (area or volume), zero where degenerate
-  Eigen::VectorXd mass;                           // lumped mass per refined point
-  int n_degenerate = 0;                           // diamonds of zero size (relative to kDiamondDegenerateTolerance)
-  int n_folded = 0;                               // diamonds oriented against their faces (2D) or cells (3D)
+  int n_points = 0;                              // columns of the fine gradient
+  std::vector<Eigen::Triplet<double>> gradient;  // rows 3k, 3k+1, 3k+2: the gradient on diamond k
+  Eigen::VectorXd weight;                        // |D_k| (area or volume), zero where degenerate
+  Eigen::VectorXd mass;                          // lumped mass per refined point
+  int n_degenerate = 0;  // diamonds of zero size (relative to kDiamondDegenerateTolerance)
+  int n_folded = 0;      // diamonds oriented against their faces (2D) or cells (3D)
 };
 
 // The coarse operators from the fine ones and the prolongation P (refined points x |V|):
@@ -50,7 +50,8 @@ void coarsen_diamonds(const FineDiamonds& fine, const SparseMatrix& P, SparseMat
 
 // coarsen_diamonds into `ops` (S, M, M_lumped, G and D with_gradient), with the fine diamonds'
 // degenerate and folded counts in ops.n_degenerate_triangles and ops.n_folded_triangles.
-void fill_diamond_operators(const FineDiamonds& fine, const SparseMatrix& P, bool with_gradient, OperatorSet& ops);
+void fill_diamond_operators(const FineDiamonds& fine, const SparseMatrix& P, bool with_gradient,
+                            OperatorSet& ops);
 
 // The fine diamonds of a polygon mesh (one per edge, in the mesh's edge order) for a refinement.
 FineDiamonds surface_diamonds(const Mesh& mesh, const Refinement& refinement);

@@ -83,8 +83,8 @@ FineDiamonds volume_diamonds(const VolumeMesh& mesh, const VolumeRefinement& ref
 
 VolumeLaplacian assemble_volume_diamond(const VolumeMesh& mesh, const VolumeRefinement& refinement) {
   VolumeLaplacian V;
-  coarsen_diamonds(volume_diamonds(mesh, refinement), volume_prolongation(mesh, refinement), V.S, V.M, V.M_lumped,
-                   nullptr, nullptr);
+  coarsen_diamonds(volume_diamonds(mesh, refinement), volume_prolongation(mesh, refinement), V.S, V.M,
+                   V.M_lumped, nullptr, nullptr);
   V.quality = refinement.quality;
   return V;
 }

@@ -94,9 +94,11 @@ VolumePoissonError volume_dirichlet_poisson(const OperatorSet& ops, const Volume
   return e;
 }
 
-VolumePoissonError volume_franke_poisson(const VolumeMesh& mesh, bool lumped_mass, const VolumeOperatorBuilder& build) {
+VolumePoissonError volume_franke_poisson(const VolumeMesh& mesh, bool lumped_mass,
+                                         const VolumeOperatorBuilder& build) {
   return volume_dirichlet_poisson(
-      build ? build(mesh) : volume_operator_set(mesh), mesh, [](const Eigen::Vector3d& p) { return franke3d(p.x(), p.y(), p.z()); },
+      build ? build(mesh) : volume_operator_set(mesh), mesh,
+      [](const Eigen::Vector3d& p) { return franke3d(p.x(), p.y(), p.z()); },
       [](const Eigen::Vector3d& p) { return franke3d_laplacian(p.x(), p.y(), p.z()); }, lumped_mass);
 }
 

@@ -2,21 +2,20 @@
 // symmetry, null space, negative semi-definiteness, S = D G, mass totals, linear precision at
 // interior vertices, rigid-motion and scale behaviour, the exact relation to the cotangent
 // gradients on planar triangle meshes, and the 3D Franke Poisson convergence.
-#include "polydec/operators/diamond.h"
+#include <Eigen/Dense>
+#include <catch2/catch.hpp>
+#include <cstdio>
+#include <random>
 
 #include "polydec/apps/applications/volume_poisson.h"
 #include "polydec/dec/generators.h"
 #include "polydec/dec/io.h"
 #include "polydec/dec/io_volume.h"
 #include "polydec/dec/volume_generators.h"
+#include "polydec/operators/diamond.h"
 #include "polydec/operators/volume_diamond.h"
 #include "tests/plain_cotan.h"
 #include "tests/support.h"
-
-#include <Eigen/Dense>
-#include <catch2/catch.hpp>
-#include <cstdio>
-#include <random>
 
 using namespace polydec;
 
@@ -25,9 +24,7 @@ using test::relative_difference;
 
 namespace {
 
-double max_abs(const SparseMatrix& A) {
-  return A.nonZeros() ? A.coeffs().cwiseAbs().maxCoeff() : 0.0;
-}
+double max_abs(const SparseMatrix& A) { return A.nonZeros() ? A.coeffs().cwiseAbs().maxCoeff() : 0.0; }
 
 double surface_area(const Mesh& mesh) {
   double a = 0;
@@ -41,7 +38,8 @@ double surface_area(const Mesh& mesh) {
   return a;
 }
 
-// Appends the shared meshes ../shared/data/PREFIX + NAME read by `read` (skipped with a warning where missing).
+// Appends the shared meshes ../shared/data/PREFIX + NAME read by `read` (skipped with a warning where
+// missing).
 template <class AnyMesh, class Reader>
 void add_shared(std::vector<std::pair<std::string, AnyMesh>>& meshes, const std::string& prefix,
                 const std::vector<std::string>& names, Reader read) {
@@ -58,7 +56,8 @@ void add_shared(std::vector<std::pair<std::string, AnyMesh>>& meshes, const std:
 Eigen::Vector3d face_normal(const Mesh& mesh, int f) {
   const auto face = mesh.face(f);
   Eigen::Vector3d v = Eigen::Vector3d::Zero();
-  for (size_t k = 0; k < face.size(); ++k) v += mesh.position(face[k]).cross(mesh.position(face[(k + 1) % face.size()]));
+  for (size_t k = 0; k < face.size(); ++k)
+    v += mesh.position(face[k]).cross(mesh.position(face[(k + 1) % face.size()]));
   return v.normalized();
 }
 
@@ -82,7 +81,8 @@ void check_properties(const OperatorSet& ops, int n) {
   CHECK(relative_difference(SparseMatrix(ops.D * ops.G), ops.S) < 1e-12);
   REQUIRE(ops.M_lumped.size() == n);
   CHECK(ops.M_lumped.minCoeff() >= 0);
-  CHECK((ops.M * Eigen::VectorXd::Ones(n) - ops.M_lumped).cwiseAbs().maxCoeff() <= 1e-12 * ops.M_lumped.maxCoeff());
+  CHECK((ops.M * Eigen::VectorXd::Ones(n) - ops.M_lumped).cwiseAbs().maxCoeff() <=
+        1e-12 * ops.M_lumped.maxCoeff());
 }
 
 // max over interior vertices and coordinates c of |(S x_c)_v| / (|S|_max * |x_c|_max).
@@ -117,7 +117,8 @@ Mesh planar_jitter(const Mesh& mesh, double amplitude, unsigned seed) {
 
 }  // namespace
 
-TEST_CASE("diamond (surface): symmetric, S 1 = 0, negative semi-definite, S = D G, mass = area", "[diamond]") {
+TEST_CASE("diamond (surface): symmetric, S 1 = 0, negative semi-definite, S = D G, mass = area",
+          "[diamond]") {
   std::vector<std::pair<std::string, Mesh>> meshes{{"hex grid", hex_grid(6, 5)},
                                                    {"noisy uv sphere", add_noise(uv_sphere(6, 8), 0.2, 3)},
                                                    {"cube sphere", cube_sphere(3)},
@@ -142,10 +143,11 @@ TEST_CASE("diamond (surface): symmetric, S 1 = 0, negative semi-definite, S = D 
 }
 
 TEST_CASE("diamond (surface): linear precision at interior vertices of planar polygon meshes", "[diamond]") {
-  std::vector<std::pair<std::string, Mesh>> meshes{{"hex grid", hex_grid(7, 6)},
-                                                   {"jittered hex grid", planar_jitter(hex_grid(7, 6), 0.15, 2)},
-                                                   {"jittered quad grid", planar_jitter(quad_grid(6, 7), 0.2, 3)},
-                                                   {"jittered triangle grid", planar_jitter(triangle_grid(6, 6), 0.15, 4)}};
+  std::vector<std::pair<std::string, Mesh>> meshes{
+      {"hex grid", hex_grid(7, 6)},
+      {"jittered hex grid", planar_jitter(hex_grid(7, 6), 0.15, 2)},
+      {"jittered quad grid", planar_jitter(quad_grid(6, 7), 0.2, 3)},
+      {"jittered triangle grid", planar_jitter(triangle_grid(6, 6), 0.15, 4)}};
   add_shared(meshes, "", {"quad-plane.obj", "L-plane.obj", "tetris.obj", "tetris_2.obj"},
              [](const std::string& p) { return read_mesh(p); });
   for (const auto& [name, mesh] : meshes) {
@@ -167,7 +169,8 @@ TEST_CASE("diamond (surface): linear precision at interior vertices of planar po
 TEST_CASE("diamond (surface): rigid motions leave S, M unchanged, scaling leaves S unchanged", "[diamond]") {
   const Mesh mesh = add_noise(cube_sphere(3), 0.15, 7);
   const OperatorSet ops = diamond_operators(mesh);
-  const Eigen::Matrix3d R = Eigen::AngleAxisd(0.9, Eigen::Vector3d(1, -2, 0.5).normalized()).toRotationMatrix();
+  const Eigen::Matrix3d R =
+      Eigen::AngleAxisd(0.9, Eigen::Vector3d(1, -2, 0.5).normalized()).toRotationMatrix();
   const Eigen::MatrixX3d moved = (mesh.positions() * R.transpose()).rowwise() + Eigen::RowVector3d(3, -7, 11);
   const OperatorSet rot = diamond_operators(mesh.with_positions(moved));
   CHECK(relative_difference(rot.S, ops.S) < 1e-11);
@@ -181,7 +184,7 @@ TEST_CASE("diamond (surface): rigid motions leave S, M unchanged, scaling leaves
   CHECK(worst < 1e-10 * g.cwiseAbs().maxCoeff());
   for (double scale : {1e-6, 1e6}) {
     const OperatorSet sc = diamond_operators(mesh.with_positions(scale * mesh.positions()));
-    CHECK(relative_difference(sc.S, ops.S) < 1e-10);                              // dimensionless in 2D
+    CHECK(relative_difference(sc.S, ops.S) < 1e-10);                                  // dimensionless in 2D
     CHECK(relative_difference(SparseMatrix(sc.M / (scale * scale)), ops.M) < 1e-10);  // area
   }
 }
@@ -206,7 +209,8 @@ TEST_CASE("diamond on planar triangle meshes: the area-weighted mean of the two 
     const Eigen::Vector3d p[3] = {mesh.position(t[0]), mesh.position(t[1]), mesh.position(t[2])};
     const Eigen::Vector3d n2 = (p[1] - p[0]).cross(p[2] - p[0]);
     area[f] = n2.norm() / 2;
-    for (int k = 0; k < 3; ++k) grads[f].col(k) = n2.normalized().cross(p[(k + 2) % 3] - p[(k + 1) % 3]) / n2.norm();
+    for (int k = 0; k < 3; ++k)
+      grads[f].col(k) = n2.normalized().cross(p[(k + 2) % 3] - p[(k + 1) % 3]) / n2.norm();
   }
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> U(-1, 1);
@@ -223,8 +227,9 @@ TEST_CASE("diamond on planar triangle meshes: the area-weighted mean of the two 
     if (o >= 0 && o < h) continue;
     const Eigen::Vector3d expected =
         o < 0 ? tri_grad(f)
-              : Eigen::Vector3d((area[f] * tri_grad(f) + area[mesh.halfedge_face(o)] * tri_grad(mesh.halfedge_face(o))) /
-                                (area[f] + area[mesh.halfedge_face(o)]));
+              : Eigen::Vector3d(
+                    (area[f] * tri_grad(f) + area[mesh.halfedge_face(o)] * tri_grad(mesh.halfedge_face(o))) /
+                    (area[f] + area[mesh.halfedge_face(o)]));
     worst = std::max(worst, (Gu.segment<3>(3 * mesh.halfedge_edge(h)) - expected).norm());
     gmax = std::max(gmax, expected.norm());
   }
@@ -247,8 +252,8 @@ TEST_CASE("diamond (volume): symmetric, null space, semi-definite, S = D G, mass
       {"tets", tet_grid_volume(3, 3, 3)},
       {"jittered tets", tet_grid_volume(3, 3, 3, VolumeJitter{0.2, 6})}};
   add_shared(meshes, "volume/",
-             {"cube_hexahedron_2.ovm", "cube_pyramids_2.ovm", "cube_truncated_2.ovm", "cube_tetrahedron_1.ovm",
-              "noisycube.ovm"},
+             {"cube_hexahedron_2.ovm", "cube_pyramids_2.ovm", "cube_truncated_2.ovm",
+              "cube_tetrahedron_1.ovm", "noisycube.ovm"},
              [](const std::string& p) { return read_volume_mesh(p); });
   for (const auto& [name, mesh] : meshes) {
     INFO(name);
@@ -272,7 +277,8 @@ TEST_CASE("diamond (volume): symmetric, null space, semi-definite, S = D G, mass
   }
 }
 
-TEST_CASE("diamond (volume): S scales like h, M like h^3, rigid motions change nothing", "[diamond][volume]") {
+TEST_CASE("diamond (volume): S scales like h, M like h^3, rigid motions change nothing",
+          "[diamond][volume]") {
   const VolumeMesh mesh = truncated_octahedra_volume(2, VolumeJitter{0.15, 9});
   const OperatorSet ops = volume_diamond_operators(mesh, false);
   for (double scale : {1e-4, 1e4}) {
@@ -280,9 +286,11 @@ TEST_CASE("diamond (volume): S scales like h, M like h^3, rigid motions change n
     CHECK(relative_difference(SparseMatrix(sc.S / scale), ops.S) < 1e-10);
     CHECK(relative_difference(SparseMatrix(sc.M / (scale * scale * scale)), ops.M) < 1e-10);
   }
-  const Eigen::Matrix3d R = Eigen::AngleAxisd(-1.1, Eigen::Vector3d(2, 1, -1).normalized()).toRotationMatrix();
+  const Eigen::Matrix3d R =
+      Eigen::AngleAxisd(-1.1, Eigen::Vector3d(2, 1, -1).normalized()).toRotationMatrix();
   const OperatorSet rot = volume_diamond_operators(
-      mesh.with_positions((mesh.positions() * R.transpose()).rowwise() + Eigen::RowVector3d(-4, 2, 9)), false);
+      mesh.with_positions((mesh.positions() * R.transpose()).rowwise() + Eigen::RowVector3d(-4, 2, 9)),
+      false);
   CHECK(relative_difference(rot.S, ops.S) < 1e-10);
   CHECK(relative_difference(rot.M, ops.M) < 1e-10);
 }
@@ -295,8 +303,9 @@ TEST_CASE("diamond (volume): 3D Franke Poisson converges with slope 2 on hex gri
     meshes.push_back(hex_grid_volume(n, n, n));
     labels.push_back(std::to_string(n));
   }
-  const auto s = volume_franke_convergence("hex grid", meshes, labels, false,
-                                           [](const VolumeMesh& m) { return volume_diamond_operators(m, false); });
+  const auto s = volume_franke_convergence("hex grid", meshes, labels, false, [](const VolumeMesh& m) {
+    return volume_diamond_operators(m, false);
+  });
   for (size_t i = 0; i < s.l2_slopes.size(); ++i) {
     INFO("level " << i << ": l2 slope " << s.l2_slopes[i] << ", rms slope " << s.rms_slopes[i]);
     CHECK(s.errors[i + 1].l2_error < s.errors[i].l2_error);
@@ -326,10 +335,11 @@ TEST_CASE("diamond (volume): Franke study on the shared cubes, printed", "[.][di
     }
     for (const bool lumped : {false, true})
       for (const bool diamond : {true, false}) {
-        const auto s = volume_franke_convergence(
-            family, meshes, labels, lumped,
-            diamond ? VolumeOperatorBuilder([](const VolumeMesh& m) { return volume_diamond_operators(m, false); })
-                    : VolumeOperatorBuilder());
+        const auto s = volume_franke_convergence(family, meshes, labels, lumped,
+                                                 diamond ? VolumeOperatorBuilder([](const VolumeMesh& m) {
+                                                   return volume_diamond_operators(m, false);
+                                                 })
+                                                         : VolumeOperatorBuilder());
         for (size_t i = 0; i < s.errors.size(); ++i) {
           const auto& e = s.errors[i];
           std::printf("| %s | %s | %s | %s | %d | %.4f | %.3e | %.3e |", diamond ? "diamond" : "ours",
