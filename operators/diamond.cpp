@@ -68,7 +68,7 @@ FineDiamonds surface_diamonds(const Mesh& mesh, const Refinement& refinement) {
     // vector area of the closed quadrilateral (x_i, x_g, x_j, x_f).
     const Eigen::Vector3d d1 = xj - xi, d2 = xf - xg, a2 = d1.cross(d2);
     const double twice_area = a2.norm();
-    if (twice_area <= kDiamondDegenerateTolerance * std::max(d1.squaredNorm(), d2.squaredNorm())) {
+    if (!(twice_area > kDiamondDegenerateTolerance * std::max(d1.squaredNorm(), d2.squaredNorm()))) {
       ++d.n_degenerate;
       continue;
     }

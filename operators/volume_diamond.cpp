@@ -63,7 +63,7 @@ FineDiamonds volume_diamonds(const VolumeMesh& mesh, const VolumeRefinement& ref
         area[t] = (b - a).cross(c - a) / 2;
         volume += area[t].dot((a + b + c) / 3 - o) / 3;
       }
-      if (std::abs(volume) * 6 <= kDiamondDegenerateTolerance * longest * longest * longest) {
+      if (!(std::abs(volume) * 6 > kDiamondDegenerateTolerance * longest * longest * longest)) {
         ++d.n_degenerate;
         continue;
       }

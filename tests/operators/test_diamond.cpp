@@ -242,6 +242,52 @@ TEST_CASE("diamond on planar triangle meshes: the area-weighted mean of the two 
   CHECK(relative_difference(ops.S, S_cot) > 1e-2);
 }
 
+TEST_CASE("diamond (surface) on degenerate polygons: finite, counted, S 1 = 0", "[diamond][robust]") {
+  // A collinear triangle hanging off the bottom boundary edge (a, b) of a quad grid: its two boundary
+  // edges' diamonds are flat (degenerate); thin quads (a row collapsed to 1e-9 of the spacing) too.
+  const Mesh grid = quad_grid(3, 3);
+  PolygonSoup s;
+  s.positions = grid.positions();
+  s.face_offsets = grid.face_offsets();
+  s.face_indices = grid.face_indices();
+  int a = -1, b = -1;
+  for (int v = 0; v < grid.n_vertices(); ++v) {
+    if (grid.position(v).norm() < 1e-12) a = v;
+    if ((grid.position(v) - Eigen::Vector3d(1.0 / 3, 0, 0)).norm() < 1e-12) b = v;
+  }
+  REQUIRE(a >= 0);
+  REQUIRE(b >= 0);
+  s.positions.conservativeResize(s.n_vertices() + 1, 3);
+  s.positions.row(s.n_vertices() - 1) << 1.5, 0, 0;
+  s.add_face(std::vector<int>{b, a, s.n_vertices() - 1});
+  Eigen::MatrixX3d thin = grid.positions();
+  for (int v = 0; v < grid.n_vertices(); ++v)
+    if (std::abs(thin(v, 1) - 1.0 / 3) < 1e-12) thin(v, 1) = 1e-9;
+  for (const Mesh& mesh : {Mesh(s), grid.with_positions(thin)}) {
+    const OperatorSet ops = diamond_operators(mesh);
+    CHECK(ops.n_degenerate_triangles > 0);
+    CHECK(ops.S.coeffs().allFinite());
+    CHECK(ops.G.coeffs().allFinite());
+    CHECK(ops.M.coeffs().allFinite());
+    const double sc = max_abs(ops.S);
+    CHECK(relative_difference(ops.S, SparseMatrix(ops.S.transpose())) < 1e-13);
+    CHECK((ops.S * Eigen::VectorXd::Ones(mesh.n_vertices())).cwiseAbs().maxCoeff() <= 1e-12 * sc);
+    CHECK(relative_difference(SparseMatrix(ops.D * ops.G), ops.S) < 1e-12);
+  }
+}
+
+TEST_CASE("diamond (volume) on a squashed cube: degenerate sub-diamonds counted, operators finite",
+          "[diamond][robust]") {
+  const VolumeMesh cube = hex_grid_volume(1, 1, 1);
+  Eigen::MatrixX3d X = cube.positions();
+  X.col(2) *= 1e-12;
+  const OperatorSet ops = volume_diamond_operators(cube.with_positions(X));
+  CHECK(ops.n_degenerate_triangles == 24);  // 6 faces x 4 edges, all flat
+  CHECK(ops.S.coeffs().allFinite());
+  CHECK(ops.G.coeffs().allFinite());
+  CHECK(max_abs(ops.S) == 0);
+}
+
 TEST_CASE("diamond (volume): symmetric, null space, semi-definite, S = D G, mass = volume, linear precision",
           "[diamond][volume]") {
   std::vector<std::pair<std::string, VolumeMesh>> meshes{
