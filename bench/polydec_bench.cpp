@@ -5,19 +5,27 @@
 // precomputation. Prints a Markdown table on stdout.
 //
 //   polydec_bench [--big N] [--no-big] [--quick] [--reps K] [--blas-threads N] [--no-big-geodesics]
-//                 [--only spectrum|feec|geodesics|cholesky|form-spectrum]   (one section on FINE SPHERE;
+//                 [--only spectrum|feec|geodesics|cholesky|form-spectrum|volume]   (one section on FINE SPHERE;
 //                 form-spectrum: a 100k-face quad sphere)
+//   polydec_bench --only volume [--volume-big N]   (volume S + M against the plain volume reference:
+//                 cube_hexahedron_4, hex_grid_volume(16^3) and hex_grid_volume(N^3), default N = 100)
 //   polydec_bench --memory-child N      (internal: peak memory of one assembly, fresh process)
+//   polydec_bench --volume-memory N     (the polydec side alone on hex_grid_volume(N^3): peak memory,
+//                 for /usr/bin/time -v; prints the sizes of the mesh and the matrices)
 #include "polydec/apps/applications/geodesics.h"
 #include "polydec/apps/applications/form_spectrum.h"
 #include "polydec/apps/applications/spectrum.h"
 #include "bench/plain_reference.h"
+#include "bench/plain_volume_reference.h"
 #include "polydec/dec/complex.h"
 #include "polydec/dec/generators.h"
 #include "polydec/dec/hodge_star.h"
 #include "polydec/dec/io.h"
+#include "polydec/dec/io_volume.h"
+#include "polydec/dec/volume_generators.h"
 #include "polydec/operators/cholesky.h"
 #include "polydec/operators/laplacian.h"
+#include "polydec/operators/volume_laplacian.h"
 
 #include <Eigen/SparseCholesky>
 #include <algorithm>
@@ -406,22 +414,134 @@ void bench_form_spectrum(const std::string& name, const Mesh& mesh) {
   add(r);
 }
 
+// Volume S + M + lumped M (refinement, pattern, values; one thread) against the plain volume
+// reference (bench/plain_volume_reference.cpp, its own mesh copy built outside the timing).
+// The two must agree: a relative difference above 1e-10 marks the row "RESULTS DIFFER".
+void bench_volume(const std::string& name, const VolumeMesh& mesh, int reps) {
+  const auto input = plain_volume_reference::from_volume_mesh(mesh);
+  SparseMatrix Sp, Mp;
+  VolumeLaplacian L;
+  const auto [plain_ms, ours_ms] = interleaved(
+      reps, [&] { plain_volume_reference::build(input, Sp, Mp); },
+      [&] {
+        VolumeLaplacian fresh = assemble_volume_laplacian(mesh, refine_volume(mesh));
+        L.S.swap(fresh.S);
+        L.M.swap(fresh.M);
+        L.M_lumped.swap(fresh.M_lumped);
+      });
+  const double dS = relative_difference(L.S, Sp), dM = relative_difference(L.M, Mp);
+  const bool agree = dS < 1e-10 && dM < 1e-10;
+  add({"volume S+M+lumped, 1 thread", name, "plain volume build() (S+M)", "refine_volume + assemble_volume_laplacian",
+       plain_ms, ours_ms, 0, 10,
+       fmt::format("{}{} cells, {} vertices, nnz(S) {}; |S - S_plain| / |S| = {:.1e}, |M - M_plain| / |M| = {:.1e}; "
+                   "median of {}, thread CPU time",
+                   agree ? "" : "RESULTS DIFFER; ", mesh.n_cells(), mesh.n_vertices(), L.S.nonZeros(), dS, dM, reps)});
+}
+
+// Volume refinement + assembly with T threads against one thread (wall time), bitwise compared.
+void bench_volume_threads(const std::string& name, const VolumeMesh& mesh, int reps) {
+  const int T = std::max(2, int(std::thread::hardware_concurrency()));
+  VolumeLaplacian L1, LT;
+  auto run = [&](int threads, VolumeLaplacian& out) {
+    VolumeRefinementOptions o;
+    o.threads = threads;
+    VolumeLaplacian fresh = assemble_volume_laplacian(mesh, refine_volume(mesh, o), nullptr, threads);
+    out.S.swap(fresh.S);
+    out.M.swap(fresh.M);
+    out.M_lumped.swap(fresh.M_lumped);
+  };
+  const auto [one, many] = interleaved(reps, [&] { run(1, L1); }, [&] { run(T, LT); }, true);
+  const bool same = same_bits(L1.S, LT.S) && same_bits(L1.M, LT.M) && L1.M_lumped == LT.M_lumped;
+  add({fmt::format("volume S+M+lumped, {} threads", T), name, "same, 1 thread", fmt::format("{} threads", T), one,
+       many, 0, 0, std::string(same ? "bitwise identical to 1 thread" : "RESULTS DIFFER") + "; wall time" + load_note()});
+}
+
+// The polydec side alone on hex_grid_volume(n^3), for `/usr/bin/time -v polydec_bench --volume-memory N`:
+// prints RSS at start, with the mesh, and the peak (VmHWM) during refinement + assembly, and the
+// bytes of S and M (nnz (8 + 4) + 4 (cols + 1) each) and of the lumped mass.
+int volume_memory(int n) {
+  malloc_trim(0);
+  const long rss0 = status_kb("VmRSS:");
+  const VolumeMesh mesh = hex_grid_volume(n, n, n);
+  malloc_trim(0);
+  const long rss_mesh = status_kb("VmRSS:");
+  { std::ofstream("/proc/self/clear_refs") << "5"; }
+  const long hwm_reset = status_kb("VmHWM:");
+  const VolumeLaplacian L = assemble_volume_laplacian(mesh, refine_volume(mesh));
+  const long hwm = status_kb("VmHWM:");
+  const double matrices = double(L.S.nonZeros() + L.M.nonZeros()) * (sizeof(double) + sizeof(int)) +
+                          2.0 * (L.S.outerSize() + 1) * sizeof(int) + double(L.M_lumped.size()) * sizeof(double);
+  const double mesh_kb = double(rss_mesh - rss0), peak_kb = double(hwm - rss0);
+  std::printf("hex_grid_volume(%d^3): %d cells, %d vertices, nnz(S) = nnz(M) = %ld\n", n, mesh.n_cells(),
+              mesh.n_vertices(), long(L.S.nonZeros()));
+  std::printf("RSS at start %.0f MB, mesh %.0f MB (RSS growth while generating), matrices %.0f MB\n", rss0 / 1024.0,
+              mesh_kb / 1024, matrices / 1024 / 1024);
+  std::printf("peak RSS %.0f MB (%.0f MB when the peak was reset, after the mesh); peak above start / (matrices + "
+              "mesh) = %.2f\n",
+              hwm / 1024.0, hwm_reset / 1024.0, peak_kb / (matrices / 1024 + mesh_kb));
+  return 0;
+}
+
+void bench_volumes(int big, int reps) {
+  std::fprintf(stderr, "volume assembly vs plain volume reference...\n");
+  try {
+    bench_volume("cube_hexahedron_4", read_volume_mesh(shared("volume/cube_hexahedron_4.ovm")), reps);
+  } catch (const std::exception& e) {
+    add({"volume S+M+lumped, 1 thread", "cube_hexahedron_4", "", "", 0, 0, 0, 0, std::string("skipped: ") + e.what()});
+  }
+  const VolumeMesh grid16 = hex_grid_volume(16, 16, 16);
+  bench_volume("hex grid 16^3", grid16, reps);
+  bench_volume_threads("hex grid 16^3", grid16, reps);
+  if (big > 0) {
+    std::fprintf(stderr, "generating hex_grid_volume(%d^3)...\n", big);
+    const VolumeMesh grid = hex_grid_volume(big, big, big);
+    bench_volume(fmt::format("hex grid {}^3", big), grid, 1);
+    bench_volume_threads(fmt::format("hex grid {}^3", big), grid, 1);
+  }
+}
+
 std::string status(const Row& r) {
   if (r.required == 0) return "(reported)";
   if (r.required < 0) return r.ratio <= -r.required ? "met" : fmt::format("MISSED by {:.2f}x", r.ratio / -r.required);
   return r.ratio >= r.required ? "met" : fmt::format("MISSED ({:.0f}% of target)", 100 * r.ratio / r.required);
 }
 
+// The rows so far as a Markdown table on stdout.
+void print_table() {
+  std::printf("| target | mesh | baseline | ours | baseline ms | ours ms | ratio | required | status | notes |\n");
+  std::printf("|---|---|---|---|---:|---:|---:|---:|---|---|\n");
+  for (const Row& r : rows) {
+    const std::string req = r.required > 0 ? fmt::format(">= {:g}x", r.required)
+                            : r.required < 0 ? fmt::format("<= {:g}x", -r.required)
+                                             : "";
+    std::printf("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", r.target.c_str(), r.mesh.c_str(),
+                r.baseline.c_str(), r.ours.c_str(), r.base_ms > 0 ? fmt::format("{:.2f}", r.base_ms).c_str() : "",
+                r.ours_ms > 0 ? fmt::format("{:.2f}", r.ours_ms).c_str() : "",
+                r.ratio > 0 ? fmt::format("{:.2f}x", r.ratio).c_str() : "", req.c_str(),
+                r.ratio > 0 ? status(r).c_str() : "skipped", r.note.c_str());
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  int big = 500, reps = 5, blas_threads = 1;
+  int big = 500, reps = 5, blas_threads = 1, volume_big = 100;
   bool with_big = true, quick = false, big_geodesics = true;  // --quick: assembly rows on HEX and FINE only
   std::string only;  // --only spectrum|feec|geodesics|cholesky: that section alone, on FINE SPHERE;
                      // form-spectrum: on a 100k-face quad sphere
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--memory-child" && i + 1 < argc) return memory_child(std::stoi(argv[i + 1]));
+    if (a == "--volume-memory" && i + 1 < argc) return volume_memory(std::stoi(argv[i + 1]));
+    if (a == "--profile" && i + 1 < argc && std::string(argv[i + 1]) == "volume") {
+      // one volume assembly of hex_grid_volume(16^3) (with `plain`: also the plain volume reference)
+      const VolumeMesh grid = hex_grid_volume(16, 16, 16);
+      SparseMatrix Sp, Mp;
+      if (i + 2 < argc && std::string(argv[i + 2]) == "plain")
+        plain_volume_reference::build(plain_volume_reference::from_volume_mesh(grid), Sp, Mp);
+      const VolumeLaplacian L = assemble_volume_laplacian(grid, refine_volume(grid));
+      return L.S.nonZeros() + Sp.nonZeros() > 0 ? 0 : 1;
+    }
     if (a == "--profile") {  // one assembly of FINE SPHERE (or `plain`, or `star1`), for valgrind --tool=callgrind
       const Mesh hex = project_to_unit_sphere(dual(read_mesh(shared("unit-sphere.off"))));
       const Mesh fine = project_to_unit_sphere(catmull_clark(hex));
@@ -438,13 +558,14 @@ int main(int argc, char** argv) {
     }
     if (a == "--big" && i + 1 < argc) big = std::stoi(argv[++i]);
     else if (a == "--no-big") with_big = false;
+    else if (a == "--volume-big" && i + 1 < argc) volume_big = std::stoi(argv[++i]);
     else if (a == "--quick") quick = true;
     else if (a == "--no-big-geodesics") big_geodesics = false;
     else if (a == "--only" && i + 1 < argc) only = argv[++i];
     else if (a == "--blas-threads" && i + 1 < argc) blas_threads = std::stoi(argv[++i]);
     else if (a == "--reps" && i + 1 < argc) reps = std::stoi(argv[++i]);
     else {
-      std::fprintf(stderr, "usage: polydec_bench [--big N] [--no-big] [--quick] [--reps K] [--blas-threads N] [--no-big-geodesics] [--only SECTION]\n");
+      std::fprintf(stderr, "usage: polydec_bench [--big N] [--no-big] [--quick] [--reps K] [--blas-threads N] [--no-big-geodesics] [--only SECTION] [--volume-big N]\n");
       return 2;
     }
   }
@@ -477,6 +598,11 @@ int main(int argc, char** argv) {
     else if (only == "feec") bench_feec("FINE SPHERE", fine, reps);
     else if (only == "geodesics") bench_geodesics("FINE SPHERE", fine, 9);
     else if (only == "cholesky") bench_cholesky("FINE SPHERE", assemble_all(fine, 1), 3);
+    else if (only == "volume") {
+      bench_volumes(volume_big, reps);
+      print_table();
+      std::printf("\nload average at the end: %s\n", load_note().c_str());
+    }
     else std::fprintf(stderr, "unknown section '%s'\n", only.c_str());
     return 0;
   }
@@ -526,18 +652,9 @@ int main(int argc, char** argv) {
   std::fprintf(stderr, "spectrum...\n");
   bench_spectrum("FINE SPHERE", fine, 3);
 
-  std::printf("| target | mesh | baseline | ours | baseline ms | ours ms | ratio | required | status | notes |\n");
-  std::printf("|---|---|---|---|---:|---:|---:|---:|---|---|\n");
-  for (const Row& r : rows) {
-    const std::string req = r.required > 0 ? fmt::format(">= {:g}x", r.required)
-                            : r.required < 0 ? fmt::format("<= {:g}x", -r.required)
-                                             : "";
-    std::printf("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", r.target.c_str(), r.mesh.c_str(),
-                r.baseline.c_str(), r.ours.c_str(), r.base_ms > 0 ? fmt::format("{:.2f}", r.base_ms).c_str() : "",
-                r.ours_ms > 0 ? fmt::format("{:.2f}", r.ours_ms).c_str() : "",
-                r.ratio > 0 ? fmt::format("{:.2f}x", r.ratio).c_str() : "", req.c_str(),
-                r.ratio > 0 ? status(r).c_str() : "skipped", r.note.c_str());
-  }
+  bench_volumes(with_big ? volume_big : 0, reps);
+
+  print_table();
   std::printf("\nmeshes: HEX SPHERE %d faces, FINE SPHERE %d faces%s%s\n", hex.n_faces(), fine.n_faces(),
               bunny_error.empty() ? fmt::format(", bunny-hexa {} faces", bunny.n_faces()).c_str() : "",
               with_big ? fmt::format(", {} = cube_sphere({}) {} faces", big_name, big, quad_big.n_faces()).c_str() : "");

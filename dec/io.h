@@ -58,8 +58,9 @@ void write_mesh(const std::string& path, const Mesh& mesh, const VertexScalars& 
 
 // Matrix Market "coordinate real general", 1-based, 17 significant digits.
 void write_matrix_market(const std::string& path, const Eigen::SparseMatrix<double>& A);
-// Reads a Matrix Market coordinate file (real or integer; general, symmetric or
-// skew-symmetric; duplicate entries are summed). Throws FileError.
+// Reads a Matrix Market file, coordinate (duplicate entries are summed) or dense array format
+// (column by column; zeros not stored), real or integer; general, symmetric or skew-symmetric.
+// Throws FileError.
 Eigen::SparseMatrix<double> read_matrix_market(const std::string& path);
 Eigen::SparseMatrix<double> read_matrix_market_from_memory(std::string_view bytes, const std::string& name);
 

@@ -1,6 +1,6 @@
-// dec/io_matrix_market.cpp — Matrix Market coordinate files: written as "real general",
-// 1-based, 17 significant digits; read as real or integer, general, symmetric or
-// skew-symmetric.
+// dec/io_matrix_market.cpp — Matrix Market files: written as coordinate "real general", 1-based,
+// 17 significant digits; read in the coordinate or the dense array format (what `polydec spectrum`
+// writes for eigenvectors), real or integer, general, symmetric or skew-symmetric.
 #include <climits>
 #include <filesystem>
 #include <fstream>
@@ -10,6 +10,49 @@
 namespace polydec {
 
 using namespace io_detail;
+
+namespace {
+
+// The values of an array-format file after its size line: column by column, all r x c of them
+// (general) or the lower triangle with the diagonal (symmetric; skew-symmetric: strictly lower).
+// Zeros are not stored in the sparse result.
+Eigen::SparseMatrix<double> read_array_values(LineReader& lines, const std::string& name, long long r,
+                                              long long c, double mirror) {
+  const bool strict = mirror < 0;
+  // In 128 bits: r and c may each be near their limit in a hostile file.
+  const __int128 wide = mirror == 0.0 ? (__int128)r * c
+                        : strict      ? (__int128)c * (c - 1) / 2
+                                      : (__int128)c * (c + 1) / 2;
+  if (wide > (__int128)(lines.remaining() + 1) / 2)
+    throw FileError(name, lines.line(), -1,
+                    fmt::format("claims a {} x {} array but only {} bytes follow", r, c, lines.remaining()));
+  const long long count = (long long)wide;
+  std::vector<Eigen::Triplet<double>> t;
+  std::string_view line;
+  std::vector<std::string_view> tok;
+  long long read = 0;
+  for (long long j = 0; j < c; ++j) {
+    for (long long i = mirror == 0.0 ? 0 : strict ? j + 1 : j; i < r; ++i, ++read) {
+      do {
+        if (!lines.next(line))
+          throw FileError(name, lines.line(), -1,
+                          fmt::format("unexpected end of file after {} of {} values", read, count));
+        split(line, tok);
+      } while (tok.empty() || tok[0][0] == '%');
+      double v;
+      if (tok.size() != 1 || !parse_double(tok[0], v))
+        throw FileError(name, lines.line(), -1, "expected one VALUE per line");
+      if (v == 0.0) continue;
+      t.emplace_back(int(i), int(j), v);
+      if (mirror != 0.0 && i != j) t.emplace_back(int(j), int(i), mirror * v);
+    }
+  }
+  Eigen::SparseMatrix<double> A(r, c);
+  A.setFromTriplets(t.begin(), t.end());
+  return A;
+}
+
+}  // namespace
 
 void write_matrix_market(const std::string& path, const Eigen::SparseMatrix<double>& A) {
   fmt::memory_buffer b;
@@ -33,8 +76,10 @@ Eigen::SparseMatrix<double> read_matrix_market_from_memory(std::string_view byte
   if (!lines.next(line)) throw FileError(name, 0, -1, "empty file (no %%MatrixMarket header)");
   split(line, tok);
   if (tok.size() != 5 || tok[0] != "%%MatrixMarket" || lower(tok[1]) != "matrix")
-    throw FileError(name, 1, -1, "expected '%%MatrixMarket matrix coordinate FIELD SYMMETRY'");
-  if (lower(tok[2]) != "coordinate") throw FileError(name, 1, -1, "only the coordinate format is supported");
+    throw FileError(name, 1, -1, "expected '%%MatrixMarket matrix coordinate|array FIELD SYMMETRY'");
+  const std::string format = lower(tok[2]);
+  if (format != "coordinate" && format != "array")
+    throw FileError(name, 1, -1, "format " + quote(tok[2]) + " not supported (coordinate or array)");
   const std::string field = lower(tok[3]), symmetry = lower(tok[4]);
   if (field != "real" && field != "integer" && field != "double")
     throw FileError(name, 1, -1, "field " + quote(tok[3]) + " not supported (real or integer)");
@@ -51,22 +96,29 @@ Eigen::SparseMatrix<double> read_matrix_market_from_memory(std::string_view byte
     return false;
   };
   if (!next_data()) throw FileError(name, lines.line(), -1, "no size line");
-  long long r, c, nnz;
-  if (tok.size() != 3 || !parse_int(tok[0], r) || !parse_int(tok[1], c) || !parse_int(tok[2], nnz) || r < 0 ||
-      c < 0 || nnz < 0)
+  const bool array = format == "array";
+  long long r, c, nnz = 0;
+  if (array) {
+    if (tok.size() != 2 || !parse_int(tok[0], r) || !parse_int(tok[1], c) || r < 0 || c < 0)
+      throw FileError(name, lines.line(), -1, "expected 'ROWS COLS', two non-negative integers");
+  } else if (tok.size() != 3 || !parse_int(tok[0], r) || !parse_int(tok[1], c) || !parse_int(tok[2], nnz) ||
+             r < 0 || c < 0 || nnz < 0) {
     throw FileError(name, lines.line(), -1, "expected 'ROWS COLS ENTRIES', three non-negative integers");
+  }
   if (r > INT_MAX || c > INT_MAX) throw FileError(name, lines.line(), -1, "matrix too large");
   // Assembly stores one index per row and per column (setFromTriplets goes through the transposed
   // storage): a few bytes must not claim gigabytes.
   const long long max_dimension = (long long)bytes.size() * 64 + (1 << 20);
   if (r > max_dimension || c > max_dimension)
-    throw FileError(name, lines.line(), -1,
-                    fmt::format("claims a {} x {} matrix in a file of {} bytes (at most 64 rows or columns per "
-                                "byte plus 2^20)",
-                                r, c, bytes.size()));
+    throw FileError(
+        name, lines.line(), -1,
+        fmt::format("claims a {} x {} matrix in a file of {} bytes (at most 64 rows or columns per "
+                    "byte plus 2^20)",
+                    r, c, bytes.size()));
   if (mirror != 0.0 && r != c)
     throw FileError(name, lines.line(), -1,
                     fmt::format("{} matrix must be square, is {} x {}", symmetry, r, c));
+  if (array) return read_array_values(lines, name, r, c, mirror);
   if (nnz > (long long)(lines.remaining() + 1) / 6)
     throw FileError(name, lines.line(), -1,
                     fmt::format("claims {} entries but only {} bytes follow", nnz, lines.remaining()));

@@ -17,62 +17,6 @@ namespace {
 
 using namespace io_detail;
 
-class MeditTokens {
- public:
-  MeditTokens(std::string_view text, const std::string& name) : text_(text), name_(name) {}
-  bool next(std::string_view& t) {
-    for (;;) {
-      while (pos_ < text_.size() && (is_space(text_[pos_]) || text_[pos_] == '\n')) {
-        if (text_[pos_] == '\n') ++line_;
-        ++pos_;
-      }
-      if (pos_ < text_.size() && text_[pos_] == '#') {
-        while (pos_ < text_.size() && text_[pos_] != '\n') ++pos_;
-        continue;
-      }
-      break;
-    }
-    if (pos_ >= text_.size()) return false;
-    const size_t b = pos_;
-    while (pos_ < text_.size() && !is_space(text_[pos_]) && text_[pos_] != '\n') ++pos_;
-    t = text_.substr(b, pos_ - b);
-    token_line_ = line_;
-    return true;
-  }
-  long line() const { return token_line_; }
-  size_t remaining() const { return text_.size() - pos_; }
-  [[noreturn]] void fail(long line, const std::string& reason) const {
-    throw FileError(name_, line, -1, reason);
-  }
-  std::string_view expect(const char* what) {
-    std::string_view t;
-    if (!next(t)) fail(line_, fmt::format("unexpected end of file: expected {}", what));
-    return t;
-  }
-  long long integer(const char* what) {
-    const std::string_view t = expect(what);
-    long long x;
-    if (!parse_int(t, x)) fail(token_line_, fmt::format("bad {} {}", what, quote(t)));
-    return x;
-  }
-  long long count(const std::string& section, long long min_bytes) {
-    const long long n = integer("count");
-    if (n < 0) fail(token_line_, fmt::format("negative {} count {}", section, n));
-    if (n > INT_MAX / 2)
-      fail(token_line_, fmt::format("{} count {} is too large (at most {})", section, n, INT_MAX / 2));
-    if (n * min_bytes > (long long)remaining() + 1)
-      fail(token_line_, fmt::format("{} count {} needs at least {} bytes but only {} follow", section, n,
-                                    n * min_bytes, remaining()));
-    return n;
-  }
-
- private:
-  std::string_view text_;
-  const std::string& name_;
-  size_t pos_ = 0;
-  long line_ = 1, token_line_ = 0;
-};
-
 // Numbers per record of the sections that are skipped (lower-case keyword).
 int skipped_record_size(const std::string& k) {
   if (k == "edges") return 3;
@@ -92,8 +36,7 @@ int skipped_record_size(const std::string& k) {
 namespace io_detail {
 
 PolyhedronRead read_medit(std::string_view bytes, const std::string& name) {
-  using io_medit_detail::MeditTokens;
-  MeditTokens in(strip_bom(bytes), name);
+  VolumeTokens in(strip_bom(bytes), name, true);
   std::string_view t;
   if (!in.next(t)) in.fail(0, "empty file (no MeshVersionFormatted)");
   if (lower(t) != "meshversionformatted")
@@ -123,7 +66,7 @@ PolyhedronRead read_medit(std::string_view bytes, const std::string& name) {
       if (!have_dimension) in.fail(kline, "Vertices before 'Dimension 3'");
       if (have_vertices) in.fail(kline, "a second Vertices section");
       have_vertices = true;
-      nv = in.count("Vertices", 8);
+      nv = in.count("Vertices count", 8);
       r.soup.positions.resize(nv, 3);
       r.vertex_where.resize(nv);
       for (long long v = 0; v < nv; ++v) {
@@ -140,7 +83,7 @@ PolyhedronRead read_medit(std::string_view bytes, const std::string& name) {
       const int type = k == "tetrahedra" ? kVtkTetra : kVtkHexahedron;
       const int n = vtk_cell_size(type);
       const std::string section(t);
-      const long long count = in.count(section, 2LL * (n + 1));
+      const long long count = in.count(section + " count", 2LL * (n + 1));
       CellBlock b{type, count, {}, {}};
       b.ids.reserve(count * n);
       b.lines.reserve(count);
@@ -160,7 +103,7 @@ PolyhedronRead read_medit(std::string_view bytes, const std::string& name) {
       in.fail(kline,
               fmt::format("the MEDIT section '{}' is not supported (Tetrahedra and Hexahedra are read)", t));
     } else if (const int m = io_medit_detail::skipped_record_size(k); m > 0) {
-      const long long count = in.count(std::string(t), 2LL * m);
+      const long long count = in.count(std::string(t) + " count", 2LL * m);
       for (long long i = 0; i < count * m; ++i) in.expect("a number");
     } else {
       in.fail(kline, fmt::format("unknown MEDIT keyword {}", quote(t)));

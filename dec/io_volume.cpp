@@ -22,6 +22,14 @@ constexpr const char* kFormats = "ovm, vtk, mesh";
 
 bool known(const std::string& f) { return f == "ovm" || f == "vtk" || f == "mesh"; }
 
+void write_bytes(const std::string& path, const std::string& data) {
+  std::ofstream out(path, std::ios::binary);
+  if (!out) throw FileError(path, 0, -1, "cannot open file for writing");
+  out.write(data.data(), std::streamsize(data.size()));
+  out.close();
+  if (!out) throw FileError(path, 0, -1, "write failed");
+}
+
 // The format by extension; for another extension, by the file's first word ("OVM", "# vtk",
 // "MeshVersionFormatted"), so that `--volume` can read a file of any name.
 std::string checked_format(const std::string& path, std::string_view bytes) {
@@ -104,11 +112,24 @@ void write_volume_mesh(const VolumeMesh& mesh, const std::string& path) {
     throw FileError(path, 0, -1, fmt::format("unknown volume mesh format '.{}' ({})", f, kFormats));
   const std::string data =
       f == "mesh" ? io_detail::write_medit(mesh, path) : write_volume_mesh_to_string(mesh, f);
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw FileError(path, 0, -1, "cannot open file for writing");
-  out.write(data.data(), std::streamsize(data.size()));
-  out.close();
-  if (!out) throw FileError(path, 0, -1, "write failed");
+  write_bytes(path, data);
+}
+
+void write_volume_vtk_with_point_data(const VolumeMesh& mesh, const std::string& path,
+                                      const VertexScalars& scalars) {
+  if (extension(path) != "vtk") throw FileError(path, 0, -1, "point data needs a VTK file (.vtk)");
+  std::string data = io_detail::write_vtk(mesh);
+  if (!scalars.empty()) data += fmt::format("POINT_DATA {}\n", mesh.n_vertices());
+  for (const auto& [name, values] : scalars) {
+    if (values.size() != mesh.n_vertices())
+      throw std::invalid_argument(
+          fmt::format("point data '{}': {} values for {} vertices", name, values.size(), mesh.n_vertices()));
+    if (name.empty() || name.find_first_of(" \t\n") != std::string::npos)
+      throw std::invalid_argument(fmt::format("point data name '{}' is empty or has white space", name));
+    data += fmt::format("SCALARS {} double 1\nLOOKUP_TABLE default\n", name);
+    for (double v : values) data += fmt::format("{:.17g}\n", v);
+  }
+  write_bytes(path, data);
 }
 
 }  // namespace polydec

@@ -35,6 +35,12 @@ VolumeMesh read_volume_mesh_from_memory(std::string_view bytes, std::string_view
 // MEDIT holds tetrahedra and hexahedra only: another cell throws FileError. Throws FileError
 // when the file cannot be written.
 void write_volume_mesh(const VolumeMesh& mesh, const std::string& path);
+// A VTK legacy file (extension .vtk required, else FileError) of the mesh followed by a POINT_DATA
+// section with one "SCALARS NAME double 1" array per entry (|V| values each, 17 significant digits;
+// non-finite values written as nan/inf). The reader ignores that section, so the file reads back
+// as the mesh. Throws std::invalid_argument for an array of the wrong size or a name with spaces.
+void write_volume_vtk_with_point_data(const VolumeMesh& mesh, const std::string& path,
+                                      const VertexScalars& scalars);
 // The file's bytes for `format` ("ovm", "vtk" or "mesh").
 std::string write_volume_mesh_to_string(const VolumeMesh& mesh, std::string_view format);
 

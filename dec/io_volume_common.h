@@ -1,11 +1,14 @@
 // dec/io_volume_common.h — internal to the volume readers and writers (not installed API): the
-// reader result with the line of every vertex, face and cell, and the per-format entry points.
+// reader result with the line of every vertex, face and cell, the per-format entry points, and
+// the whitespace token reader of the VTK and MEDIT readers.
 #pragma once
 
+#include <climits>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "polydec/dec/io_common.h"
 #include "polydec/dec/io_volume.h"
 
 namespace polydec::io_detail {
@@ -15,6 +18,88 @@ namespace polydec::io_detail {
 struct PolyhedronRead {
   PolyhedronSoup soup;
   std::vector<long> vertex_where, face_where, cell_where;
+};
+
+// Whitespace-separated tokens with the line each starts on; errors are FileErrors naming the file
+// and line. With `hash_comments`, '#' starts a comment to the end of the line (MEDIT).
+class VolumeTokens {
+ public:
+  VolumeTokens(std::string_view text, const std::string& name, bool hash_comments = false)
+      : text_(text), name_(name), hash_comments_(hash_comments) {}
+
+  bool next(std::string_view& t) {
+    for (;;) {
+      while (pos_ < text_.size() && (is_space(text_[pos_]) || text_[pos_] == '\n')) {
+        if (text_[pos_] == '\n') ++line_;
+        ++pos_;
+      }
+      if (hash_comments_ && pos_ < text_.size() && text_[pos_] == '#') {
+        while (pos_ < text_.size() && text_[pos_] != '\n') ++pos_;
+        continue;
+      }
+      break;
+    }
+    if (pos_ >= text_.size()) return false;
+    const size_t b = pos_;
+    while (pos_ < text_.size() && !is_space(text_[pos_]) && text_[pos_] != '\n') ++pos_;
+    t = text_.substr(b, pos_ - b);
+    token_line_ = line_;
+    return true;
+  }
+  // The rest of the current line (after the last token), for VTK's title.
+  std::string_view rest_of_line() {
+    const size_t e = text_.find('\n', pos_);
+    const size_t end = e == std::string_view::npos ? text_.size() : e;
+    std::string_view r = text_.substr(pos_, end - pos_);
+    pos_ = end;
+    return r;
+  }
+  // Skips to the start of the next line.
+  void skip_line() {
+    const size_t e = text_.find('\n', pos_);
+    pos_ = e == std::string_view::npos ? text_.size() : e + 1;
+    if (e != std::string_view::npos) ++line_;
+  }
+  long line() const { return token_line_; }
+  long current_line() const { return line_; }
+  size_t remaining() const { return text_.size() - pos_; }
+
+  [[noreturn]] void fail(long line, const std::string& reason) const { throw FileError(name_, line, -1, reason); }
+
+  std::string_view expect(const char* what) {
+    std::string_view t;
+    if (!next(t)) fail(line_, fmt::format("unexpected end of file: expected {}", what));
+    return t;
+  }
+  long long integer(const char* what) {
+    const std::string_view t = expect(what);
+    long long x;
+    if (!parse_int(t, x)) fail(token_line_, fmt::format("bad {} {}", what, quote(t)));
+    return x;
+  }
+  // A count named `what`, at most INT_MAX / 2 and at most what the remaining bytes can hold at
+  // `min_bytes` per record.
+  long long count(const std::string& what, long long min_bytes) {
+    const long long n = integer(what.c_str());
+    if (n < 0) fail(token_line_, fmt::format("negative {} {}", what, n));
+    if (n > INT_MAX / 2) fail(token_line_, fmt::format("{} {} is too large (at most {})", what, n, INT_MAX / 2));
+    if (n * min_bytes > (long long)remaining() + 1)
+      fail(token_line_,
+           fmt::format("{} {} needs at least {} bytes but only {} follow", what, n, n * min_bytes, remaining()));
+    return n;
+  }
+  // The keyword k (case-insensitive).
+  void keyword(const char* k) {
+    const std::string_view t = expect(k);
+    if (lower(t) != lower(k)) fail(token_line_, fmt::format("expected '{}', found {}", k, quote(t)));
+  }
+
+ private:
+  std::string_view text_;
+  const std::string& name_;
+  bool hash_comments_;
+  size_t pos_ = 0;
+  long line_ = 1, token_line_ = 0;
 };
 
 PolyhedronRead read_ovm(std::string_view bytes, const std::string& name);

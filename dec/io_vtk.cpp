@@ -18,79 +18,6 @@ namespace {
 
 using namespace io_detail;
 
-// Whitespace-separated tokens with the line each starts on.
-class Tokens {
- public:
-  Tokens(std::string_view text, const std::string& name) : text_(text), name_(name) {}
-
-  bool next(std::string_view& t) {
-    while (pos_ < text_.size() && (is_space(text_[pos_]) || text_[pos_] == '\n')) {
-      if (text_[pos_] == '\n') ++line_;
-      ++pos_;
-    }
-    if (pos_ >= text_.size()) return false;
-    const size_t b = pos_;
-    while (pos_ < text_.size() && !is_space(text_[pos_]) && text_[pos_] != '\n') ++pos_;
-    t = text_.substr(b, pos_ - b);
-    token_line_ = line_;
-    return true;
-  }
-  // The rest of the current line (after the last token), for the title.
-  std::string_view rest_of_line() {
-    const size_t e = text_.find('\n', pos_);
-    const size_t end = e == std::string_view::npos ? text_.size() : e;
-    std::string_view r = text_.substr(pos_, end - pos_);
-    pos_ = end;
-    return r;
-  }
-  // Skips to the start of the next line.
-  void skip_line() {
-    const size_t e = text_.find('\n', pos_);
-    pos_ = e == std::string_view::npos ? text_.size() : e + 1;
-    if (e != std::string_view::npos) ++line_;
-  }
-  long line() const { return token_line_; }
-  long current_line() const { return line_; }
-  size_t remaining() const { return text_.size() - pos_; }
-
-  [[noreturn]] void fail(long line, const std::string& reason) const {
-    throw FileError(name_, line, -1, reason);
-  }
-
-  std::string_view expect(const char* what) {
-    std::string_view t;
-    if (!next(t)) fail(line_, fmt::format("unexpected end of file: expected {}", what));
-    return t;
-  }
-  long long integer(const char* what) {
-    const std::string_view t = expect(what);
-    long long x;
-    if (!parse_int(t, x)) fail(token_line_, fmt::format("bad {} {}", what, quote(t)));
-    return x;
-  }
-  // A count, at most INT_MAX / 2 and at most what the remaining bytes can hold.
-  long long count(const char* what, long long min_bytes) {
-    const long long n = integer(what);
-    if (n < 0) fail(token_line_, fmt::format("negative {} {}", what, n));
-    if (n > INT_MAX / 2)
-      fail(token_line_, fmt::format("{} {} is too large (at most {})", what, n, INT_MAX / 2));
-    if (n * min_bytes > (long long)remaining() + 1)
-      fail(token_line_, fmt::format("{} {} needs at least {} bytes but only {} follow", what, n,
-                                    n * min_bytes, remaining()));
-    return n;
-  }
-  void keyword(const char* k) {
-    const std::string_view t = expect(k);
-    if (lower(t) != lower(k)) fail(token_line_, fmt::format("expected '{}', found {}", k, quote(t)));
-  }
-
- private:
-  std::string_view text_;
-  const std::string& name_;
-  size_t pos_ = 0;
-  long line_ = 1, token_line_ = 0;
-};
-
 const char* type_name(long long t) {
   switch (t) {
     case 1:
@@ -116,8 +43,7 @@ const char* type_name(long long t) {
 namespace io_detail {
 
 PolyhedronRead read_vtk(std::string_view bytes, const std::string& name) {
-  using io_vtk_detail::Tokens;
-  Tokens in(strip_bom(bytes), name);
+  VolumeTokens in(strip_bom(bytes), name);
   // Header line, title line, ASCII, DATASET UNSTRUCTURED_GRID.
   std::string_view t;
   if (!in.next(t)) in.fail(0, "empty file (no '# vtk DataFile' header)");

@@ -2,6 +2,7 @@
 #include "polydec/dec/volume_complex.h"
 
 #include <algorithm>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -47,7 +48,7 @@ Eigen::SparseMatrix<double> coboundary(const SimplexComplex3& cx,
 }  // namespace volume_complex_detail
 
 SimplexComplex3::SimplexComplex3(int n_vertices, const std::vector<int>& offsets,
-                                 const std::vector<int>& groups)
+                                 const std::vector<int>& groups, int max_dimension)
     : n_vertices_(n_vertices) {
   std::vector<int> g;
   for (size_t k = 0; k + 1 < offsets.size(); ++k) {
@@ -55,11 +56,11 @@ SimplexComplex3::SimplexComplex3(int n_vertices, const std::vector<int>& offsets
     std::sort(g.begin(), g.end());
     const int m = int(g.size());
     for (int a = 0; a < m; ++a)
-      for (int b = a + 1; b < m; ++b) {
+      for (int b = a + 1; b < m && max_dimension >= 1; ++b) {
         pairs_.push_back({g[a], g[b]});
-        for (int c = b + 1; c < m; ++c) {
+        for (int c = b + 1; c < m && max_dimension >= 2; ++c) {
           triples_.push_back({g[a], g[b], g[c]});
-          for (int d = c + 1; d < m; ++d) quads_.push_back({g[a], g[b], g[c], g[d]});
+          for (int d = c + 1; d < m && max_dimension >= 3; ++d) quads_.push_back({g[a], g[b], g[c], g[d]});
         }
       }
   }
@@ -118,18 +119,42 @@ Eigen::MatrixXi SimplexComplex3::simplices(int k) const {
   return out;
 }
 
-SimplexComplex3 volume_coarse_complex(const VolumeMesh& mesh) {
+int max_dec_cell_vertices(int k) {
+  if (k < 0 || k > 3) throw std::invalid_argument("DEC degree " + std::to_string(k) + " (0..3)");
+  if (k == 0) return std::numeric_limits<int>::max();
+  // The largest m with C(m, k+1)^2 <= kMaxDecLocalBlock.
+  auto block = [k](long m) {
+    long c = 1;
+    for (long i = 0; i <= k; ++i) c = c * (m - i) / (i + 1);
+    return c * c;
+  };
+  int m = k + 1;
+  while (block(m + 1) <= kMaxDecLocalBlock) ++m;
+  return m;
+}
+
+int volume_dec_max_degree(const VolumeMesh& mesh) {
+  size_t largest = 0;
+  for (int c = 0; c < mesh.n_cells(); ++c) largest = std::max(largest, mesh.cell_vertices(c).size());
+  int k = 0;
+  while (k < 3 && int(largest) <= max_dec_cell_vertices(k + 1)) ++k;
+  return k;
+}
+
+SimplexComplex3 volume_coarse_complex(const VolumeMesh& mesh, int max_degree) {
+  const int limit = max_dec_cell_vertices(max_degree);
   std::vector<int> offsets{0}, groups;
   for (int c = 0; c < mesh.n_cells(); ++c) {
     const auto v = mesh.cell_vertices(c);
-    if (int(v.size()) > kMaxDecCellVertices)
+    if (int(v.size()) > limit)
       throw std::invalid_argument("cell " + std::to_string(c) + " has " + std::to_string(v.size()) +
-                                  " vertices; DEC on volumes supports cells of at most " +
-                                  std::to_string(kMaxDecCellVertices));
+                                  " vertices; DEC of degree " + std::to_string(max_degree) +
+                                  " on volumes supports cells of at most " + std::to_string(limit) +
+                                  " (this mesh allows degree " + std::to_string(volume_dec_max_degree(mesh)) + ")");
     groups.insert(groups.end(), v.begin(), v.end());
     offsets.push_back(int(groups.size()));
   }
-  return SimplexComplex3(mesh.n_vertices(), offsets, groups);
+  return SimplexComplex3(mesh.n_vertices(), offsets, groups, max_degree);
 }
 
 SimplexComplex3 volume_refined_complex(const VolumeMesh& mesh, const VolumeRefinement& refinement) {

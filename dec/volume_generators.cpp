@@ -179,6 +179,76 @@ VolumeMesh hex_grid_volume(int nx, int ny, int nz, const VolumeJitter& jitter) {
   return finish(builder, jitter);
 }
 
+VolumeMesh cuboctahedra_volume(int n, const VolumeJitter& jitter) {
+  check_counts(n, n, n, "cuboctahedra_volume");
+  // Points on the half-step lattice (a, b, c) in 0..2n: grid corners (all even) and edge
+  // midpoints (exactly one odd); numbered in order of first use.
+  const int L = 2 * n + 1;
+  std::vector<int> index(size_t(L) * L * L, -1);
+  std::vector<std::array<int, 3>> points;
+  auto id = [&](int a, int b, int c) {
+    int& i = index[(size_t(c) * L + b) * L + a];
+    if (i < 0) {
+      i = int(points.size());
+      points.push_back({a, b, c});
+    }
+    return i;
+  };
+  // Cells as polygon lists over lattice ids, oriented afterwards.
+  std::vector<std::vector<std::vector<int>>> cells;
+  cells.reserve(size_t(9) * n * n * n);
+  static constexpr int kSquare[4][2] = {{1, 0}, {2, 1}, {1, 2}, {0, 1}};
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const int O[3] = {2 * i, 2 * j, 2 * k};
+        auto at = [&](const std::array<int, 3>& p) { return id(O[0] + p[0], O[1] + p[1], O[2] + p[2]); };
+        std::vector<std::vector<int>> cubocta;
+        for (int d = 0; d < 3; ++d)
+          for (int side : {0, 2}) {
+            std::vector<int> square;
+            for (const auto& uv : kSquare) {
+              std::array<int, 3> p{};
+              p[d] = side, p[(d + 1) % 3] = uv[0], p[(d + 2) % 3] = uv[1];
+              square.push_back(at(p));
+            }
+            cubocta.push_back(square);
+          }
+        for (int corner = 0; corner < 8; ++corner) {
+          const std::array<int, 3> c{2 * (corner & 1), (corner & 2), (corner & 4) / 2};
+          std::vector<int> tri;
+          for (int d = 0; d < 3; ++d) {
+            std::array<int, 3> m = c;
+            m[d] = 1;
+            tri.push_back(at(m));
+          }
+          cubocta.push_back(tri);
+          const int apex = at(c);
+          cells.push_back({tri, {apex, tri[0], tri[1]}, {apex, tri[1], tri[2]}, {apex, tri[2], tri[0]}});
+        }
+        cells.push_back(std::move(cubocta));
+      }
+  Eigen::MatrixX3d X(points.size(), 3);
+  for (size_t v = 0; v < points.size(); ++v)
+    for (int d = 0; d < 3; ++d) X(long(v), d) = points[v][d] / (2.0 * n);
+  PolyhedronSoupBuilder builder(X);
+  for (auto& cell : cells) {
+    // Convex cells: a polygon points outward when its normal points away from the cell's centroid.
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    int count = 0;
+    for (const auto& poly : cell)
+      for (int v : poly) centre += X.row(v).transpose(), ++count;
+    centre /= count;
+    for (auto& poly : cell) {
+      const Eigen::Vector3d a = X.row(poly[0]), b = X.row(poly[1]), c = X.row(poly[2]);
+      if ((b - a).cross(c - a).dot(a - centre) < 0) std::reverse(poly.begin(), poly.end());
+      builder.add_polygon(poly);
+    }
+    builder.end_cell();
+  }
+  return finish(builder, jitter);
+}
+
 VolumeMesh tet_grid_volume(int nx, int ny, int nz, const VolumeJitter& jitter) {
   check_counts(nx, ny, nz, "tet_grid_volume");
   const Eigen::MatrixX3d X = grid_positions(nx, ny, nz, 0);

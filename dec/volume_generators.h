@@ -37,6 +37,12 @@ VolumeMesh pyramid_grid_volume(int nx, int ny, int nz, const VolumeJitter& jitte
 // clipped cells are convex polyhedra with planar faces. n^3 + (n+1)^3 cells.
 VolumeMesh truncated_octahedra_volume(int n, const VolumeJitter& jitter = {});
 
+// The cube family of polyLaplace's cube_truncated_L.ovm files (n = 2^(L-1) reproduces level L):
+// each of the n^3 cubes of [0, 1]^3 split into the cuboctahedron on its 12 edge midpoints (6
+// squares, 8 triangles; 5/6 of the cube) and its 8 corner tetrahedra (1/48 each). Grid corners
+// lie in tetrahedra only. 9 n^3 cells, all faces planar.
+VolumeMesh cuboctahedra_volume(int n, const VolumeJitter& jitter = {});
+
 // A hexahedral solid torus: an n_cross x n_cross grid of squares (side 2 r, centred at radius
 // R from the z axis) swept around the z axis in n_around steps. First Betti number 1,
 // V - E + F - C = 0. All faces planar.

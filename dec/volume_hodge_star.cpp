@@ -141,12 +141,13 @@ Eigen::SparseMatrix<double> volume_refined_star(const VolumeMesh& mesh, const Vo
   return S;
 }
 
-VolumeDec volume_dec(const VolumeMesh& mesh, const VolumeRefinement& refinement) {
+VolumeDec volume_dec(const VolumeMesh& mesh, const VolumeRefinement& refinement, int max_degree) {
   VolumeDec D;
-  D.coarse = volume_coarse_complex(mesh);
+  D.max_degree = max_degree;
+  D.coarse = volume_coarse_complex(mesh, max_degree);
   D.refined = volume_refined_complex(mesh, refinement);
-  for (int k = 0; k < 3; ++k) D.d[k] = D.coarse.d(k);
-  for (int k = 0; k < 4; ++k) {
+  for (int k = 0; k < max_degree; ++k) D.d[k] = D.coarse.d(k);
+  for (int k = 0; k <= max_degree; ++k) {
     D.P[k] = volume_prolongation_k(mesh, refinement, D.coarse, D.refined, k);
     const Eigen::SparseMatrix<double> s = volume_refined_star(mesh, refinement, D.refined, k);
     D.star[k] = Eigen::SparseMatrix<double>(D.P[k].transpose() * s * D.P[k]);
@@ -156,8 +157,9 @@ VolumeDec volume_dec(const VolumeMesh& mesh, const VolumeRefinement& refinement)
 
 FormSpan volume_form_span(const VolumeDec& dec, const VolumeMesh& mesh, const VolumeRefinement& refinement,
                           int degree, double tolerance, long max_entries) {
-  if (degree < 1 || degree > 3)
-    throw std::invalid_argument("volume_form_span: degree " + std::to_string(degree) + " (1..3)");
+  if (degree < 1 || degree > dec.max_degree)
+    throw std::invalid_argument("volume_form_span: degree " + std::to_string(degree) + " (1.." +
+                                std::to_string(dec.max_degree) + " for this VolumeDec)");
   // Refined simplices with mass: those of the non-degenerate sub-tetrahedra.
   const Eigen::SparseMatrix<double> s = volume_refined_star(mesh, refinement, dec.refined, degree);
   std::vector<int> rows;

@@ -36,15 +36,17 @@ Eigen::SparseMatrix<double> volume_refined_star(const VolumeMesh& mesh, const Vo
 
 // Everything of DEC on a volume mesh, computed once.
 struct VolumeDec {
+  int max_degree = 3;                   // d_k for k < max_degree, P_k and star_k for k <= max_degree
   SimplexComplex3 coarse, refined;
-  Eigen::SparseMatrix<double> d[3];     // coarse d0, d1, d2
+  Eigen::SparseMatrix<double> d[3];     // coarse d0, d1, d2 (empty beyond max_degree)
   Eigen::SparseMatrix<double> P[4];     // P0..P3
   Eigen::SparseMatrix<double> star[4];  // coarse star0..star3
 };
 
-// Builds the complexes, d0..d2, P0..P3 and star0..star3 (std::invalid_argument when a cell has
-// more than kMaxDecCellVertices vertices).
-VolumeDec volume_dec(const VolumeMesh& mesh, const VolumeRefinement& refinement);
+// Builds the complexes, d_k, P_k and star_k up to degree max_degree (0..3; std::invalid_argument
+// when a cell has more than max_dec_cell_vertices(max_degree) vertices: volume_dec_max_degree
+// tells the largest degree a mesh allows).
+VolumeDec volume_dec(const VolumeMesh& mesh, const VolumeRefinement& refinement, int max_degree = 3);
 
 // The reduced basis of the coarse Whitney k-forms (k = 1, 2, 3; docs/volumes.md): the coarse
 // k-simplices picked by column-pivoted QR of P_k restricted to the refined simplices with mass (a

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "polydec/dec/threads.h"
 #include "polydec/dec/virtual_vertex.h"
 #include "polydec/dec/volume_whitney.h"
 
@@ -25,9 +26,10 @@ void halfface_vertices(const VolumeMesh& mesh, int hf, std::vector<int>& out) {
 SubTet classify(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& f,
                 const Eigen::Vector3d& c, double tolerance) {
   const double vol6 = 6.0 * tet_signed_volume(a, b, f, c);
-  const double longest = std::max(
-      {(b - a).norm(), (f - a).norm(), (c - a).norm(), (f - b).norm(), (c - b).norm(), (c - f).norm()});
-  if (!(std::abs(vol6) > tolerance * longest * longest * longest)) return SubTet::Degenerate;
+  // 6 |vol| > tolerance * longest^3, compared squared (no square roots).
+  const double longest2 = std::max({(b - a).squaredNorm(), (f - a).squaredNorm(), (c - a).squaredNorm(),
+                                    (f - b).squaredNorm(), (c - b).squaredNorm(), (c - f).squaredNorm()});
+  if (!(vol6 * vol6 > tolerance * tolerance * longest2 * longest2 * longest2)) return SubTet::Degenerate;
   // Outward face triangle (a, b, f): its normal n = (b - a) x (f - a) points away from the cell,
   // so a cell point inside gives n . (c - a) < 0, i.e. vol6 < 0.
   return vol6 < 0 ? SubTet::Valid : SubTet::Inverted;
@@ -62,6 +64,11 @@ Eigen::Vector3d squared_volume_minimizer(const Eigen::MatrixX3d& A, const Eigen:
     N += n * n.transpose();
     r += n * n.dot(a);
   }
+  // Well conditioned (the usual case): a Cholesky solve; the closed-form eigenvalues only decide.
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> direct;
+  direct.computeDirect(N, Eigen::EigenvaluesOnly);
+  if (direct.eigenvalues()(0) > 1e-6 * direct.eigenvalues().cwiseAbs().maxCoeff())
+    return centre + N.llt().solve(r);
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(N);
   const Eigen::Vector3d lambda = eig.eigenvalues();
   const double top = lambda.cwiseAbs().maxCoeff();
@@ -76,7 +83,18 @@ Eigen::Vector3d squared_volume_minimizer(const Eigen::MatrixX3d& A, const Eigen:
 Eigen::VectorXd least_norm_affine_weights(const Eigen::MatrixX3d& X, const Eigen::Vector3d& x) {
   const long m = X.rows();
   const Eigen::RowVector3d mean = X.colwise().mean();
-  const Eigen::MatrixXd XcT = (X.rowwise() - mean).transpose();  // 3 x m
+  const Eigen::MatrixX3d Xc = X.rowwise() - mean;
+  // Full column rank (every 3D cell): Xc^+ = Xc (Xc^T Xc)^-1, through the 3x3 Gram matrix when it
+  // is well conditioned (singular values within 1e-5 of each other's scale, so the Gram's
+  // round-off stays near 1e-6 of the COD's threshold); otherwise the decomposition below.
+  const Eigen::Matrix3d G = Xc.transpose() * Xc;
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+  eig.computeDirect(G, Eigen::EigenvaluesOnly);
+  if (eig.eigenvalues()(0) > 1e-10 * eig.eigenvalues()(2)) {
+    const Eigen::Vector3d y = G.llt().solve((x - mean.transpose()).eval());
+    return (Eigen::VectorXd::Constant(m, 1.0 / double(m)) + Xc * y).eval();
+  }
+  const Eigen::MatrixXd XcT = Xc.transpose();  // 3 x m
   Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(XcT);
   cod.setThreshold(1e-12);
   const Eigen::VectorXd v = cod.solve((x - mean.transpose()).eval());
@@ -103,78 +121,103 @@ VolumeRefinement refine_volume(const VolumeMesh& mesh, const VolumeRefinementOpt
   R.options = options;
   const int nF = mesh.n_faces(), nC = mesh.n_cells();
   const auto& P = mesh.positions();
+  // Faces and cells are independent: T threads take contiguous ranges (results independent of T).
+  const int T = std::min(resolve_threads(options.threads), std::max(1, nC / 2048));
 
   R.face_weights.resize(mesh.face_indices().size());
   R.face_points.resize(nF, 3);
-  for (int f = 0; f < nF; ++f) {
-    const auto face = mesh.face(f);
-    PolygonPositions X(face.size(), 3);
-    for (size_t k = 0; k < face.size(); ++k) X.row(k) = P.row(face[k]);
-    const Eigen::VectorXd w = squared_area_weights(X);
-    std::copy(w.data(), w.data() + w.size(), R.face_weights.begin() + mesh.face_offsets()[f]);
-    R.face_points.row(f) = w.transpose() * X;
-  }
+  run_on_threads(T, [&](int t) {
+    std::vector<double> corners, work;
+    for (int f = int(long(nF) * t / T); f < int(long(nF) * (t + 1) / T); ++f) {
+      const auto face = mesh.face(f);
+      const int n = int(face.size());
+      corners.resize(3 * size_t(n));
+      work.resize(3 * size_t(n));
+      for (int k = 0; k < n; ++k)
+        for (int d = 0; d < 3; ++d) corners[3 * k + d] = P(face[k], d);
+      double* w = R.face_weights.data() + mesh.face_offsets()[f];
+      squared_area_weights(corners.data(), n, w, work.data());
+      Eigen::Vector3d x = Eigen::Vector3d::Zero();
+      for (int k = 0; k < n; ++k) x += w[k] * Eigen::Vector3d(corners[3 * k], corners[3 * k + 1], corners[3 * k + 2]);
+      R.face_points.row(f) = x.transpose();
+    }
+  });
 
   R.cell_points.resize(nC, 3);
-  R.cell_weight_offsets.assign(1, 0);
-  R.tet_offsets.assign(1, 0);
-  std::vector<int> hv;
+  R.cell_weight_offsets.assign(size_t(nC) + 1, 0);
+  R.tet_offsets.assign(size_t(nC) + 1, 0);
   for (int c = 0; c < nC; ++c) {
-    const auto cell = mesh.cell(c);
-    const auto verts = mesh.cell_vertices(c);
-    const int m = int(verts.size());
     int n_tets = 0;
-    for (int hf : cell) n_tets += mesh.face_size(hf / 2);
-    Eigen::MatrixX3d A(n_tets, 3), B(n_tets, 3), C(n_tets, 3);
-    int t = 0;
-    for (int hf : cell) {
-      halfface_vertices(mesh, hf, hv);
-      const int n = int(hv.size());
-      for (int i = 0; i < n; ++i, ++t) {
-        A.row(t) = R.face_points.row(hf / 2);
-        B.row(t) = P.row(hv[i]);
-        C.row(t) = P.row(hv[(i + 1) % n]);
-      }
-    }
-    const Eigen::Vector3d xc = squared_volume_minimizer(A, B, C);
-    R.cell_points.row(c) = xc.transpose();
-
-    Eigen::MatrixX3d X(m, 3);
-    for (int k = 0; k < m; ++k) X.row(k) = P.row(verts[k]);
-    Eigen::VectorXd w;
-    if (options.cell_rule == CellPointRule::SquaredVolume) {
-      w = least_norm_affine_weights(X, xc);
-    } else {
-      const int nf = int(cell.size());
-      Eigen::MatrixX3d Q(nf + m, 3);
-      for (int k = 0; k < nf; ++k) Q.row(k) = R.face_points.row(cell[k] / 2);
-      Q.bottomRows(m) = X;
-      const Eigen::VectorXd lambda = last_pinned_affine_weights(Q, xc);
-      w = lambda.tail(m);
-      for (int k = 0; k < nf; ++k) {
-        const int f = cell[k] / 2;
-        const auto face = mesh.face(f);
-        const double* wf = R.face_weights.data() + mesh.face_offsets()[f];
-        for (size_t i = 0; i < face.size(); ++i) {
-          const int local = int(std::lower_bound(verts.begin(), verts.end(), face[i]) - verts.begin());
-          w(local) += lambda(k) * wf[i];
+    for (int hf : mesh.cell(c)) n_tets += mesh.face_size(hf / 2);
+    R.tet_offsets[c + 1] = R.tet_offsets[c] + n_tets;
+    R.cell_weight_offsets[c + 1] = R.cell_weight_offsets[c] + int(mesh.cell_vertices(c).size());
+  }
+  R.cell_weights.resize(size_t(R.cell_weight_offsets[nC]));
+  R.tets.resize(size_t(R.tet_offsets[nC]));
+  std::vector<SubTetQuality> quality(T);
+  run_on_threads(T, [&](int thread) {
+    std::vector<int> hv;
+    Eigen::MatrixX3d A, B, C, X;  // reused: no allocation per cell of the same size
+    SubTetQuality& Q = quality[thread];
+    for (int c = int(long(nC) * thread / T); c < int(long(nC) * (thread + 1) / T); ++c) {
+      const auto cell = mesh.cell(c);
+      const auto verts = mesh.cell_vertices(c);
+      const int m = int(verts.size());
+      const int n_tets = R.tet_offsets[c + 1] - R.tet_offsets[c];
+      A.resize(n_tets, 3), B.resize(n_tets, 3), C.resize(n_tets, 3);
+      int t = 0;
+      for (int hf : cell) {
+        halfface_vertices(mesh, hf, hv);
+        const int n = int(hv.size());
+        for (int i = 0; i < n; ++i, ++t) {
+          A.row(t) = R.face_points.row(hf / 2);
+          B.row(t) = P.row(hv[i]);
+          C.row(t) = P.row(hv[(i + 1) % n]);
         }
       }
-    }
-    R.cell_weights.insert(R.cell_weights.end(), w.data(), w.data() + m);
-    R.cell_weight_offsets.push_back(int(R.cell_weights.size()));
+      const Eigen::Vector3d xc = squared_volume_minimizer(A, B, C);
+      R.cell_points.row(c) = xc.transpose();
 
-    bool affected = false;
-    for (int s = 0; s < n_tets; ++s) {
-      const SubTet q = classify(B.row(s).transpose(), C.row(s).transpose(), A.row(s).transpose(), xc,
-                                options.degenerate_tolerance);
-      R.tets.push_back(q);
-      if (q == SubTet::Degenerate) ++R.quality.n_degenerate;
-      if (q == SubTet::Inverted) ++R.quality.n_inverted;
-      affected = affected || q != SubTet::Valid;
+      X.resize(m, 3);
+      for (int k = 0; k < m; ++k) X.row(k) = P.row(verts[k]);
+      Eigen::VectorXd w;
+      if (options.cell_rule == CellPointRule::SquaredVolume) {
+        w = least_norm_affine_weights(X, xc);
+      } else {
+        const int nf = int(cell.size());
+        Eigen::MatrixX3d Qp(nf + m, 3);
+        for (int k = 0; k < nf; ++k) Qp.row(k) = R.face_points.row(cell[k] / 2);
+        Qp.bottomRows(m) = X;
+        const Eigen::VectorXd lambda = last_pinned_affine_weights(Qp, xc);
+        w = lambda.tail(m);
+        for (int k = 0; k < nf; ++k) {
+          const int f = cell[k] / 2;
+          const auto face = mesh.face(f);
+          const double* wf = R.face_weights.data() + mesh.face_offsets()[f];
+          for (size_t i = 0; i < face.size(); ++i) {
+            const int local = int(std::lower_bound(verts.begin(), verts.end(), face[i]) - verts.begin());
+            w(local) += lambda(k) * wf[i];
+          }
+        }
+      }
+      std::copy(w.data(), w.data() + m, R.cell_weights.begin() + R.cell_weight_offsets[c]);
+
+      bool affected = false;
+      for (int s = 0; s < n_tets; ++s) {
+        const SubTet q = classify(B.row(s).transpose(), C.row(s).transpose(), A.row(s).transpose(), xc,
+                                  options.degenerate_tolerance);
+        R.tets[size_t(R.tet_offsets[c] + s)] = q;
+        if (q == SubTet::Degenerate) ++Q.n_degenerate;
+        if (q == SubTet::Inverted) ++Q.n_inverted;
+        affected = affected || q != SubTet::Valid;
+      }
+      if (affected) ++Q.n_cells_affected;
     }
-    if (affected) ++R.quality.n_cells_affected;
-    R.tet_offsets.push_back(int(R.tets.size()));
+  });
+  for (const SubTetQuality& q : quality) {
+    R.quality.n_degenerate += q.n_degenerate;
+    R.quality.n_inverted += q.n_inverted;
+    R.quality.n_cells_affected += q.n_cells_affected;
   }
   return R;
 }

@@ -40,6 +40,8 @@ struct VolumeRefinementOptions {
   // longest edge (relative to its own size: independent of the mesh's scale and position).
   // Degenerate sub-tetrahedra add no stiffness and no Whitney 1-, 2-, 3-form mass.
   double degenerate_tolerance = 1e-8;
+  // Threads for the face and cell loops (0: all hardware threads); results do not depend on it.
+  int threads = 1;
 };
 
 // Sub-tetrahedron quality.
@@ -96,15 +98,17 @@ Eigen::Vector3d refined_position(const VolumeMesh& mesh, const VolumeRefinement&
 // Single-cell kernels (pure functions of positions).
 
 // The point x minimizing sum_t vol(a_t, b_t, c_t, x)^2 over the triangles t (rows of A, B, C):
-// a 3x3 least-squares problem in centred coordinates, solved through the eigen-decomposition of
-// its normal matrix (eigenvalues below 1e-12 of the largest dropped, least-norm offset from the
+// a 3x3 least-squares problem in centred coordinates: a Cholesky solve of its normal matrix when
+// that is well conditioned (smallest eigenvalue above 1e-6 of the largest), else through its
+// eigen-decomposition (eigenvalues below 1e-12 of the largest dropped, least-norm offset from the
 // centre). The minimizer is affine-equivariant (an affine map multiplies every volume by the same
 // determinant).
 Eigen::Vector3d squared_volume_minimizer(const Eigen::MatrixX3d& A, const Eigen::MatrixX3d& B,
                                          const Eigen::MatrixX3d& C);
 
 // Least-norm affine weights w (sum 1) of the points X (m x 3) reproducing x: w = 1/m + Xc^+ (x - mean)
-// with Xc the centred points (pseudo-inverse by complete orthogonal decomposition). Invariant under
+// with Xc the centred points (pseudo-inverse Xc (Xc^T Xc)^-1 through the 3x3 Gram matrix when it is
+// well conditioned, else by complete orthogonal decomposition). Invariant under
 // translations, rotations and uniform scalings of X and x together.
 Eigen::VectorXd least_norm_affine_weights(const Eigen::MatrixX3d& X, const Eigen::Vector3d& x);
 

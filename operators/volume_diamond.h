@@ -29,7 +29,9 @@ VolumeLaplacian assemble_volume_diamond(const VolumeMesh& mesh, const VolumeRefi
 // The same with the default refinement as an OperatorSet (name "diamond (volume)", no surface
 // domain, n_input_vertices = |V|, mean_edge_length of the volume mesh); with_gradient adds G (3 rows
 // per sub-diamond) and D. n_degenerate_triangles / n_folded_triangles count degenerate and folded
-// (negative Gauss volume) sub-diamonds.
-OperatorSet volume_diamond_operators(const VolumeMesh& mesh, bool with_gradient = true);
+// (negative Gauss volume) sub-diamonds; `quality` (optional) receives the refinement's sub-tetrahedron
+// counts. Method "diamond" of operators/volume_laplacians.h.
+OperatorSet volume_diamond_operators(const VolumeMesh& mesh, bool with_gradient = true,
+                                     SubTetQuality* quality = nullptr);
 
 }  // namespace polydec

@@ -37,7 +37,9 @@ struct VolumeLaplacian {
 };
 
 // One pass over the cells; `pattern` (from cell_pattern) may be passed to skip the symbolic step.
+// `threads` (0: all hardware threads) compute the cells' local matrices in blocks and add them by
+// column ranges; results are bitwise identical for every thread count.
 VolumeLaplacian assemble_volume_laplacian(const VolumeMesh& mesh, const VolumeRefinement& refinement,
-                                          const SparseMatrix* pattern = nullptr);
+                                          const SparseMatrix* pattern = nullptr, int threads = 1);
 
 }  // namespace polydec

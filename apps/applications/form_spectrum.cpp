@@ -117,6 +117,7 @@ FormSpectrum form_spectrum(const Mesh& mesh, const FormSpectrumOptions& options)
   if (!(area > 0)) throw SolverError("form spectrum: the mesh has zero area");
 
   FormSpectrum out;
+  out.quality = ref.quality;
   out.degree = options.degree;
   out.shift = -options.shift_factor / area;
   SpMat A, B, C, D, R;

@@ -62,6 +62,9 @@ struct FormSpectrum {
   int n_converged = 0;
   int n_solves = 0;
   std::string method;
+  // Fan triangles of the refinement: a degenerate one (zero area) carries no Whitney form, so each
+  // can add a zero eigenvalue that is no harmonic form (callers should warn).
+  FanQuality quality;
 };
 
 // The k smallest eigenpairs of the Hodge Laplacian on Whitney `degree`-forms. Throws

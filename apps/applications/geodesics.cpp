@@ -67,9 +67,10 @@ HeatGeodesics::HeatGeodesics(const Mesh& mesh, const HeatGeodesicsOptions& optio
 
 HeatGeodesics::HeatGeodesics(OperatorSet operators, double mean_edge_length, const HeatGeodesicsOptions& options)
     : ops_(take(operators)), options_(options) {
-  const Mesh& mesh = ops_.domain;
-  // By shape, not by emptiness: a mesh without faces has a 0 x |V| gradient.
-  const int nv = mesh.n_vertices();
+  // By shape, not by emptiness: a mesh without faces has a 0 x |V| gradient. |V| is S's size, so
+  // that an operator set without a surface domain (a volume mesh's, operators/volume_laplacians.h)
+  // works the same way.
+  const int nv = int(ops_.S.rows());
   if (ops_.G.cols() != nv || ops_.D.rows() != nv)
     throw std::invalid_argument("heat geodesics: Laplacian '" + ops_.name + "' defines no gradient/divergence");
   if (!options.lumped_mass && ops_.M.rows() != nv)
@@ -79,12 +80,12 @@ HeatGeodesics::HeatGeodesics(OperatorSet operators, double mean_edge_length, con
 
   // Heat operator M - t S; vertices without stiffness (unreferenced, or only in zero-area faces:
   // zero rows) are pinned to keep it definite.
-  pinned_.assign(mesh.n_vertices(), 0);
-  for (int v = 0; v < mesh.n_vertices(); ++v)
+  pinned_.assign(nv, 0);
+  for (int v = 0; v < nv; ++v)
     if (component_[v] < 0) pinned_[v] = 1;
   SparseMatrix heat;
   if (options.lumped_mass) {
-    SparseMatrix Md(mesh.n_vertices(), mesh.n_vertices());
+    SparseMatrix Md(nv, nv);
     Md.setIdentity();
     Md.diagonal() = ops_.M_lumped;
     heat = Md - t_ * ops_.S;
@@ -102,7 +103,7 @@ HeatGeodesics::HeatGeodesics(OperatorSet operators, double mean_edge_length, con
   // its null space; the right-hand side D g sums to zero on each, so pinning loses nothing).
   std::vector<unsigned char> seen(
       component_.empty() ? 0 : std::max(0, *std::max_element(component_.begin(), component_.end()) + 1), 0);
-  for (int v = 0; v < mesh.n_vertices(); ++v)
+  for (int v = 0; v < nv; ++v)
     if (component_[v] >= 0 && !seen[component_[v]]) {
       seen[component_[v]] = 1;
       pinned_[v] = 1;
@@ -111,8 +112,7 @@ HeatGeodesics::HeatGeodesics(OperatorSet operators, double mean_edge_length, con
 }
 
 Eigen::VectorXd HeatGeodesics::distance(std::span<const int> sources) const {
-  const Mesh& mesh = ops_.domain;
-  const int nv = mesh.n_vertices(), n_out = ops_.n_input_vertices;
+  const int nv = int(ops_.S.rows()), n_out = ops_.n_input_vertices;
   if (sources.empty()) throw std::out_of_range("heat geodesics: no source vertex given");
   Eigen::VectorXd delta = Eigen::VectorXd::Zero(nv);
   std::vector<unsigned char> reached_component(nv + 1, 0);

@@ -4,8 +4,9 @@
 // Time step t = factor * (mean edge length of the input mesh)^2 (factor 1 by default, as in the
 // paper). The constructor factors (M - t S) and the pinned Poisson matrix -S once; every
 // distance() call then costs two back-substitutions and linear work. Works with any
-// OperatorSet that has G and D (operators/laplacians.h); sources and results are indexed by
-// the input mesh's vertices.
+// OperatorSet that has G and D (operators/laplacians.h), including the volume ones of
+// operators/volume_laplacians.h (pass the volume mesh's mean edge length); sources and results are
+// indexed by the input mesh's vertices.
 // Distances are shifted so that their minimum over each connected component that contains a
 // source is 0; vertices that no source reaches get +infinity: other components, unreferenced
 // vertices, and vertices held only by zero-area faces (components are those of S's non-zero

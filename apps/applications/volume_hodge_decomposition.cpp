@@ -11,7 +11,7 @@ namespace polydec {
 
 VolumeHodgeDecomposer::VolumeHodgeDecomposer(const VolumeMesh& mesh, const VolumeRefinementOptions& options) {
   const VolumeRefinement refinement = refine_volume(mesh, options);
-  dec_ = volume_dec(mesh, refinement);
+  dec_ = volume_dec(mesh, refinement, 2);  // 1-forms need d1 and star2, not the 3-forms
   const SparseMatrix& d0 = dec_.d[0];
   const SparseMatrix& star1 = dec_.star[1];
 

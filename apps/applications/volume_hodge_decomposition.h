@@ -11,7 +11,8 @@
 //   co-exact: the rest, star1-orthogonal to every closed form.
 // The closed forms are found by a dense eigen-decomposition on the span of the 1-forms, so the
 // constructor is meant for meshes of up to a few thousand coarse pairs (it throws
-// std::invalid_argument above volume_form_span's limit).
+// std::invalid_argument above volume_form_span's limit). It builds DEC up to degree 2 (no 3-forms),
+// so cells of up to max_dec_cell_vertices(2) = 16 vertices.
 #pragma once
 
 #include <Eigen/Dense>

@@ -7,7 +7,7 @@
 #include <stdexcept>
 
 #include "polydec/apps/applications/poisson.h"
-#include "polydec/operators/volume_laplacian.h"
+#include "polydec/operators/volume_laplacians.h"
 
 namespace polydec {
 namespace volume_poisson_detail {
@@ -55,18 +55,6 @@ double franke3d_laplacian(double x, double y, double z) {
   return l1 + l2 + l3 + l4;
 }
 
-OperatorSet volume_operator_set(const VolumeMesh& mesh) {
-  VolumeLaplacian L = assemble_volume_laplacian(mesh, refine_volume(mesh));
-  OperatorSet ops;
-  ops.name = "ours (volume)";
-  ops.n_input_vertices = mesh.n_vertices();
-  ops.S = std::move(L.S);
-  ops.M = std::move(L.M);
-  ops.M_lumped = std::move(L.M_lumped);
-  ops.mean_edge_length = mesh.mean_edge_length();
-  return ops;
-}
-
 VolumePoissonError volume_dirichlet_poisson(const OperatorSet& ops, const VolumeMesh& mesh,
                                             const ScalarField3& exact, const ScalarField3& laplacian,
                                             bool lumped_mass) {
@@ -95,9 +83,9 @@ VolumePoissonError volume_dirichlet_poisson(const OperatorSet& ops, const Volume
 }
 
 VolumePoissonError volume_franke_poisson(const VolumeMesh& mesh, bool lumped_mass,
-                                         const VolumeOperatorBuilder& build) {
+                                         const LaplacianChoice& laplacian) {
   return volume_dirichlet_poisson(
-      build ? build(mesh) : volume_operator_set(mesh), mesh,
+      build_volume_operators(mesh, laplacian, false), mesh,
       [](const Eigen::Vector3d& p) { return franke3d(p.x(), p.y(), p.z()); },
       [](const Eigen::Vector3d& p) { return franke3d_laplacian(p.x(), p.y(), p.z()); }, lumped_mass);
 }
@@ -105,14 +93,14 @@ VolumePoissonError volume_franke_poisson(const VolumeMesh& mesh, bool lumped_mas
 VolumeConvergenceSeries volume_franke_convergence(const std::string& family,
                                                   const std::vector<VolumeMesh>& meshes,
                                                   const std::vector<std::string>& labels, bool lumped_mass,
-                                                  const VolumeOperatorBuilder& build) {
+                                                  const LaplacianChoice& laplacian) {
   if (meshes.size() != labels.size())
     throw std::invalid_argument("volume convergence study: one label per mesh");
   VolumeConvergenceSeries s;
   s.family = family;
   s.levels = labels;
   for (const VolumeMesh& mesh : meshes) {
-    VolumePoissonError e = volume_franke_poisson(mesh, lumped_mass, build);
+    VolumePoissonError e = volume_franke_poisson(mesh, lumped_mass, laplacian);
     e.solution.resize(0);
     e.exact.resize(0);
     s.errors.push_back(std::move(e));

@@ -1,6 +1,6 @@
 // apps/applications/volume_poisson.h — the 3D Franke Poisson study on polyhedral volume meshes (issue 17):
 // Delta f = b in the unit cube with Dirichlet values on the boundary vertices, discretized with
-// the polyhedral Laplacian of operators/volume_laplacian.h as S f = M b at the interior vertices.
+// a volume Laplacian of operators/volume_laplacians.h as S f = M b at the interior vertices.
 //
 // The 3D Franke function is the trivariate extension used by polyLaplace (Bunge, Botsch et al.,
 // src/Volume/Franke_PoissonSystem_3D.cpp, function franke3d) and by PolyFEM's Franke3dProblem:
@@ -30,11 +30,6 @@ namespace polydec {
 double franke3d(double x, double y, double z);
 double franke3d_laplacian(double x, double y, double z);
 
-// The volume Laplacian (default refinement) packed as an OperatorSet (name "ours (volume)", no
-// surface domain, mean_edge_length of the volume mesh), so that the surface solvers that read
-// only S, M and M_lumped (solve_dirichlet_poisson, laplacian_spectrum) apply.
-OperatorSet volume_operator_set(const VolumeMesh& mesh);
-
 using ScalarField3 = std::function<double(const Eigen::Vector3d&)>;
 
 struct VolumePoissonError {
@@ -51,13 +46,10 @@ struct VolumePoissonError {
 VolumePoissonError volume_dirichlet_poisson(const OperatorSet& operators, const VolumeMesh& mesh,
                                             const ScalarField3& exact, const ScalarField3& laplacian,
                                             bool lumped_mass = false);
-// Builds the operators of a volume method on a mesh (e.g. volume_diamond_operators); empty means
-// volume_operator_set (the polyhedral Laplacian).
-using VolumeOperatorBuilder = std::function<OperatorSet(const VolumeMesh&)>;
-
-// The Franke problem (franke3d, franke3d_laplacian) on a mesh of the unit cube.
+// The Franke problem (franke3d, franke3d_laplacian) on a mesh of the unit cube, with the volume
+// Laplacian `laplacian` (operators/volume_laplacians.h; default "ours").
 VolumePoissonError volume_franke_poisson(const VolumeMesh& mesh, bool lumped_mass = false,
-                                         const VolumeOperatorBuilder& build = {});
+                                         const LaplacianChoice& laplacian = {});
 
 struct VolumeConvergenceSeries {
   std::string family;
@@ -71,6 +63,7 @@ struct VolumeConvergenceSeries {
 VolumeConvergenceSeries volume_franke_convergence(const std::string& family,
                                                   const std::vector<VolumeMesh>& meshes,
                                                   const std::vector<std::string>& labels,
-                                                  bool lumped_mass = false, const VolumeOperatorBuilder& build = {});
+                                                  bool lumped_mass = false,
+                                                  const LaplacianChoice& laplacian = {});
 
 }  // namespace polydec

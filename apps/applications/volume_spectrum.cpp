@@ -11,6 +11,7 @@
 #include "polydec/apps/applications/volume_poisson.h"
 #include "polydec/dec/volume_generators.h"
 #include "polydec/operators/cholesky.h"
+#include "polydec/operators/volume_laplacians.h"
 
 namespace polydec {
 
@@ -97,7 +98,7 @@ std::vector<BallEigenvalue> ball_eigenvalues(int count, bool dirichlet) {
 }
 
 Spectrum volume_laplacian_spectrum(const VolumeMesh& mesh, bool dirichlet, const SpectrumOptions& options) {
-  OperatorSet ops = volume_operator_set(mesh);
+  OperatorSet ops = build_volume_operators(mesh, LaplacianChoice{}, false);
   if (!dirichlet) return laplacian_spectrum(ops, options);
   const int nv = mesh.n_vertices();
   std::vector<int> index(size_t(nv), -1), interior;

@@ -3,8 +3,10 @@
 // edges.txt (vertex pairs) and triangles.txt (vertex triples), 0-based, one per line, in
 // matrix order. Volume meshes (.ovm, .vtk, .mesh, or --volume): d0, d1, d2, star0..star3,
 // P0..P3 of the polyhedral refinement (dec/volume_hodge_star.h) and the coarse cell lists
-// edges.txt, triangles.txt, tetrahedra.txt (vertex pairs, triples, quadruples sharing a cell).
+// edges.txt, triangles.txt, tetrahedra.txt (vertex pairs, triples, quadruples sharing a cell), up
+// to the degree the cells' sizes allow (--max-degree; dec/volume_complex.h).
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <filesystem>
 #include <fstream>
@@ -25,6 +27,7 @@ struct Options {
   bool repair = false;  // --repair
   std::string mesh, out, rule = "squared-area", cell_rule = "squared-volume";
   bool json = false, lumped = false, volume = false;
+  int max_degree = -1;  // volumes: -1 = the largest the cells allow (volume_dec_max_degree)
 };
 
 template <class Cells>
@@ -50,10 +53,19 @@ void run_volume(const Options& o) {
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
+  if (o.max_degree < -1 || o.max_degree > 3) throw UsageError("--max-degree must be 0, 1, 2 or 3");
   const VolumeRefinement r = refine_volume(mesh, ropt);
+  const int allowed = volume_dec_max_degree(mesh);
+  const int degree = o.max_degree < 0 ? allowed : o.max_degree;
+  if (degree < 3 && o.max_degree < 0)
+    std::cerr << fmt::format(
+        "polydec: warning: cells with more than {} vertices: forms up to degree {} only (star_k gets C(m, k+1)^2 "
+        "entries from a cell of m vertices; cells of at most {}, {}, {} vertices for k = 1, 2, 3)\n",
+        max_dec_cell_vertices(degree + 1), degree, max_dec_cell_vertices(1), max_dec_cell_vertices(2),
+        max_dec_cell_vertices(3));
   VolumeDec D;
   try {
-    D = volume_dec(mesh, r);
+    D = volume_dec(mesh, r, degree);
   } catch (const std::invalid_argument& e) {  // a cell with too many vertices: the file's content
     throw FileError(o.mesh, 0, -1, e.what());
   }
@@ -66,16 +78,27 @@ void run_volume(const Options& o) {
     star0.diagonal() = rows;
   }
   const std::string d = o.out + "/";
-  for (int k = 0; k < 3; ++k) write_matrix_market(d + fmt::format("d{}.mtx", k), D.d[k]);
-  write_matrix_market(d + "star0.mtx", star0);
-  for (int k = 1; k < 4; ++k) write_matrix_market(d + fmt::format("star{}.mtx", k), D.star[k]);
-  for (int k = 0; k < 4; ++k) write_matrix_market(d + fmt::format("P{}.mtx", k), D.P[k]);
-  write_simplices(d + "edges.txt", D.coarse, 1);
-  write_simplices(d + "triangles.txt", D.coarse, 2);
-  write_simplices(d + "tetrahedra.txt", D.coarse, 3);
+  std::vector<std::string> files;
+  auto write = [&](const std::string& name, const SparseMatrix& A) {
+    write_matrix_market(d + name, A);
+    files.push_back(name);
+  };
+  for (int k = 0; k < degree; ++k) write(fmt::format("d{}.mtx", k), D.d[k]);
+  write("star0.mtx", star0);
+  for (int k = 1; k <= degree; ++k) write(fmt::format("star{}.mtx", k), D.star[k]);
+  for (int k = 0; k <= degree; ++k) write(fmt::format("P{}.mtx", k), D.P[k]);
+  const char* lists[] = {"", "edges.txt", "triangles.txt", "tetrahedra.txt"};
+  for (int k = 1; k <= degree; ++k) {
+    write_simplices(d + lists[k], D.coarse, k);
+    files.push_back(lists[k]);
+  }
   // Ranks of star1..star3 by the dense reduced-basis decision, when the mesh is small enough.
   nlohmann::json ranks = nlohmann::json::object();
   for (int k = 1; k < 4; ++k) {
+    if (k > degree) {
+      ranks[fmt::format("rank_star{}", k)] = nullptr;
+      continue;
+    }
     try {
       ranks[fmt::format("rank_star{}", k)] = volume_form_span(D, mesh, r, k).rank();
     } catch (const std::invalid_argument&) {
@@ -90,12 +113,11 @@ void run_volume(const Options& o) {
                       {"pairs", D.coarse.n_pairs()},
                       {"triples", D.coarse.n_triples()},
                       {"quadruples", D.coarse.n_quads()},
+                      {"max_degree", degree},
                       {"star0", o.lumped ? "lumped" : "galerkin"},
                       {"subtet_degenerate", r.quality.n_degenerate},
                       {"subtet_inverted", r.quality.n_inverted},
-                      {"files",
-                       {"d0.mtx", "d1.mtx", "d2.mtx", "star0.mtx", "star1.mtx", "star2.mtx", "star3.mtx", "P0.mtx",
-                        "P1.mtx", "P2.mtx", "P3.mtx", "edges.txt", "triangles.txt", "tetrahedra.txt"}}};
+                      {"files", files}};
   j.update(ranks);
   if (o.json) {
     print_json(j);
@@ -106,7 +128,7 @@ void run_volume(const Options& o) {
              D.coarse.n_pairs(), D.coarse.n_triples(), D.coarse.n_quads(), ranks["rank_star1"].dump(),
              ranks["rank_star2"].dump(), ranks["rank_star3"].dump());
   fmt::print("sub-tetrahedra: {} degenerate, {} inverted\n", r.quality.n_degenerate, r.quality.n_inverted);
-  fmt::print("wrote d0 d1 d2 star0..star3 P0..P3 (.mtx), edges.txt, triangles.txt, tetrahedra.txt to {}\n", o.out);
+  fmt::print("wrote {} to {}\n", fmt::join(files, " "), o.out);
 }
 
 void run(const Options& o) {
@@ -188,6 +210,9 @@ const RegisterCommand reg("dec", "Write d0, d1, star0-2, P0-2 and the coarse cel
                             app.add_option("--virtual-vertex", o->rule,
                                            "virtual-vertex rule: squared-area (default), centroid");
                             app.add_flag("--lumped", o->lumped, "write the lumped (diagonal) star0");
+                            app.add_option("--max-degree", o->max_degree,
+                                           "volumes: forms up to this degree (0..3; default: the largest the "
+                                           "cells allow, 3 for cells of up to 12 vertices)");
                             app.add_flag("--json", o->json, "print one JSON object instead of text");
                             add_repair_flag(app, o->repair);
                             app.callback([o] { run(*o); });

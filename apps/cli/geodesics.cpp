@@ -1,13 +1,20 @@
 // apps/cli/geodesics.cpp — `polydec geodesics MESH --source V [...] --out FILE.ply`: heat-method
-// distances (paper section 5.5) written as a per-vertex PLY property and/or a picture (--png).
-#include "polydec/apps/cli/command.h"
+// distances (paper section 5.5) written as a per-vertex PLY property and/or a picture (--png); on a
+// volume mesh (.ovm, .vtk, .mesh or --volume) with the volume operators (operators/volume_laplacians.h),
+// written as VTK point data and pictured on a planar cut (apps/pictures/volume_cut.h).
 #include "polydec/apps/applications/geodesics.h"
-#include "polydec/apps/cli/engine.h"
-#include "polydec/apps/pictures/render.h"
-#include "polydec/dec/io.h"
+
+#include <fmt/format.h>
 
 #include <cmath>
-#include <fmt/format.h>
+
+#include "polydec/apps/cli/command.h"
+#include "polydec/apps/cli/engine.h"
+#include "polydec/apps/pictures/render.h"
+#include "polydec/apps/pictures/volume_cut.h"
+#include "polydec/dec/io.h"
+#include "polydec/dec/io_volume.h"
+#include "polydec/operators/volume_laplacians.h"
 
 namespace polydec::cli::geodesics_command {
 namespace {
@@ -16,7 +23,7 @@ struct Options {
   bool repair = false;  // --repair
   std::string mesh, out, png;
   std::vector<int> sources;
-  bool json = false, euclidean = false, delta_source = false;
+  bool json = false, euclidean = false, delta_source = false, volume = false;
   std::string mass = "lumped", laplacian = "ours", time_step_edges = "input";
   EngineOptions engine;  // --engine, --solver, --petsc-options
 };
@@ -40,7 +47,94 @@ void run_petsc(const Options& o) {
 #endif
 }
 
+// Distance statistics over the finite values: min, max, mean, number of infinite ones.
+struct Stats {
+  double min = INFINITY, max = -INFINITY, mean = 0;
+  int unreached = 0;
+};
+Stats stats(const Eigen::VectorXd& d) {
+  Stats st;
+  double sum = 0;
+  int finite = 0;
+  for (int v = 0; v < d.size(); ++v)
+    if (std::isfinite(d[v])) {
+      st.min = std::min(st.min, d[v]);
+      st.max = std::max(st.max, d[v]);
+      sum += d[v];
+      ++finite;
+    }
+  st.mean = finite ? sum / finite : 0.0;
+  st.unreached = int(d.size()) - finite;
+  return st;
+}
+
+// RMSE of d against the Euclidean distance from `source`, shifted to minimum 0.
+double euclidean_rmse(const Eigen::MatrixX3d& X, int source, const Eigen::VectorXd& d) {
+  const Eigen::VectorXd e = (X.rowwise() - X.row(source)).rowwise().norm();
+  return rmse(d, e.array() - e.minCoeff());
+}
+
+// A volume mesh: the volume operators, VTK point data, a picture of a cut through the centre.
+void run_volume(const Options& o) {
+  if (o.engine.engine != "serial")
+    throw UsageError("--engine petsc: volume meshes run on the serial engine only");
+  if (o.repair) throw UsageError("--repair applies to surface meshes only");
+  if (o.mass != "lumped" && o.mass != "unlumped") throw UsageError("--mass must be lumped or unlumped");
+  if (o.time_step_edges != "input")
+    throw UsageError("--time-step-edges: volume meshes use the input's edges only");
+  const VolumeMesh mesh = load_volume_mesh(o.mesh);
+  for (int s : o.sources)
+    if (s < 0 || s >= mesh.n_vertices())
+      throw std::out_of_range(
+          fmt::format("source vertex {} is out of range (the mesh has {} vertices)", s, mesh.n_vertices()));
+  HeatGeodesicsOptions hopt;
+  hopt.lumped_mass = o.mass == "lumped";
+  hopt.mass_weighted_source = !o.delta_source;
+  SubTetQuality quality;
+  const HeatGeodesics heat(build_volume_operators(mesh, parse_volume_laplacian(o.laplacian), true, &quality),
+                           mesh.mean_edge_length(), hopt);
+  const Eigen::VectorXd d = heat.distance(o.sources);
+  const Stats st = stats(d);
+  nlohmann::json j = {{"mesh", o.mesh},
+                      {"laplacian", heat.operators().name},
+                      {"sources", o.sources},
+                      {"time_step", heat.time_step()},
+                      {"min", st.min},
+                      {"max", st.max},
+                      {"mean", st.mean},
+                      {"unreached", st.unreached},
+                      {"vertices", mesh.n_vertices()},
+                      {"cells", mesh.n_cells()},
+                      {"subtet_degenerate", quality.n_degenerate},
+                      {"subtet_inverted", quality.n_inverted}};
+  if (o.euclidean) j["rmse_vs_euclidean"] = euclidean_rmse(mesh.positions(), o.sources[0], d);
+  if (!o.out.empty()) {
+    write_volume_vtk_with_point_data(mesh, o.out, {{"distance", d}});
+    j["out"] = o.out;
+  }
+  if (!o.png.empty()) {
+    RenderOptions ropt;
+    ropt.isolines = 15;
+    ropt.scalar_label = "distance";
+    ropt.title = fmt::format("heat geodesics in the volume ({})", heat.operators().name);
+    render_volume_cut_png(o.png, mesh, d, centre_plane(mesh, Eigen::Vector3d::UnitZ()), ropt);
+    j["png"] = o.png;
+  }
+  if (o.json) {
+    print_json(j);
+    return;
+  }
+  fmt::print("{}: {} vertices, {} cells (volume), time step {:.6g}\n", o.mesh, mesh.n_vertices(),
+             mesh.n_cells(), heat.time_step());
+  fmt::print("distance: min {:.6g}, max {:.6g}, mean {:.6g}\n", st.min, st.max, st.mean);
+  if (o.euclidean)
+    fmt::print("RMSE against Euclidean distance: {:.6g}\n", j["rmse_vs_euclidean"].get<double>());
+  if (!o.out.empty()) fmt::print("wrote {} (VTK point data 'distance')\n", o.out);
+  if (!o.png.empty()) fmt::print("wrote {}\n", o.png);
+}
+
 void run(const Options& o) {
+  if (o.volume || is_volume_mesh_path(o.mesh)) return run_volume(o);
   if (o.engine.engine == "petsc") return run_petsc(o);
   if (o.engine.engine != "serial") throw UsageError("--engine must be serial or petsc");
   std::vector<int> vertex_map;
@@ -70,25 +164,22 @@ void run(const Options& o) {
 // The outputs of both engines: text or JSON (with the engine's summary), the PLY, the picture.
 void report(const Options& o, const Mesh& mesh, const std::vector<int>& sources, const Eigen::VectorXd& d,
             const std::string& laplacian, double time_step, const FanQuality& quality, const nlohmann::json* engine) {
-  double mn = INFINITY, mx = -INFINITY, sum = 0;
-  int finite = 0;
-  for (int v = 0; v < d.size(); ++v)
-    if (std::isfinite(d[v])) {
-      mn = std::min(mn, d[v]);
-      mx = std::max(mx, d[v]);
-      sum += d[v];
-      ++finite;
-    }
-  nlohmann::json j = {{"mesh", o.mesh}, {"laplacian", laplacian}, {"sources", o.sources},       {"time_step", time_step},
-                      {"min", mn},              {"max", mx},                  {"mean", finite ? sum / finite : 0.0},
-                      {"unreached", int(d.size()) - finite}, {"fan_degenerate", quality.n_degenerate},
+  const Stats st = stats(d);
+  const double mn = st.min, mx = st.max;
+  nlohmann::json j = {{"mesh", o.mesh},
+                      {"laplacian", laplacian},
+                      {"sources", o.sources},
+                      {"time_step", time_step},
+                      {"min", mn},
+                      {"max", mx},
+                      {"mean", st.mean},
+                      {"unreached", st.unreached},
+                      {"fan_degenerate", quality.n_degenerate},
                       {"fan_inverted", quality.n_inverted}};
   if (engine) j["engine"] = *engine;
   if (o.euclidean) {
     // Error against the Euclidean distance from the first source, shifted to minimum 0 (planar meshes).
-    Eigen::VectorXd e(mesh.n_vertices());
-    for (int v = 0; v < mesh.n_vertices(); ++v) e[v] = (mesh.position(v) - mesh.position(sources[0])).norm();
-    j["rmse_vs_euclidean"] = rmse(d, e.array() - e.minCoeff());
+    j["rmse_vs_euclidean"] = euclidean_rmse(mesh.positions(), sources[0], d);
   }
   if (!o.out.empty()) {
     write_mesh(o.out, mesh, {{"distance", d}});
@@ -111,7 +202,7 @@ void report(const Options& o, const Mesh& mesh, const std::vector<int>& sources,
   if (engine)
     fmt::print("engine petsc: {} ranks, solver {}\n", (*engine)["ranks"].get<int>(),
                (*engine)["solver"].get<std::string>());
-  fmt::print("distance: min {:.6g}, max {:.6g}, mean {:.6g}\n", mn, mx, finite ? sum / finite : 0.0);
+  fmt::print("distance: min {:.6g}, max {:.6g}, mean {:.6g}\n", mn, mx, st.mean);
   if (o.euclidean) fmt::print("RMSE against Euclidean distance: {:.6g}\n", j["rmse_vs_euclidean"].get<double>());
   if (!o.out.empty()) fmt::print("wrote {} (property 'distance')\n", o.out);
   if (!o.png.empty()) fmt::print("wrote {}\n", o.png);
@@ -119,12 +210,20 @@ void report(const Options& o, const Mesh& mesh, const std::vector<int>& sources,
 
 const RegisterCommand reg("geodesics", "Geodesic distances by the heat method (paper section 5.5)", [](CLI::App& app) {
   auto o = std::make_shared<Options>();
-  app.add_option("mesh", o->mesh, "input mesh (.obj, .off, .ply)")->required();
+  app.add_option("mesh", o->mesh, "input mesh (.obj, .off, .ply; volumes: .ovm, .vtk, .mesh)")->required();
   app.add_option("--source", o->sources, "source vertex (0-based; repeat for several)")->required();
-  app.add_option("--out", o->out, "output mesh with a 'distance' vertex property (.ply)");
-  app.add_option("--png", o->png, "picture of the distance with isolines and a colour bar (.png)");
+  app.add_option(
+      "--out", o->out,
+      "output mesh with a 'distance' vertex property (.ply; volumes: .vtk with POINT_DATA 'distance')");
+  app.add_option(
+      "--png", o->png,
+      "picture of the distance with isolines and a colour bar (.png; volumes: the solid cut by the plane "
+      "z = centre, front half removed)");
   app.add_option("--mass", o->mass, "lumped (default) or unlumped mass in the heat step");
-  app.add_option("--laplacian", o->laplacian, "Laplacian: " + fmt::format("{}", fmt::join(laplacian_names(), ", ")));
+  app.add_option("--laplacian", o->laplacian,
+                 "Laplacian: " + fmt::format("{}", fmt::join(laplacian_names(), ", ")) +
+                     " (volumes: " + fmt::format("{}", fmt::join(volume_laplacian_names(), ", ")) + ")");
+  app.add_flag("--volume", o->volume, "read the file as a volume mesh (implied by .ovm, .vtk, .mesh)");
   app.add_flag("--delta-source", o->delta_source,
                "heat step (M - t S) u = delta instead of M delta (as the paper authors' program; matters with --mass unlumped)");
   app.add_option("--time-step-edges", o->time_step_edges,

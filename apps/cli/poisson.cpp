@@ -14,6 +14,7 @@
 #include "polydec/apps/pictures/render.h"
 #include "polydec/dec/generators.h"
 #include "polydec/dec/volume_generators.h"
+#include "polydec/operators/volume_laplacians.h"
 
 namespace polydec::cli::poisson_command {
 namespace {
@@ -34,9 +35,11 @@ void run_volume(const Options& o) {
   static const std::map<std::string, std::string> files{{"hex", "cube_hexahedron"},
                                                         {"pyramids", "cube_pyramids"},
                                                         {"truncated", "cube_truncated"},
+                                                        {"cuboctahedra", "cube_truncated"},
                                                         {"tetrahedra", "cube_tetrahedron"}};
   const auto it = files.find(o.family);
-  if (it == files.end()) throw UsageError("--family must be hex, pyramids, truncated or tetrahedra");
+  if (it == files.end())
+    throw UsageError("--family must be hex, pyramids, truncated, cuboctahedra or tetrahedra");
   if (o.mass != "lumped" && o.mass != "unlumped") throw UsageError("--mass must be lumped or unlumped");
   const bool lumped = o.mass == "lumped";
   std::vector<VolumeMesh> meshes;
@@ -53,12 +56,14 @@ void run_volume(const Options& o) {
       meshes.push_back(o.family == "hex"         ? hex_grid_volume(n, n, n)
                        : o.family == "pyramids"  ? pyramid_grid_volume(n, n, n)
                        : o.family == "truncated" ? truncated_octahedra_volume(n)
+                       : o.family == "cuboctahedra" ? cuboctahedra_volume(n)
                                                  : tet_grid_volume(n, n, n));
       labels.push_back(fmt::format("n = {}", n));
     }
   }
   if (meshes.size() < 2) throw UsageError("the study needs two or more levels");
-  const VolumeConvergenceSeries s = volume_franke_convergence(o.family, meshes, labels, lumped);
+  const LaplacianChoice laplacian = parse_volume_laplacian(o.laplacian);
+  const VolumeConvergenceSeries s = volume_franke_convergence(o.family, meshes, labels, lumped, laplacian);
   nlohmann::json rows = nlohmann::json::array();
   for (size_t i = 0; i < s.errors.size(); ++i) {
     const auto& e = s.errors[i];
@@ -75,6 +80,7 @@ void run_volume(const Options& o) {
                             {"family", o.family},
                             {"source", o.data.empty() ? "generated" : o.data},
                             {"mass", o.mass},
+                            {"laplacian", laplacian.canonical_name()},
                             {"levels", rows}};
   if (o.json) {
     print_json(j);
@@ -82,8 +88,8 @@ void run_volume(const Options& o) {
   }
   fmt::print(
       "Poisson problem Delta f = b, 3D Franke function, Dirichlet boundary vertices, unit cube; {} ({}), {} "
-      "mass\n",
-      o.family, o.data.empty() ? "generated" : o.data, o.mass);
+      "mass, Laplacian {}\n",
+      o.family, o.data.empty() ? "generated" : o.data, o.mass, laplacian.canonical_name());
   for (size_t i = 0; i < s.errors.size(); ++i) {
     const auto& e = s.errors[i];
     fmt::print("  {:24s} |V| = {:7d}  |C| = {:7d}  h = {:.5f}  L2 = {:.6e}  RMS = {:.6e}", s.levels[i],
@@ -168,12 +174,14 @@ const RegisterCommand reg(
           "grid resolutions n (n x n cells), default 8 16 32 64 (--volume: n^3 cells, 4 8 16)");
       auto* mass = app.add_option("--mass", o->mass, "lumped (default; --volume: unlumped) or unlumped mass");
       app.add_flag("--volume", o->volume, "the 3D Franke study on polyhedral meshes of the unit cube");
-      app.add_option("--family", o->family, "--volume: hex (default), pyramids, truncated or tetrahedra");
+      app.add_option("--family", o->family, "--volume: hex (default), pyramids, truncated, cuboctahedra (generated: the structure of the "
+                     "cube_truncated files) or tetrahedra");
       app.add_option("--data", o->data,
                      "--volume: folder of the cube_<family>_<level>.ovm files (else generated grids)");
       app.add_option("--levels", o->levels, "--volume --data: file levels (default 1 2 3)");
       app.add_option("--laplacian", o->laplacian,
-                     "Laplacian: " + fmt::format("{}", fmt::join(laplacian_names(), ", ")));
+                     "Laplacian: " + fmt::format("{}", fmt::join(laplacian_names(), ", ")) +
+                         " (--volume: " + fmt::format("{}", fmt::join(volume_laplacian_names(), ", ")) + ")");
       app.add_option("--plot", o->plot, "log-log plot of the error against h (.svg or .png)");
       app.add_option("--png", o->png, "picture of the error on the coarsest hexagon grid (.png)");
       app.add_flag("--json", o->json, "print one JSON object instead of text");

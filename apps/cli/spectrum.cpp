@@ -1,6 +1,8 @@
 // apps/cli/spectrum.cpp — `polydec spectrum MESH --k K --out DIR`: the k smallest eigenpairs of
 // -S x = lambda M x (manifold harmonics) with Spectra's shift-invert solver; with --form 1|2 those
-// of the Hodge Laplacian on Whitney 1- or 2-forms (apps/applications/form_spectrum.h).
+// of the Hodge Laplacian on Whitney 1- or 2-forms (apps/applications/form_spectrum.h). On a volume mesh
+// (.ovm, .vtk, .mesh or --volume): the volume operators (operators/volume_laplacians.h), Neumann,
+// eigenvectors as VTK point data, the picture on a planar cut (apps/pictures/volume_cut.h).
 #include "polydec/apps/applications/spectrum.h"
 
 #include <fmt/format.h>
@@ -13,9 +15,12 @@
 #include "polydec/apps/cli/engine.h"
 #include "polydec/apps/pictures/render.h"
 #include "polydec/apps/pictures/vector_field.h"
+#include "polydec/apps/pictures/volume_cut.h"
 #include "polydec/dec/complex.h"
 #include "polydec/dec/io.h"
+#include "polydec/dec/io_volume.h"
 #include "polydec/dec/prolongation.h"
+#include "polydec/operators/volume_laplacians.h"
 
 namespace polydec::cli::spectrum_command {
 namespace {
@@ -24,7 +29,7 @@ struct Options {
   bool repair = false;  // --repair
   std::string mesh, out, png, mass = "lumped", laplacian = "ours";
   int k = 10, png_index = 1, form = 0;
-  bool json = false;
+  bool json = false, volume = false;
   EngineOptions engine;  // --engine, --solver, --petsc-options
 };
 
@@ -43,8 +48,80 @@ void report(const Options& o, const Mesh& mesh, const std::string& laplacian, in
 
 void run_form(const Options& o);
 
+// Picture options of eigenfunction --png-index (surfaces add smooth shading).
+RenderOptions eigenfunction_picture(const Options& o, const std::vector<double>& ev,
+                                    const std::string& laplacian) {
+  RenderOptions ropt;
+  ropt.width = 640;
+  ropt.height = 480;
+  ropt.isolines = 10;
+  ropt.colormap = Colormap::turbo;
+  ropt.scalar_label = fmt::format("u{}", o.png_index);
+  ropt.title = fmt::format("eigenfunction {}, lambda = {:.4g} ({}, {} mass)", o.png_index, ev[o.png_index],
+                           laplacian, o.mass);
+  return ropt;
+}
+
+void write_eigenvalues(const std::string& path, const std::vector<double>& ev) {
+  std::ofstream f(path);
+  if (!f) throw FileError(path, 0, -1, "cannot open file for writing");
+  for (double e : ev) f << fmt::format("{:.17g}\n", e);
+}
+
+// A volume mesh: Neumann eigenpairs of the volume operators, files and picture as described in
+// docs/volumes.md.
+void run_volume(const Options& o) {
+  if (o.form != 0) throw UsageError("--form: volume meshes have function spectra only (--form 0)");
+  if (o.engine.engine != "serial")
+    throw UsageError("--engine petsc: volume meshes run on the serial engine only");
+  if (o.repair) throw UsageError("--repair applies to surface meshes only");
+  if (!o.png.empty() && (o.png_index < 0 || o.png_index >= o.k))
+    throw UsageError("--png-index must lie in [0, k)");
+  const VolumeMesh mesh = load_volume_mesh(o.mesh);
+  const OperatorSet ops = build_volume_operators(mesh, parse_volume_laplacian(o.laplacian), false);
+  SpectrumOptions sopt;
+  sopt.k = o.k;
+  sopt.lumped_mass = o.mass == "lumped";
+  const Spectrum sp = laplacian_spectrum(ops, sopt);
+  std::vector<double> ev(sp.eigenvalues.data(), sp.eigenvalues.data() + sp.eigenvalues.size());
+  nlohmann::json j = {{"mesh", o.mesh},          {"laplacian", ops.name},
+                      {"mass", o.mass},          {"vertices", mesh.n_vertices()},
+                      {"cells", mesh.n_cells()}, {"k", o.k},
+                      {"shift", sp.shift},       {"eigenvalues", ev}};
+  if (!o.out.empty()) {
+    std::filesystem::create_directories(o.out);
+    write_eigenvalues(o.out + "/eigenvalues.txt", ev);
+    write_dense_matrix_market(o.out + "/eigenvectors.mtx", sp.eigenvectors);
+    VertexScalars props;
+    for (int i = 0; i < o.k; ++i) props[fmt::format("u{:03d}", i)] = sp.eigenvectors.col(i);
+    write_volume_vtk_with_point_data(mesh, o.out + "/eigenvectors.vtk", props);
+    j["out"] = o.out;
+    j["files"] = {"eigenvalues.txt", "eigenvectors.mtx", "eigenvectors.vtk"};
+  }
+  if (!o.png.empty()) {
+    render_volume_cut_png(o.png, mesh, sp.eigenvectors.col(o.png_index),
+                          centre_plane(mesh, Eigen::Vector3d::UnitZ()),
+                          eigenfunction_picture(o, ev, ops.name));
+    j["png"] = o.png;
+  }
+  if (o.json) {
+    print_json(j);
+    return;
+  }
+  fmt::print("{}: {} vertices, {} cells (volume); Laplacian {}, {} mass, shift {:.6g}\n", o.mesh,
+             mesh.n_vertices(), mesh.n_cells(), ops.name, o.mass, sp.shift);
+  fmt::print("{} smallest eigenvalues of -S x = lambda M x (Neumann):\n", o.k);
+  for (int i = 0; i < o.k; ++i) fmt::print("  {:4d}  {:.10g}\n", i, ev[i]);
+  if (!o.png.empty()) fmt::print("wrote {}\n", o.png);
+  if (!o.out.empty())
+    fmt::print(
+        "wrote eigenvalues.txt, eigenvectors.mtx (|V| x k) and eigenvectors.vtk (point data u000..) to {}\n",
+        o.out);
+}
+
 void run(const Options& o) {
   if (o.mass != "lumped" && o.mass != "unlumped") throw UsageError("--mass must be lumped or unlumped");
+  if (o.volume || is_volume_mesh_path(o.mesh)) return run_volume(o);
   if (o.form != 0) {
     run_form(o);
     return;
@@ -83,12 +160,7 @@ void report(const Options& o, const Mesh& mesh, const std::string& laplacian, in
   if (engine) j["engine"] = *engine;
   if (!o.out.empty()) {
     std::filesystem::create_directories(o.out);
-    {
-      const std::string p = o.out + "/eigenvalues.txt";
-      std::ofstream f(p);
-      if (!f) throw FileError(p, 0, -1, "cannot open file for writing");
-      for (double e : ev) f << fmt::format("{:.17g}\n", e);
-    }
+    write_eigenvalues(o.out + "/eigenvalues.txt", ev);
     write_dense_matrix_market(o.out + "/eigenvectors.mtx", sp.eigenvectors.topRows(n_in));
     VertexScalars props;
     for (int i = 0; i < o.k; ++i) props[fmt::format("u{:03d}", i)] = sp.eigenvectors.col(i).head(n_in);
@@ -98,14 +170,7 @@ void report(const Options& o, const Mesh& mesh, const std::string& laplacian, in
   }
   if (!o.png.empty()) {
     if (o.png_index < 0 || o.png_index >= o.k) throw UsageError("--png-index must lie in [0, k)");
-    RenderOptions ropt;
-    ropt.width = 640;
-    ropt.height = 480;
-    ropt.isolines = 10;
-    ropt.colormap = Colormap::turbo;
-    ropt.scalar_label = fmt::format("u{}", o.png_index);
-    ropt.title = fmt::format("eigenfunction {}, lambda = {:.4g} ({}, {} mass)", o.png_index, ev[o.png_index], laplacian,
-                             o.mass);
+    RenderOptions ropt = eigenfunction_picture(o, ev, laplacian);
     ropt.smooth_shading = true;
     render_png(o.png, mesh, sp.eigenvectors.col(o.png_index).head(n_in), ropt);
     j["png"] = o.png;
@@ -166,6 +231,11 @@ void run_form(const Options& o) {
   fo.k = o.k;
   fo.lumped_mass = o.mass == "lumped";
   const FormSpectrum sp = form_spectrum(mesh, fo);
+  if (sp.quality.n_degenerate > 0)
+    std::cerr << fmt::format(
+        "polydec: warning: {} degenerate fan triangle(s) (zero area, in {} face(s)) carry no Whitney forms: "
+        "zero eigenvalues beyond the Betti number may be spurious\n",
+        sp.quality.n_degenerate, sp.quality.n_faces_affected);
   const CoarseComplex cx(mesh);
   std::vector<double> ev(sp.eigenvalues.data(), sp.eigenvalues.data() + sp.eigenvalues.size());
   nlohmann::json pairs = nlohmann::json::array();
@@ -181,7 +251,8 @@ void run_form(const Options& o) {
                       {"faces", mesh.n_faces()}, {"cells", o.form == 1 ? cx.n_pairs() : cx.n_triples()},
                       {"rank", sp.rank},         {"k", o.k},
                       {"shift", sp.shift},       {"method", sp.method},
-                      {"eigenvalues", ev},       {"eigenpairs", pairs}};
+                      {"eigenvalues", ev},       {"eigenpairs", pairs},
+                      {"fan_degenerate", sp.quality.n_degenerate}};
   if (!o.out.empty()) {
     std::filesystem::create_directories(o.out);
     {
@@ -263,21 +334,25 @@ const RegisterCommand reg(
     "spectrum", "Smallest eigenpairs of the Laplacian, -S x = lambda M x (Spectra shift-invert)",
     [](CLI::App& app) {
       auto o = std::make_shared<Options>();
-      app.add_option("mesh", o->mesh, "input mesh (.obj, .off, .ply)")->required();
+      app.add_option("mesh", o->mesh, "input mesh (.obj, .off, .ply; volumes: .ovm, .vtk, .mesh)")
+          ->required();
+      app.add_flag("--volume", o->volume, "read the file as a volume mesh (implied by .ovm, .vtk, .mesh)");
       app.add_option("--k", o->k, "number of eigenpairs (default 10)");
       app.add_option(
           "--form", o->form,
           "0 (default): functions, -S x = lambda M x; 1 or 2: Hodge Laplacian of Whitney 1- or 2-forms "
           "(eigen-cochains, their Hodge parts; --mass is the 0-form mass M0 of the 1-form problem)");
       app.add_option("--out", o->out,
-                     "output directory: eigenvalues.txt, eigenvectors.mtx, eigenvectors.ply");
+                     "output directory: eigenvalues.txt, eigenvectors.mtx, eigenvectors.ply (volumes: "
+                     "eigenvectors.vtk with point data u000..)");
       app.add_option("--mass", o->mass, "lumped (default) or unlumped mass");
       app.add_option("--laplacian", o->laplacian,
-                     "Laplacian: " + fmt::format("{}", fmt::join(laplacian_names(), ", ")));
+                     "Laplacian: " + fmt::format("{}", fmt::join(laplacian_names(), ", ")) +
+                         " (volumes: " + fmt::format("{}", fmt::join(volume_laplacian_names(), ", ")) + ")");
       app.add_option(
           "--png", o->png,
           "picture of one eigenfunction with isolines (.png); --form 1: the eigen 1-form as arrows, "
-          "--form 2: its density");
+          "--form 2: its density; volumes: on the solid cut by the plane z = centre");
       app.add_option("--png-index", o->png_index, "which eigenfunction to draw (default 1)");
       app.add_flag("--json", o->json, "print one JSON object instead of text");
       add_repair_flag(app, o->repair);

@@ -283,6 +283,24 @@ TEST_CASE("Matrix Market round-trips every double exactly; symmetric files are m
       "%%MatrixMarket matrix coordinate integer skew-symmetric\n2 2 1\n2 1 3\n", "k.mtx");
   CHECK(Eigen::MatrixXd(K)(0, 1) == -3.0);
   CHECK(Eigen::MatrixXd(K)(1, 0) == 3.0);
+
+  // Dense array format: column by column; symmetric files hold the lower triangle, skew-symmetric
+  // ones the strictly lower one.
+  const auto G = read_matrix_market_from_memory(
+      "%%MatrixMarket matrix array real general\n2 3\n1\n2\n0\n4\n5\n6\n", "g.mtx");
+  Eigen::MatrixXd EG(2, 3);
+  EG << 1, 0, 5, 2, 4, 6;
+  CHECK(Eigen::MatrixXd(G) == EG);
+  CHECK(G.nonZeros() == 5);  // the zero is not stored
+  const auto AS = read_matrix_market_from_memory(
+      "%%MatrixMarket matrix array real symmetric\n3 3\n% lower triangle\n4\n-1\n0\n4\n-1\n4\n", "s.mtx");
+  Eigen::MatrixXd ES(3, 3);
+  ES << 4, -1, 0, -1, 4, -1, 0, -1, 4;
+  CHECK(Eigen::MatrixXd(AS) == ES);
+  const auto AK =
+      read_matrix_market_from_memory("%%MatrixMarket matrix array integer skew-symmetric\n2 2\n7\n", "k.mtx");
+  CHECK(Eigen::MatrixXd(AK)(1, 0) == 7.0);
+  CHECK(Eigen::MatrixXd(AK)(0, 1) == -7.0);
 }
 
 TEST_CASE("FileError formats FILE:LINE, FILE: byte N, or FILE alone", "[io]") {

@@ -132,8 +132,10 @@ const Case kMatrixCases[] = {
     {"mtx/claims_1e12.mtx", R, 2, -1, "claims 1000000000000 entries but only 6 bytes follow"},
     {"mtx/out_of_range.mtx", R, 4, -1, "entry (4, 1) outside the 3 x 3 matrix"},
     {"mtx/truncated.mtx", R, 3, -1, "claims 3 entries but only 12 bytes follow"},
-    {"mtx/array.mtx", R, 1, -1, "only the coordinate format is supported"},
-    {"mtx/png.mtx", R, 1, -1, "expected '%%MatrixMarket matrix coordinate FIELD SYMMETRY'"},
+    {"mtx/vector_format.mtx", R, 1, -1, "format 'vector' not supported (coordinate or array)"},
+    {"mtx/array_two_per_line.mtx", R, 3, -1, "expected one VALUE per line"},
+    {"mtx/array_truncated.mtx", R, 2, -1, "claims a 3 x 3 array but only 4 bytes follow"},
+    {"mtx/png.mtx", R, 1, -1, "expected '%%MatrixMarket matrix coordinate|array FIELD SYMMETRY'"},
     {"mtx/huge_columns.mtx", R, 2, -1, "claims a 3 x 723221734 matrix in a file of 68 bytes"},  // found by fuzz_mtx
     {"mtx/symmetric_not_square.mtx", R, 2, -1,
      "symmetric matrix must be square, is 4 x 1"},  // found by fuzz_mtx

@@ -4,7 +4,6 @@
 // gradients on planar triangle meshes, and the 3D Franke Poisson convergence.
 #include <Eigen/Dense>
 #include <catch2/catch.hpp>
-#include <cstdio>
 #include <random>
 
 #include "polydec/apps/applications/volume_poisson.h"
@@ -14,6 +13,7 @@
 #include "polydec/dec/volume_generators.h"
 #include "polydec/operators/diamond.h"
 #include "polydec/operators/volume_diamond.h"
+#include "polydec/operators/volume_laplacians.h"
 #include "tests/plain_cotan.h"
 #include "tests/support.h"
 
@@ -303,7 +303,8 @@ TEST_CASE("diamond (volume): symmetric, null space, semi-definite, S = D G, mass
              [](const std::string& p) { return read_volume_mesh(p); });
   for (const auto& [name, mesh] : meshes) {
     INFO(name);
-    const OperatorSet ops = volume_diamond_operators(mesh);
+    const OperatorSet ops = build_volume_operators(mesh, parse_volume_laplacian("diamond"));
+    CHECK(ops.name == "diamond");
     CHECK(ops.n_degenerate_triangles == 0);
     REQUIRE(ops.n_folded_triangles == 0);
     check_properties(ops, mesh.n_vertices());
@@ -349,53 +350,14 @@ TEST_CASE("diamond (volume): 3D Franke Poisson converges with slope 2 on hex gri
     meshes.push_back(hex_grid_volume(n, n, n));
     labels.push_back(std::to_string(n));
   }
-  const auto s = volume_franke_convergence("hex grid", meshes, labels, false, [](const VolumeMesh& m) {
-    return volume_diamond_operators(m, false);
-  });
+  const auto s =
+      volume_franke_convergence("hex grid", meshes, labels, false, parse_volume_laplacian("diamond"));
   for (size_t i = 0; i < s.l2_slopes.size(); ++i) {
     INFO("level " << i << ": l2 slope " << s.l2_slopes[i] << ", rms slope " << s.rms_slopes[i]);
     CHECK(s.errors[i + 1].l2_error < s.errors[i].l2_error);
   }
   CHECK(std::abs(s.l2_slopes.back() - 2) < 0.3);
   CHECK(std::abs(s.rms_slopes.back() - 2) < 0.3);
-}
-
-// The measurement of docs/volumes.md (not run by default: `polydec_tests "[diamond-study]"`): the
-// Franke study on the shared cubes with the diamond operators and with ours, both masses.
-TEST_CASE("diamond (volume): Franke study on the shared cubes, printed", "[.][diamond-study]") {
-  const std::vector<std::pair<std::string, std::vector<int>>> families{{"cube_hexahedron", {1, 2, 3, 4}},
-                                                                       {"cube_pyramids", {1, 2, 3, 4}},
-                                                                       {"cube_truncated", {1, 2, 3, 4}},
-                                                                       {"cube_tetrahedron", {1, 2}}};
-  for (const auto& [family, levels] : families) {
-    std::vector<std::string> names;
-    for (int l : levels) names.push_back(family + "_" + std::to_string(l) + ".ovm");
-    std::vector<std::pair<std::string, VolumeMesh>> loaded;
-    add_shared(loaded, "volume/", names, [](const std::string& p) { return read_volume_mesh(p); });
-    if (loaded.size() != names.size()) return;
-    std::vector<VolumeMesh> meshes;
-    std::vector<std::string> labels;
-    for (auto& [label, mesh] : loaded) {
-      labels.push_back(label);
-      meshes.push_back(std::move(mesh));
-    }
-    for (const bool lumped : {false, true})
-      for (const bool diamond : {true, false}) {
-        const auto s = volume_franke_convergence(family, meshes, labels, lumped,
-                                                 diamond ? VolumeOperatorBuilder([](const VolumeMesh& m) {
-                                                   return volume_diamond_operators(m, false);
-                                                 })
-                                                         : VolumeOperatorBuilder());
-        for (size_t i = 0; i < s.errors.size(); ++i) {
-          const auto& e = s.errors[i];
-          std::printf("| %s | %s | %s | %s | %d | %.4f | %.3e | %.3e |", diamond ? "diamond" : "ours",
-                      lumped ? "lumped" : "Galerkin", family.c_str(), labels[i].c_str(), e.n_vertices, e.h,
-                      e.l2_error, e.rms_error);
-          if (i > 0) std::printf(" %.2f / %.2f |", s.l2_slopes[i - 1], s.rms_slopes[i - 1]);
-          std::printf("\n");
-        }
-      }
-  }
 }
 
 }  // namespace test_diamond

@@ -3,6 +3,7 @@
 // pyramids and truncated octahedra, the standard FEM and rule independence on the tetrahedral
 // cubes, S = -d0^T star1 d0 and d d = 0 on the cubes DEC supports.
 #include <Eigen/Dense>
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 
@@ -96,15 +97,51 @@ TEST_CASE("shared cube meshes: DEC identities", "[volume][volume-dec]") {
     CHECK(relative_difference(SparseMatrix(-D.d[0].transpose() * D.star[1] * D.d[0]), L.S) < 1e-12);
     CHECK(relative_difference(D.star[0], L.M) < 1e-12);
   }
-  // A cell with more vertices than kMaxDecCellVertices (a 7-gonal prism, 14 vertices) is refused
-  // with a message naming the cell.
+}
+
+TEST_CASE("DEC degree limits by cell size: lower degrees on larger cells", "[volume][volume-dec]") {
+  // A cell of m vertices gives star_k a dense C(m, k+1)^2 block: each limit is the largest m whose
+  // block fits kMaxDecLocalBlock.
+  auto binomial = [](long n, long k) {
+    long c = 1;
+    for (long i = 0; i < k; ++i) c = c * (n - i) / (i + 1);
+    return c;
+  };
+  for (int k = 1; k <= 3; ++k) {
+    const long m = max_dec_cell_vertices(k);
+    CHECK(binomial(m, k + 1) * binomial(m, k + 1) <= kMaxDecLocalBlock);
+    CHECK(binomial(m + 1, k + 1) * binomial(m + 1, k + 1) > kMaxDecLocalBlock);
+  }
+  CHECK(max_dec_cell_vertices(3) < max_dec_cell_vertices(2));
+  CHECK(max_dec_cell_vertices(2) < max_dec_cell_vertices(1));
+
+  // A 7-gonal prism (14 vertices): degree 3 is refused naming the cell, degree 2 is complete.
   const VolumeMesh prism = test::prism_volume(7);
-  REQUIRE(int(prism.cell_vertices(0).size()) > kMaxDecCellVertices);
-  CHECK_THROWS_WITH(volume_coarse_complex(prism),
-                    Catch::Contains("cell 0") && Catch::Contains("14 vertices"));
-  // Its Laplacian has no such limit.
-  const VolumeLaplacian L = assemble_volume_laplacian(prism, refine_volume(prism));
-  CHECK(std::abs(L.M_lumped.sum() - prism.volume()) < 1e-12 * prism.volume());
+  REQUIRE(int(prism.cell_vertices(0).size()) == 14);
+  CHECK(volume_dec_max_degree(prism) == 2);
+  const VolumeRefinement Rp = refine_volume(prism);
+  CHECK_THROWS_WITH(volume_dec(prism, Rp), Catch::Contains("cell 0") && Catch::Contains("14 vertices"));
+  const VolumeDec Dp = volume_dec(prism, Rp, 2);
+  CHECK(Dp.coarse.n_quads() == 0);
+  CHECK(Dp.d[2].size() == 0);
+  CHECK(Dp.star[3].size() == 0);
+  CHECK(SparseMatrix(Dp.d[1] * Dp.d[0]).norm() == 0.0);
+  const VolumeLaplacian Lp = assemble_volume_laplacian(prism, Rp);
+  CHECK(relative_difference(SparseMatrix(-Dp.d[0].transpose() * Dp.star[1] * Dp.d[0]), Lp.S) < 1e-12);
+  CHECK(std::abs(Lp.M_lumped.sum() - prism.volume()) < 1e-12 * prism.volume());
+
+  // Truncated octahedra (24 vertices inside the box): 1-forms, so S = -d0^T star1 d0 on them too.
+  const VolumeMesh mesh = truncated_octahedra_volume(3);
+  size_t largest = 0;
+  for (int c = 0; c < mesh.n_cells(); ++c) largest = std::max(largest, mesh.cell_vertices(c).size());
+  REQUIRE(largest == 24);
+  CHECK(volume_dec_max_degree(mesh) == 1);
+  const VolumeRefinement R = refine_volume(mesh);
+  const VolumeDec D = volume_dec(mesh, R, 1);
+  CHECK(D.coarse.n_triples() == 0);
+  const VolumeLaplacian L = assemble_volume_laplacian(mesh, R);
+  CHECK(relative_difference(SparseMatrix(-D.d[0].transpose() * D.star[1] * D.d[0]), L.S) < 1e-12);
+  CHECK(relative_difference(D.star[0], L.M) < 1e-12);
 }
 
 }  // namespace test_volume_laplacian_files

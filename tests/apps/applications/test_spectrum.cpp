@@ -12,6 +12,7 @@
 #include "polydec/apps/applications/spectrum.h"
 #include "polydec/dec/generators.h"
 #include "polydec/dec/io.h"
+#include "polydec/operators/laplacians.h"
 #include "tests/apps/paper_spheres.h"
 #include "tests/support.h"
 
@@ -34,7 +35,8 @@ SparseMatrix mass_of(const OperatorSet& ops, bool lumped) {
 // Largest |a_i - b_i| / max(|b_i|, b_1) (the zero eigenvalue relative to the first non-zero one).
 double max_relative_difference(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
   double d = 0;
-  for (Eigen::Index i = 0; i < b.size(); ++i) d = std::max(d, std::abs(a[i] - b[i]) / std::max(std::abs(b[i]), b[1]));
+  for (Eigen::Index i = 0; i < b.size(); ++i)
+    d = std::max(d, std::abs(a[i] - b[i]) / std::max(std::abs(b[i]), b[1]));
   return d;
 }
 
@@ -44,7 +46,8 @@ void check_eigenpairs(const OperatorSet& ops, const Spectrum& sp) {
   const Eigen::MatrixXd& U = sp.eigenvectors;
   const Eigen::MatrixXd R = ops.S * U + M * U * sp.eigenvalues.asDiagonal();
   CHECK(R.norm() <= 1e-8 * (ops.S * U).norm());
-  CHECK((U.transpose() * M * U - Eigen::MatrixXd::Identity(U.cols(), U.cols())).cwiseAbs().maxCoeff() <= 1e-8);
+  CHECK((U.transpose() * M * U - Eigen::MatrixXd::Identity(U.cols(), U.cols())).cwiseAbs().maxCoeff() <=
+        1e-8);
   for (Eigen::Index i = 1; i < sp.eigenvalues.size(); ++i) CHECK(sp.eigenvalues[i] >= sp.eigenvalues[i - 1]);
 }
 
@@ -213,6 +216,20 @@ TEST_CASE("applications CLI: named JSON keys and output files agree with the lib
     CHECK(header == "%%MatrixMarket matrix array real general");
     CHECK(rows == sphere.n_vertices());
     CHECK(cols == 5);
+  }
+  {
+    // Read back: every column solves -S x = lambda M x (lumped M, the default) with its eigenvalue.
+    const Eigen::MatrixXd X(read_matrix_market((dir / "eigenvectors.mtx").string()));
+    REQUIRE(X.rows() == sphere.n_vertices());
+    REQUIRE(X.cols() == 5);
+    const OperatorSet ops = build_operators(read_mesh(path), parse_laplacian("ours"), false);
+    for (int i = 0; i < 5; ++i) {
+      const double lambda = sp["eigenvalues"][i].get<double>();
+      const Eigen::VectorXd Mx = ops.M_lumped.cwiseProduct(X.col(i));
+      const double residual = (-(ops.S * X.col(i)) - lambda * Mx).norm();
+      const double scale = ops.S.norm() * X.col(i).norm();  // the size of S x's terms before cancellation
+      CHECK(residual <= 1e-7 * (ops.S * X.col(i)).norm() + 1e-12 * scale);
+    }
   }
   std::filesystem::remove_all(dir);
 

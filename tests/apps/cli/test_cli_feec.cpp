@@ -1,56 +1,28 @@
 // tests/apps/cli/test_cli_feec.cpp — `polydec dec` and `polydec hodge`: files written match the
 // library's matrices and cell lists; norms printed; bad input mapped to exit codes.
 #include <fmt/format.h>
-#include <sys/wait.h>
 
 #include <catch2/catch.hpp>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "polydec/apps/applications/hodge_decomposition.h"
 #include "polydec/dec/hodge_star.h"
 #include "polydec/dec/io.h"
+#include "tests/apps/cli/cli_run.h"
 #include "tests/dec/feec_meshes.h"
 
 using namespace polydec;
 
 namespace test_cli_feec {
 
-namespace {
-
-struct Run {
-  int code;
-  std::string out;
-};
-
-Run run_cli(const std::string& args, const std::string& dir) {
-  const std::string out = dir + "/stdout.txt";
-  const std::string cmd =
-      std::string(POLYDEC_CLI_PATH) + " " + args + " > " + out + " 2> " + dir + "/stderr.txt";
-  const int status = std::system(cmd.c_str());
-  std::ifstream in(out);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, ss.str()};
-}
-
-std::string temp_dir(const std::string& name) {
-  const auto p =
-      std::filesystem::temp_directory_path() / ("polydec_feec_" + name + "_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(p);
-  return p.string();
-}
-
-}  // namespace
-
 TEST_CASE("polydec dec writes the FEEC matrices and cell lists in matrix order", "[feec]") {
-  const std::string dir = temp_dir("dec");
+  const test::ScratchDir scratch("feec_dec");
+  const std::string dir = scratch.dir.string();
   const Mesh mesh = test::torus(8, 6, 0.1, true);
   write_mesh(dir + "/torus.obj", mesh);
-  const Run r = run_cli("dec " + dir + "/torus.obj --out " + dir + "/out --json", dir);
+  const test::CliRun r = test::run_cli_in(dir, "dec " + dir + "/torus.obj --out " + dir + "/out --json");
   REQUIRE(r.code == 0);
   const auto j = nlohmann::json::parse(r.out);
   const Mesh m = read_mesh(dir + "/torus.obj");  // positions as written (17 digits)
@@ -76,11 +48,11 @@ TEST_CASE("polydec dec writes the FEEC matrices and cell lists in matrix order",
     tris >> a >> b >> c;
     REQUIRE((a == K.triples()(t, 0) && b == K.triples()(t, 1) && c == K.triples()(t, 2)));
   }
-  std::filesystem::remove_all(dir);
 }
 
 TEST_CASE("polydec hodge decomposes a given 1-form and reports its norms", "[feec]") {
-  const std::string dir = temp_dir("hodge");
+  const test::ScratchDir scratch("feec_hodge");
+  const std::string dir = scratch.dir.string();
   const Mesh mesh = test::torus(10, 6, 0.1, false);
   write_mesh(dir + "/torus.obj", mesh);
   const Mesh m = read_mesh(dir + "/torus.obj");
@@ -94,8 +66,8 @@ TEST_CASE("polydec hodge decomposes a given 1-form and reports its norms", "[fee
     for (long p = 0; p < omega.size(); ++p) f << fmt::format("{:.17g}\n", omega[p]);
   }
   const HodgeParts expect = hd.decompose(omega);
-  const Run r = run_cli(
-      "hodge " + dir + "/torus.obj --form " + dir + "/form.txt --json --out " + dir + "/parts.txt", dir);
+  const test::CliRun r = test::run_cli_in(
+      dir, "hodge " + dir + "/torus.obj --form " + dir + "/form.txt --json --out " + dir + "/parts.txt");
   REQUIRE(r.code == 0);
   const auto j = nlohmann::json::parse(r.out);
   CHECK(j["harmonic_dimension"] == 2);
@@ -115,7 +87,7 @@ TEST_CASE("polydec hodge decomposes a given 1-form and reports its norms", "[fee
     REQUIRE(e + c + h == Approx(w).margin(1e-12));
   }
   // The built-in form runs too and has all three parts on a torus.
-  const Run b = run_cli("hodge " + dir + "/torus.obj --json", dir);
+  const test::CliRun b = test::run_cli_in(dir, "hodge " + dir + "/torus.obj --json");
   REQUIRE(b.code == 0);
   const auto jb = nlohmann::json::parse(b.out);
   CHECK(jb["norm_exact"].get<double>() > 0);
@@ -130,11 +102,10 @@ TEST_CASE("polydec hodge decomposes a given 1-form and reports its norms", "[fee
     std::ofstream f(dir + "/garbage.txt");
     f << "1\nabc\n";
   }
-  CHECK(run_cli("hodge " + dir + "/torus.obj --form " + dir + "/short.txt", dir).code == 3);
-  CHECK(run_cli("hodge " + dir + "/torus.obj --form " + dir + "/garbage.txt", dir).code == 3);
-  CHECK(run_cli("hodge " + dir + "/missing.obj", dir).code == 3);
-  CHECK(run_cli("hodge " + dir + "/torus.obj --noise -1", dir).code == 2);
-  std::filesystem::remove_all(dir);
+  CHECK(test::run_cli_in(dir, "hodge " + dir + "/torus.obj --form " + dir + "/short.txt").code == 3);
+  CHECK(test::run_cli_in(dir, "hodge " + dir + "/torus.obj --form " + dir + "/garbage.txt").code == 3);
+  CHECK(test::run_cli_in(dir, "hodge " + dir + "/missing.obj").code == 3);
+  CHECK(test::run_cli_in(dir, "hodge " + dir + "/torus.obj --noise -1").code == 2);
 }
 
 }  // namespace test_cli_feec

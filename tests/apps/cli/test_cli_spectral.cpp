@@ -18,6 +18,7 @@
 #include "polydec/dec/complex.h"
 #include "polydec/dec/generators.h"
 #include "polydec/dec/io.h"
+#include "polydec/dec/refinement.h"
 #include "tests/apps/cli/cli_run.h"
 #include "tests/dec/feec_meshes.h"
 
@@ -45,20 +46,9 @@ bool is_png(const std::string& path) {
   return f && std::string(sig + 1, 3) == "PNG" && std::filesystem::file_size(path) > 1000;
 }
 
-// Dense Matrix Market ("array real general", column-major), as the spectrum command writes it.
-Eigen::MatrixXd read_dense(const std::string& path) {
-  std::ifstream f(path);
-  std::string line;
-  std::getline(f, line);
-  REQUIRE(line.rfind("%%MatrixMarket matrix array", 0) == 0);
-  long rows = 0, cols = 0;
-  f >> rows >> cols;
-  Eigen::MatrixXd A(rows, cols);
-  for (long j = 0; j < cols; ++j)
-    for (long i = 0; i < rows; ++i) f >> A(i, j);
-  REQUIRE(f);
-  return A;
-}
+// The dense Matrix Market files ("array real general") the spectrum command writes, read by the
+// library's reader.
+Eigen::MatrixXd read_dense(const std::string& path) { return Eigen::MatrixXd(read_matrix_market(path)); }
 
 // The vertex properties of an ASCII PLY file (as write_mesh writes it), by name.
 std::map<std::string, Eigen::VectorXd> read_ply_properties(const std::string& path) {
@@ -125,6 +115,25 @@ TEST_CASE("polydec spectrum --form 1 and --form 2 write eigenpairs, parts and pi
   CHECK(run_cli("spectrum " + dir + "/torus.obj --form 1 --k 4 --png " + dir + "/x.png --png-index 9", dir)
             .code == 2);
   std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("polydec spectrum --form warns of degenerate fan triangles", "[cli_spectral]") {
+  POLYDEC_SHARED_MESH(path, "tetris.obj");
+  const test::ScratchDir scratch("spectral_tetris");
+  const Mesh mesh = read_mesh(path);
+  const Refinement ref = refine(mesh);
+  const Run r = run_cli("spectrum '" + path + "' --form 2 --k 3 --json", scratch.dir.string());
+  REQUIRE(r.code == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  CHECK(j["fan_degenerate"] == ref.quality.n_degenerate);
+  CHECK((r.err.find("degenerate fan triangle") != std::string::npos) == (ref.quality.n_degenerate > 0));
+  // The torus has none, and no warning.
+  write_mesh(scratch.path("torus.obj"), test::torus(8, 6, 0.1, true));
+  const Run t =
+      run_cli("spectrum " + scratch.path("torus.obj") + " --form 2 --k 3 --json", scratch.dir.string());
+  REQUIRE(t.code == 0);
+  CHECK(nlohmann::json::parse(t.out)["fan_degenerate"] == 0);
+  CHECK(t.err.find("degenerate") == std::string::npos);
 }
 
 TEST_CASE("polydec spectral writes HKS, WKS, distances and the filtered mesh", "[cli_spectral]") {

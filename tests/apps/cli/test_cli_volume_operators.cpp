@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cstdlib>
 #include <filesystem>
@@ -99,11 +100,23 @@ TEST_CASE("polydec dec on volume meshes", "[volume][volume-dec][cli]") {
   for (std::string line; std::getline(tets, line);) ++lines;
   CHECK(lines == D.coarse.n_quads());
 
-  // Cells with more than kMaxDecCellVertices vertices: bad input naming the cell.
+  // A 14-vertex cell: forms up to degree 2 by default, with a warning; degree 3 asked for is bad
+  // input naming the cell; a degree outside 0..3 is a usage error.
   write_volume_mesh(test::prism_volume(7), s.path("prism.ovm"));
-  r = run(s.dir, "dec " + s.path("prism.ovm") + " --out " + s.path("t"));
+  r = run(s.dir, "dec " + s.path("prism.ovm") + " --out " + s.path("t") + " --json");
+  REQUIRE(r.code == 0);
+  j = nlohmann::json::parse(r.out);
+  CHECK(j["max_degree"] == 2);
+  CHECK(j["rank_star3"].is_null());
+  CHECK(r.err.find("up to degree 2") != std::string::npos);
+  for (const char* f : {"d0.mtx", "d1.mtx", "star2.mtx", "P2.mtx", "triangles.txt"})
+    CHECK(fs::exists(s.path(std::string("t/") + f)));
+  for (const char* f : {"d2.mtx", "star3.mtx", "P3.mtx", "tetrahedra.txt"}) CHECK(!fs::exists(s.path(std::string("t/") + f)));
+  CHECK(std::find(j["files"].begin(), j["files"].end(), "d2.mtx") == j["files"].end());
+  r = run(s.dir, "dec " + s.path("prism.ovm") + " --out " + s.path("t3") + " --max-degree 3");
   CHECK(r.code == 3);
-  CHECK(r.err.find("cell") != std::string::npos);
+  CHECK(r.err.find("cell 0") != std::string::npos);
+  CHECK(run(s.dir, "dec " + s.path("prism.ovm") + " --out " + s.path("t4") + " --max-degree 4").code == 2);
 }
 
 }  // namespace test_cli_volume_operators

@@ -177,7 +177,9 @@ put("ply/truncated_mid_record.ply", mixed[:-10])
 put("mtx/claims_1e12.mtx", "%%MatrixMarket matrix coordinate real general\n3 3 1000000000000\n1 1 1\n")
 put("mtx/out_of_range.mtx", "%%MatrixMarket matrix coordinate real general\n3 3 2\n1 1 1\n4 1 2\n")
 put("mtx/truncated.mtx", "%%MatrixMarket matrix coordinate real general\n% a comment\n3 3 3\n1 1 1\n2 2 2\n")
-put("mtx/array.mtx", "%%MatrixMarket matrix array real general\n2 2\n1\n2\n3\n4\n")
+put("mtx/vector_format.mtx", "%%MatrixMarket matrix vector real general\n3 3\n1\n2\n")
+put("mtx/array_two_per_line.mtx", "%%MatrixMarket matrix array real general\n2 2\n1 2\n3 4\n")
+put("mtx/array_truncated.mtx", "%%MatrixMarket matrix array real general\n3 3\n1\n2\n")
 put("mtx/png.mtx", PNG)
 # Found by fuzz_mtx: a symmetric matrix that is not square (the mirrored entry fell outside).
 # Found by fuzz_mtx: 3 entries claiming 723221734 columns (a 2.9 GB column index).
