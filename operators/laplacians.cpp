@@ -8,6 +8,7 @@
 #include "polydec/operators/aw11.h"
 #include "polydec/operators/cotan.h"
 #include "polydec/operators/degoes20.h"
+#include "polydec/operators/diamond.h"
 #include "polydec/operators/gradient.h"
 #include "polydec/operators/intrinsic_delaunay.h"
 #include "polydec/operators/triangulation.h"
@@ -33,6 +34,7 @@ const MethodInfo kMethods[] = {
     {"intrinsic-delaunay", false},
     {"aw11", true},
     {"degoes20", true},
+    {"diamond", false},
 };
 
 const MethodInfo* find_method(const std::string& name) {
@@ -196,6 +198,7 @@ OperatorSet operators_by_name(const Mesh& mesh, const LaplacianChoice& choice, b
   if (m == "intrinsic-delaunay") return intrinsic_delaunay_operators(mesh, with_gradient);
   if (m == "aw11") return aw11_operators(mesh, choice.parameter, with_gradient);
   if (m == "degoes20") return degoes20_operators(mesh, choice.parameter, with_gradient);
+  if (m == "diamond") return diamond_operators(mesh, with_gradient);
   throw std::invalid_argument("unknown Laplacian '" + m + "'");
 }
 

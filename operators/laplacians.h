@@ -12,6 +12,7 @@
 //   intrinsic-delaunay        [BS07] on the min-area triangulation (operators/intrinsic_delaunay.h)
 //   aw11:LAMBDA               Alexa & Wardetzky 2011 (operators/aw11.h)
 //   degoes20:LAMBDA           de Goes, Butts & Desbrun 2020 (operators/degoes20.h)
+//   diamond                   Bunge, Botsch & Alexa 2021, the Diamond Laplacian (operators/diamond.h)
 // A parameter follows a colon, e.g. "aw11:0.5".
 #pragma once
 

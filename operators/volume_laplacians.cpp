@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "polydec/dec/volume_whitney.h"
+#include "polydec/operators/volume_diamond.h"
 
 namespace polydec {
 
@@ -41,6 +42,7 @@ const VolumeMethod kVolumeMethods[] = {
                 SubTetQuality* q) { return refined_operators(m, CellPointRule::SquaredVolume, g, q); }},
     {"polylaplace", [](const VolumeMesh& m, bool g,
                        SubTetQuality* q) { return refined_operators(m, CellPointRule::PolyLaplace, g, q); }},
+    {"diamond", [](const VolumeMesh& m, bool g, SubTetQuality* q) { return volume_diamond_operators(m, g, q); }},
 };
 
 const VolumeMethod* find_volume_method(const std::string& name) {

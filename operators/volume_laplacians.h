@@ -4,6 +4,8 @@
 //   ours          S, M of operators/volume_laplacian.h with the least-norm cell-point weights
 //                 (CellPointRule::SquaredVolume, the default)
 //   polylaplace   the same with polyLaplace's cell-point weights (CellPointRule::PolyLaplace)
+//   diamond       the Diamond Laplacian of Bunge, Botsch & Alexa 2021 (operators/volume_diamond.h;
+//                 its G has 3 rows per sub-diamond, not per sub-tetrahedron)
 // Both come with a gradient and divergence (below), so the heat method applies.
 //
 // Gradient: vector fields live on the sub-tetrahedra of the refinement (dec/volume_refinement.h,

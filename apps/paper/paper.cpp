@@ -47,13 +47,14 @@ const std::vector<std::string> kAllMethods = {"ours",
                                               "aw11:0.1",
                                               "aw11:0.5",
                                               "aw11:1",
-                                              "degoes20:1"};
+                                              "degoes20:1",
+                                              "diamond"};
 // Table 6: the virtual-vertex choices (trace-min is Bunge et al. 2024, not in the paper).
 const std::vector<std::string> kVariants = {"ours", "convex", "centroid", "abs-area", "trace-min"};
 // Table 5: the paper's six columns first.
 const std::vector<std::string> kTimed = {"ours",     "convex",     "centroid",           "abs-area",
                                          "aw11:0.5", "triangulated-minarea", "trace-min", "intrinsic-delaunay",
-                                         "degoes20:1", "refined"};
+                                         "degoes20:1", "refined",    "diamond"};
 // Methods whose operators act on the input's vertices (the curvature flow and parametrization
 // need that).
 bool on_input_vertices(const std::string& m) { return m != "refined"; }
@@ -631,7 +632,7 @@ std::string paper_report_markdown(const json& r) {
   const std::vector<std::string> baselines = {"ours",     "triangulated-minarea", "aw11:0.1", "aw11:0.5",
                                               "aw11:1",   "intrinsic-delaunay",   "centroid", "abs-area",
                                               "convex",   "trace-min",            "triangulated-maxminangle",
-                                              "refined",  "degoes20:1"};
+                                              "refined",  "degoes20:1",           "diamond"};
   std::string s;
   s += "# Polygon Laplacian Made Simple — the evaluation, reproduced by polydec\n\n";
   s += "Made by `polydec paper`. Each cell: our value, then in parentheses the paper's printed value and our "
@@ -680,7 +681,7 @@ std::string paper_report_markdown(const json& r) {
   s += "Un-lumped (Galerkin) mass for every method that has one:\n\n" +
        table(r, "table2", {"ours-unlumped", "triangulated-minarea-unlumped", "intrinsic-delaunay-unlumped",
                            "centroid-unlumped", "abs-area-unlumped", "convex-unlumped", "trace-min-unlumped",
-                           "triangulated-maxminangle-unlumped", "refined-unlumped"},
+                           "triangulated-maxminangle-unlumped", "refined-unlumped", "diamond-unlumped"},
              0.10);
 
   s += "## Table 3: spherical-harmonics error (eq. 30), l = 1..8\n\nThe authors' program sums l = 1..8 (the "
@@ -688,6 +689,9 @@ std::string paper_report_markdown(const json& r) {
        "mass. `polydec harmonics MESH --laplacian NAME --json`.\n\n";
   s += table(r, "table3", baselines, 0.10);
   s += authors_table(r, "table3", "ours");
+  s += "Un-lumped mass: ours with its Galerkin mass, diamond with its own P^T M P (lumping it is not what its "
+       "authors do, docs/laplacians.md):\n\n" +
+       table(r, "table3", {"ours-unlumped", "diamond-unlumped"}, 0.10);
 
   s += "## Table 4: geodesic RMSE on planar meshes (heat method)\n\nSource vertex 0, t = h^2 with h the mean "
        "edge length of the input (of the triangulation for [BS07], as libigl does), RMSE against the Euclidean "

@@ -11,7 +11,7 @@ Conventions (docs/python.md):
     scipy.sparse.csc_matrix of float64, rows and columns in the given vertex order.
   * Laplacian variants by name, as on the command line: "ours" (default), "centroid",
     "abs-area", "convex", "trace-min", "triangulated-minarea", "triangulated-maxminangle",
-    "refined", "intrinsic-delaunay", "aw11:LAMBDA", "degoes20:LAMBDA" (laplacian_names()).
+    "refined", "intrinsic-delaunay", "aw11:LAMBDA", "degoes20:LAMBDA", "diamond" (laplacian_names()).
   * The GIL is released during validation, assembly, factorization and solves.
   * Errors: InvalidMeshError (a ValueError naming the face, vertex or edge), FileError (an
     OSError and a ValueError with the file and line), SolverError (a RuntimeError).

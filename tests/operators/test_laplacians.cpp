@@ -20,7 +20,8 @@ namespace test_laplacians {
 namespace {
 
 const char* kAll[] = {"ours",   "centroid",           "abs-area", "convex",  "trace-min",  "triangulated-minarea",
-                      "triangulated-maxminangle", "refined", "intrinsic-delaunay", "aw11:0.5", "degoes20:1"};
+                      "triangulated-maxminangle", "refined", "intrinsic-delaunay", "aw11:0.5", "degoes20:1",
+                      "diamond"};
 
 // Methods whose stiffness is D G exactly (the others add a stabilization term outside D G).
 bool has_exact_factorization(const std::string& name) {
@@ -99,7 +100,8 @@ TEST_CASE("linear precision on planar meshes", "[compare][laplacians]") {
   // Not max-min-angle: it folds non-convex polygons (paper section 5), and folded triangles break
   // linear precision.
   const char* precise[] = {"ours",    "centroid",           "abs-area", "convex",  "trace-min", "triangulated-minarea",
-                           "refined", "intrinsic-delaunay", "aw11:0.1", "aw11:1", "degoes20:1"};
+                           "refined", "intrinsic-delaunay", "aw11:0.1", "aw11:1", "degoes20:1",
+                           "diamond"};
   for (const Mesh& mesh : meshes)
     for (const char* name : precise) {
       INFO(name << " on a mesh with " << mesh.n_vertices() << " vertices");
