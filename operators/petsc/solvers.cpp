@@ -240,6 +240,19 @@ Eigen::VectorXd HeatGeodesics::distance(std::span<const int> sources) const {
   zero_rows(rhs.get(), uncoupled);
   check(VecDuplicate(delta.get(), u.out()), "VecDuplicate");
   heat_its_ = solve(heat_.get(), rhs.get(), u.get(), "heat operator M - t S");
+  heat_unresolved_ = 0;
+  if (options_.solver != LinearSolver::MumpsCholesky) {
+    PetscReal umax = 0;
+    check(VecMax(u.get(), nullptr, &umax), "VecMax");
+    const double resolution = 10 * options_.rtol * umax;
+    const PetscScalar* ua = nullptr;
+    check(VecGetArrayRead(u.get(), &ua), "VecGetArrayRead");
+    long below = 0;
+    for (PetscInt r = lo; r < hi; ++r)
+      if (coupled_[size_t(r - lo)] && !(ua[r - lo] > resolution)) ++below;
+    check(VecRestoreArrayRead(u.get(), &ua), "VecRestoreArrayRead");
+    MPI_Allreduce(&below, &heat_unresolved_, 1, MPI_LONG, MPI_SUM, comm_);
+  }
   // (32), (33): -D g with g = -grad u / |grad u| per fan triangle, face by face on each rank.
   check(VecDuplicate(delta.get(), b.out()), "VecDuplicate");
   divergence_of_gradient(ops_, u.get(), b.get(), true);

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <iostream>
 #include <limits>
 #include <numeric>
 #include <optional>
@@ -159,10 +160,17 @@ void petsc_geodesics(const std::string& mesh_path, bool repair, const std::vecto
       {"solver", petsc::linear_solver_name(go.solver)},
       {"heat_iterations", heat.heat_iterations()},
       {"poisson_iterations", heat.poisson_iterations()},
+      {"heat_unresolved_vertices", heat.heat_unresolved()},
       {"per_rank", per_rank(comm, {double(ops.n_local_faces), double(ops.n_local_vertices),
                                    double(part.vertex_begin[size_t(r) + 1] - part.vertex_begin[size_t(r)]),
                                    double(ops.n_coo_entries), t_read, t_partition, t_assembly, t_setup, t_solve,
                                    petsc::peak_rss_mb()})}};
+  if (r == 0 && heat.heat_unresolved() > 0)
+    std::cerr << fmt::format(
+        "polydec: warning: the heat solution lies below the {} solve's resolution at {} of {} vertices (far "
+        "from the sources): distances there may be noise; use --solver direct (a tighter CG tolerance "
+        "cannot help: those values are near round-off)\n",
+        petsc::linear_solver_name(go.solver), heat.heat_unresolved(), part.n_global());
   petsc::agree(comm, [&] {
     std::optional<Mesh> whole;
     if (r == 0) write({lazy_mesh(mesh, whole), sources, d, heat.time_step(), ops.quality, summary});
