@@ -71,95 +71,109 @@ namespace volume_laplacian_detail {
 namespace {
 
 // Reused buffers of the cell kernel (no allocation per cell once they have grown).
-using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-
 struct CellWorkspace {
-  RowMatrix W;             // (nf + 1) x m: face rows and the cell row of the local prolongation
-  Eigen::Matrix3Xd X;      // the cell's vertex positions (columns), gathered once
-  Eigen::MatrixXd As, Am;  // r x r fine matrices over [cell vertices, face points, cell point]
-  Eigen::MatrixXd T;       // r x m
-  std::vector<int> face_local;
+  Eigen::Matrix3Xd X;           // the cell's vertex positions (columns), gathered once
+  std::vector<int> face_local;  // a face's corners as indices into cell_vertices(c)
+  std::vector<double> Fs, Fm;   // per face: fine (n + 2)^2 matrices over [corners, face point, cell point]
+  std::vector<double> hs, hm;   // per cell: couplings of the vertices with the cell point
 };
 
-// P_c^T A P_c with P_c = [I_m; W]: T = A [I; W], result = T_top + W^T T_bottom, by loops over
-// the non-zero weights (a face row has only the face's corners; the sizes are too small for GEMM).
-void coarsen(const Eigen::MatrixXd& A, const RowMatrix& W, Eigen::MatrixXd& T, Eigen::MatrixXd& out) {
-  const long m = W.cols(), k = W.rows(), r = A.rows();
-  T = A.leftCols(m);
-  for (long q = 0; q < k; ++q)
-    for (long j = 0; j < m; ++j) {
-      const double w = W(q, j);
-      if (w == 0) continue;
-      const double* a = A.data() + (m + q) * r;
-      double* t = T.data() + j * r;
-      for (long i = 0; i < r; ++i) t[i] += w * a[i];
-    }
-  out = T.topRows(m);
-  for (long b = 0; b < m; ++b) {
-    const double* t = T.data() + b * r + m;
-    double* o = out.data() + b * m;
-    for (long q = 0; q < k; ++q) {
-      const double tb = t[q];
-      const double* wq = W.data() + q * m;
-      for (long a = 0; a < m; ++a) o[a] += wq[a] * tb;
-    }
+// Folds the face point (index n of the (n + 2)^2 column-major F, weights w over the corners) into
+// the corners and adds the corner block to the coarse m x m matrix C; the cell point's couplings
+// (index n + 1) go to h (per cell vertex) and alpha.
+void fold_face(const std::vector<double>& F, int n, std::span<const double> w, const std::vector<int>& local,
+               Eigen::MatrixXd& C, std::vector<double>& h, double& alpha) {
+  const int p = n + 2;
+  const double* fn = F.data() + n * p;  // column of the face point
+  const double* fc = F.data() + (n + 1) * p;  // column of the cell point
+  const double ff = fn[n];
+  for (int b = 0; b < n; ++b) {
+    const double* col = F.data() + b * p;
+    const double tb = fn[b] + w[b] * ff;  // (F P)(face point, b) with the face point folded
+    double* out = C.data() + long(local[b]) * C.rows();
+    for (int a = 0; a < n; ++a) out[local[a]] += col[a] + w[a] * tb + fn[a] * w[b];
+    h[local[b]] += fc[b] + w[b] * fc[n];
+  }
+  alpha += fc[n + 1];
+}
+
+// C += h w^T + w h^T + alpha w w^T: the cell point's row of P_c is w, so the fine couplings h (vertex,
+// cell point) and alpha (cell point, cell point) become coarse ones.
+void add_cell_point(const std::vector<double>& h, double alpha, std::span<const double> w, Eigen::MatrixXd& C) {
+  const long m = C.rows();
+  for (long j = 0; j < m; ++j) {
+    double* col = C.data() + j * m;
+    const double hj = h[j], wj = w[j], awj = alpha * wj;
+    for (long i = 0; i < m; ++i) col[i] += h[i] * wj + w[i] * hj + w[i] * awj;
   }
 }
 
+// P_c^T S^tet P_c and P_c^T M^tet P_c without the cell's fine matrices: per face, the
+// sub-tetrahedra's 4 x 4 stiffness and mass over [face corners, face point, cell point]; the face
+// point is folded into the corners by its weights once per face and the corner block added to the
+// m x m result, the cell point's couplings (row w of P_c) once per cell.
 void cell_kernel(const VolumeMesh& mesh, const VolumeRefinement& refinement, int c, Eigen::MatrixXd* S,
                  Eigen::MatrixXd* M, CellWorkspace& ws) {
   const auto verts = mesh.cell_vertices(c);
   const auto cell = mesh.cell(c);
-  const int m = int(verts.size()), nf = int(cell.size()), r = m + nf + 1;
-  ws.W.setZero(nf + 1, m);
+  const int m = int(verts.size()), nf = int(cell.size());
   ws.X.resize(3, m);
   for (int i = 0; i < m; ++i) ws.X.col(i) = mesh.positions().row(verts[i]).transpose();
-  const auto wc = refinement.weights_of_cell(c);
-  for (int i = 0; i < m; ++i) ws.W(nf, i) = wc[i];
-  if (S) ws.As.setZero(r, r);
-  if (M) ws.Am.setZero(r, r);
+  double alpha_s = 0, alpha_m = 0;
+  if (S) {
+    S->setZero(m, m);
+    ws.hs.assign(m, 0.0);
+  }
+  if (M) {
+    M->setZero(m, m);
+    ws.hm.assign(m, 0.0);
+  }
   const Eigen::Vector3d xc = refinement.cell_points.row(c).transpose();
   int t = refinement.tet_offsets[c];
   for (int k = 0; k < nf; ++k) {
     const int hf = cell[k], f = hf / 2;
     const auto face = mesh.face(f);
-    const int n = int(face.size());
+    const int n = int(face.size()), p = n + 2;
     const auto wf = refinement.weights_of_face(mesh, f);
     ws.face_local.resize(n);
-    for (int i = 0; i < n; ++i) {
-      ws.face_local[i] = local_index(verts, face[i]);
-      ws.W(k, ws.face_local[i]) = wf[i];
-    }
+    for (int i = 0; i < n; ++i) ws.face_local[i] = local_index(verts, face[i]);
+    if (S) ws.Fs.assign(size_t(p) * p, 0.0);
+    if (M) ws.Fm.assign(size_t(p) * p, 0.0);
     const Eigen::Vector3d xf = refinement.face_points.row(f).transpose();
     for (int i = 0; i < n; ++i, ++t) {
       // Outward order: half-face 2f runs along the face, 2f+1 against it.
       int ia = i, ib = (i + 1) % n;
       if (hf & 1) std::swap(ia, ib);
-      const int loc[4] = {ws.face_local[ia], ws.face_local[ib], m + k, m + nf};
-      const Eigen::Vector3d pa = ws.X.col(loc[0]);
-      const Eigen::Vector3d e1 = ws.X.col(loc[1]) - pa, e2 = xf - pa, e3 = xc - pa;
+      const int loc[4] = {ia, ib, n, n + 1};
+      const Eigen::Vector3d pa = ws.X.col(ws.face_local[ia]);
+      const Eigen::Vector3d e1 = ws.X.col(ws.face_local[ib]) - pa, e2 = xf - pa, e3 = xc - pa;
       const Eigen::Vector3d c23 = e2.cross(e3), c31 = e3.cross(e1), c12 = e1.cross(e2);
       const double det = e1.dot(c23), vol = std::abs(det) / 6.0;
       if (M) {
         const double d = vol / 20.0;
-        for (int p = 0; p < 4; ++p)
-          for (int q = 0; q < 4; ++q) ws.Am(loc[p], loc[q]) += p == q ? 2 * d : d;
+        for (int b = 0; b < 4; ++b)
+          for (int a = 0; a < 4; ++a) ws.Fm[loc[a] + loc[b] * p] += a == b ? 2 * d : d;
       }
       if (S && refinement.tets[t] != SubTet::Degenerate) {
         // Hat gradients: rows of [e1 e2 e3]^-1 (tet_hat_gradients), scaled by det.
-        Eigen::Matrix<double, 3, 4> G;
-        G.col(1) = c23;
-        G.col(2) = c31;
-        G.col(3) = c12;
-        G.col(0) = -(c23 + c31 + c12);
-        const Eigen::Matrix4d K = (-vol / (det * det)) * (G.transpose() * G);
-        for (int p = 0; p < 4; ++p)
-          for (int q = 0; q < 4; ++q) ws.As(loc[p], loc[q]) += K(p, q);
+        const Eigen::Vector3d G[4] = {-(c23 + c31 + c12), c23, c31, c12};
+        const double coef = -vol / (det * det);
+        for (int b = 0; b < 4; ++b) {
+          ws.Fs[loc[b] * (p + 1)] += coef * G[b].squaredNorm();
+          for (int a = 0; a < b; ++a) {
+            const double v = coef * G[a].dot(G[b]);
+            ws.Fs[loc[a] + loc[b] * p] += v;
+            ws.Fs[loc[b] + loc[a] * p] += v;
+          }
+        }
       }
     }
+    if (S) fold_face(ws.Fs, n, wf, ws.face_local, *S, ws.hs, alpha_s);
+    if (M) fold_face(ws.Fm, n, wf, ws.face_local, *M, ws.hm, alpha_m);
   }
-  if (S) coarsen(ws.As, ws.W, ws.T, *S);
-  if (M) coarsen(ws.Am, ws.W, ws.T, *M);
+  const auto wc = refinement.weights_of_cell(c);
+  if (S) add_cell_point(ws.hs, alpha_s, wc, *S);
+  if (M) add_cell_point(ws.hm, alpha_m, wc, *M);
 }
 
 }  // namespace
