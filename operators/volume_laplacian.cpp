@@ -70,31 +70,52 @@ SparseMatrix cell_pattern(const VolumeMesh& mesh) {
 namespace volume_laplacian_detail {
 namespace {
 
+// One face's fine matrix over [corners, face point, cell point] (symmetric): its sub-tetrahedra
+// (a, b, face point, cell point) couple only a corner with itself, with its next corner, with the
+// face point and with the cell point, and the two points with each other.
+struct FaceMatrix {
+  std::vector<double> diag, next, face, cell;  // (i, i), (i, i + 1 mod n), (i, face point), (i, cell point)
+  double ff = 0, fc = 0, cc = 0;               // (face, face), (face, cell), (cell, cell)
+  void reset(int n) {
+    diag.assign(n, 0.0), next.assign(n, 0.0), face.assign(n, 0.0), cell.assign(n, 0.0);
+    ff = fc = cc = 0;
+  }
+  // Adds the symmetric 4 x 4 K (upper triangle k01..k33) of the tetrahedron (corner ia, corner ib,
+  // face point, cell point); e is the edge's index (ib = e + 1 mod n or the reverse).
+  void add(int ia, int ib, int e, double k00, double k01, double k02, double k03, double k11, double k12,
+           double k13, double k22, double k23, double k33) {
+    diag[ia] += k00, diag[ib] += k11, next[e] += k01;
+    face[ia] += k02, face[ib] += k12, cell[ia] += k03, cell[ib] += k13;
+    ff += k22, fc += k23, cc += k33;
+  }
+};
+
 // Reused buffers of the cell kernel (no allocation per cell once they have grown).
 struct CellWorkspace {
   Eigen::Matrix3Xd X;           // the cell's vertex positions (columns), gathered once
   std::vector<int> face_local;  // a face's corners as indices into cell_vertices(c)
-  std::vector<double> Fs, Fm;   // per face: fine (n + 2)^2 matrices over [corners, face point, cell point]
+  FaceMatrix Fs, Fm;            // per face: fine stiffness and mass
   std::vector<double> hs, hm;   // per cell: couplings of the vertices with the cell point
 };
 
-// Folds the face point (index n of the (n + 2)^2 column-major F, weights w over the corners) into
-// the corners and adds the corner block to the coarse m x m matrix C; the cell point's couplings
-// (index n + 1) go to h (per cell vertex) and alpha.
-void fold_face(const std::vector<double>& F, int n, std::span<const double> w, const std::vector<int>& local,
-               Eigen::MatrixXd& C, std::vector<double>& h, double& alpha) {
-  const int p = n + 2;
-  const double* fn = F.data() + n * p;  // column of the face point
-  const double* fc = F.data() + (n + 1) * p;  // column of the cell point
-  const double ff = fn[n];
+// Folds the face point (weights w over the corners) into the corners and adds the corner block
+// to the coarse m x m matrix C; the cell point's couplings go to h (per cell vertex) and alpha.
+void fold_face(const FaceMatrix& F, std::span<const double> w, const std::vector<int>& local, Eigen::MatrixXd& C,
+               std::vector<double>& h, double& alpha) {
+  const int n = int(local.size());
+  const long m = C.rows();
+  double* c = C.data();
   for (int b = 0; b < n; ++b) {
-    const double* col = F.data() + b * p;
-    const double tb = fn[b] + w[b] * ff;  // (F P)(face point, b) with the face point folded
-    double* out = C.data() + long(local[b]) * C.rows();
-    for (int a = 0; a < n; ++a) out[local[a]] += col[a] + w[a] * tb + fn[a] * w[b];
-    h[local[b]] += fc[b] + w[b] * fc[n];
+    const double tb = F.face[b] + w[b] * F.ff;  // (F P)(face point, b) with the face point folded
+    double* out = c + long(local[b]) * m;
+    for (int a = 0; a < n; ++a) out[local[a]] += w[a] * tb + F.face[a] * w[b];
+    out[local[b]] += F.diag[b];
+    const int b1 = b + 1 == n ? 0 : b + 1;
+    out[local[b1]] += F.next[b];
+    c[local[b] + long(local[b1]) * m] += F.next[b];
+    h[local[b]] += F.cell[b] + w[b] * F.fc;
   }
-  alpha += fc[n + 1];
+  alpha += F.cc;
 }
 
 // C += h w^T + w h^T + alpha w w^T: the cell point's row of P_c is w, so the fine couplings h (vertex,
@@ -133,43 +154,36 @@ void cell_kernel(const VolumeMesh& mesh, const VolumeRefinement& refinement, int
   for (int k = 0; k < nf; ++k) {
     const int hf = cell[k], f = hf / 2;
     const auto face = mesh.face(f);
-    const int n = int(face.size()), p = n + 2;
+    const int n = int(face.size());
     const auto wf = refinement.weights_of_face(mesh, f);
     ws.face_local.resize(n);
     for (int i = 0; i < n; ++i) ws.face_local[i] = local_index(verts, face[i]);
-    if (S) ws.Fs.assign(size_t(p) * p, 0.0);
-    if (M) ws.Fm.assign(size_t(p) * p, 0.0);
+    if (S) ws.Fs.reset(n);
+    if (M) ws.Fm.reset(n);
     const Eigen::Vector3d xf = refinement.face_points.row(f).transpose();
     for (int i = 0; i < n; ++i, ++t) {
       // Outward order: half-face 2f runs along the face, 2f+1 against it.
-      int ia = i, ib = (i + 1) % n;
+      int ia = i, ib = i + 1 == n ? 0 : i + 1;
       if (hf & 1) std::swap(ia, ib);
-      const int loc[4] = {ia, ib, n, n + 1};
       const Eigen::Vector3d pa = ws.X.col(ws.face_local[ia]);
       const Eigen::Vector3d e1 = ws.X.col(ws.face_local[ib]) - pa, e2 = xf - pa, e3 = xc - pa;
       const Eigen::Vector3d c23 = e2.cross(e3), c31 = e3.cross(e1), c12 = e1.cross(e2);
       const double det = e1.dot(c23), vol = std::abs(det) / 6.0;
       if (M) {
-        const double d = vol / 20.0;
-        for (int b = 0; b < 4; ++b)
-          for (int a = 0; a < 4; ++a) ws.Fm[loc[a] + loc[b] * p] += a == b ? 2 * d : d;
+        const double d = vol / 20.0, d2 = 2 * d;  // vol/20 (I + 1 1^T)
+        ws.Fm.add(ia, ib, i, d2, d, d, d, d2, d, d, d2, d, d2);
       }
       if (S && refinement.tets[t] != SubTet::Degenerate) {
         // Hat gradients: rows of [e1 e2 e3]^-1 (tet_hat_gradients), scaled by det.
-        const Eigen::Vector3d G[4] = {-(c23 + c31 + c12), c23, c31, c12};
-        const double coef = -vol / (det * det);
-        for (int b = 0; b < 4; ++b) {
-          ws.Fs[loc[b] * (p + 1)] += coef * G[b].squaredNorm();
-          for (int a = 0; a < b; ++a) {
-            const double v = coef * G[a].dot(G[b]);
-            ws.Fs[loc[a] + loc[b] * p] += v;
-            ws.Fs[loc[b] + loc[a] * p] += v;
-          }
-        }
+        const Eigen::Vector3d g0 = -(c23 + c31 + c12);
+        const double s = -vol / (det * det);
+        ws.Fs.add(ia, ib, i, s * g0.squaredNorm(), s * g0.dot(c23), s * g0.dot(c31), s * g0.dot(c12),
+                  s * c23.squaredNorm(), s * c23.dot(c31), s * c23.dot(c12), s * c31.squaredNorm(),
+                  s * c31.dot(c12), s * c12.squaredNorm());
       }
     }
-    if (S) fold_face(ws.Fs, n, wf, ws.face_local, *S, ws.hs, alpha_s);
-    if (M) fold_face(ws.Fm, n, wf, ws.face_local, *M, ws.hm, alpha_m);
+    if (S) fold_face(ws.Fs, wf, ws.face_local, *S, ws.hs, alpha_s);
+    if (M) fold_face(ws.Fm, wf, ws.face_local, *M, ws.hm, alpha_m);
   }
   const auto wc = refinement.weights_of_cell(c);
   if (S) add_cell_point(ws.hs, alpha_s, wc, *S);
