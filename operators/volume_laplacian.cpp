@@ -70,54 +70,85 @@ SparseMatrix cell_pattern(const VolumeMesh& mesh) {
 namespace volume_laplacian_detail {
 namespace {
 
-// Reused buffers of the cell kernel (no allocation per cell once they have grown).
-using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-
-struct CellWorkspace {
-  RowMatrix W;             // (nf + 1) x m: face rows and the cell row of the local prolongation
-  Eigen::Matrix3Xd X;      // the cell's vertex positions (columns), gathered once
-  Eigen::MatrixXd As, Am;  // r x r fine matrices over [cell vertices, face points, cell point]
-  Eigen::MatrixXd T;       // r x m
-  std::vector<int> face_local;
+// One face's fine matrix over [corners, face point, cell point] (symmetric): its sub-tetrahedra
+// (a, b, face point, cell point) couple only a corner with itself, with its next corner, with the
+// face point and with the cell point, and the two points with each other.
+struct FaceMatrix {
+  std::vector<double> diag, next, face, cell;  // (i, i), (i, i + 1 mod n), (i, face point), (i, cell point)
+  double ff = 0, fc = 0, cc = 0;               // (face, face), (face, cell), (cell, cell)
+  void reset(int n) {
+    diag.assign(n, 0.0), next.assign(n, 0.0), face.assign(n, 0.0), cell.assign(n, 0.0);
+    ff = fc = cc = 0;
+  }
+  // Adds the symmetric 4 x 4 K (upper triangle k01..k33) of the tetrahedron (corner ia, corner ib,
+  // face point, cell point); e is the edge's index (ib = e + 1 mod n or the reverse).
+  void add(int ia, int ib, int e, double k00, double k01, double k02, double k03, double k11, double k12,
+           double k13, double k22, double k23, double k33) {
+    diag[ia] += k00, diag[ib] += k11, next[e] += k01;
+    face[ia] += k02, face[ib] += k12, cell[ia] += k03, cell[ib] += k13;
+    ff += k22, fc += k23, cc += k33;
+  }
 };
 
-// P_c^T A P_c with P_c = [I_m; W]: T = A [I; W], result = T_top + W^T T_bottom, by loops over
-// the non-zero weights (a face row has only the face's corners; the sizes are too small for GEMM).
-void coarsen(const Eigen::MatrixXd& A, const RowMatrix& W, Eigen::MatrixXd& T, Eigen::MatrixXd& out) {
-  const long m = W.cols(), k = W.rows(), r = A.rows();
-  T = A.leftCols(m);
-  for (long q = 0; q < k; ++q)
-    for (long j = 0; j < m; ++j) {
-      const double w = W(q, j);
-      if (w == 0) continue;
-      const double* a = A.data() + (m + q) * r;
-      double* t = T.data() + j * r;
-      for (long i = 0; i < r; ++i) t[i] += w * a[i];
-    }
-  out = T.topRows(m);
-  for (long b = 0; b < m; ++b) {
-    const double* t = T.data() + b * r + m;
-    double* o = out.data() + b * m;
-    for (long q = 0; q < k; ++q) {
-      const double tb = t[q];
-      const double* wq = W.data() + q * m;
-      for (long a = 0; a < m; ++a) o[a] += wq[a] * tb;
-    }
+// Reused buffers of the cell kernel (no allocation per cell once they have grown).
+struct CellWorkspace {
+  Eigen::Matrix3Xd X;           // the cell's vertex positions (columns), gathered once
+  std::vector<int> face_local;  // a face's corners as indices into cell_vertices(c)
+  FaceMatrix Fs, Fm;            // per face: fine stiffness and mass
+  std::vector<double> hs, hm;   // per cell: couplings of the vertices with the cell point
+};
+
+// Folds the face point (weights w over the corners) into the corners and adds the corner block
+// to the coarse m x m matrix C; the cell point's couplings go to h (per cell vertex) and alpha.
+void fold_face(const FaceMatrix& F, std::span<const double> w, const std::vector<int>& local, Eigen::MatrixXd& C,
+               std::vector<double>& h, double& alpha) {
+  const int n = int(local.size());
+  const long m = C.rows();
+  double* c = C.data();
+  for (int b = 0; b < n; ++b) {
+    const double tb = F.face[b] + w[b] * F.ff;  // (F P)(face point, b) with the face point folded
+    double* out = c + long(local[b]) * m;
+    for (int a = 0; a < n; ++a) out[local[a]] += w[a] * tb + F.face[a] * w[b];
+    out[local[b]] += F.diag[b];
+    const int b1 = b + 1 == n ? 0 : b + 1;
+    out[local[b1]] += F.next[b];
+    c[local[b] + long(local[b1]) * m] += F.next[b];
+    h[local[b]] += F.cell[b] + w[b] * F.fc;
+  }
+  alpha += F.cc;
+}
+
+// C += h w^T + w h^T + alpha w w^T: the cell point's row of P_c is w, so the fine couplings h (vertex,
+// cell point) and alpha (cell point, cell point) become coarse ones.
+void add_cell_point(const std::vector<double>& h, double alpha, std::span<const double> w, Eigen::MatrixXd& C) {
+  const long m = C.rows();
+  for (long j = 0; j < m; ++j) {
+    double* col = C.data() + j * m;
+    const double hj = h[j], wj = w[j], awj = alpha * wj;
+    for (long i = 0; i < m; ++i) col[i] += h[i] * wj + w[i] * hj + w[i] * awj;
   }
 }
 
+// P_c^T S^tet P_c and P_c^T M^tet P_c without the cell's fine matrices: per face, the
+// sub-tetrahedra's 4 x 4 stiffness and mass over [face corners, face point, cell point]; the face
+// point is folded into the corners by its weights once per face and the corner block added to the
+// m x m result, the cell point's couplings (row w of P_c) once per cell.
 void cell_kernel(const VolumeMesh& mesh, const VolumeRefinement& refinement, int c, Eigen::MatrixXd* S,
                  Eigen::MatrixXd* M, CellWorkspace& ws) {
   const auto verts = mesh.cell_vertices(c);
   const auto cell = mesh.cell(c);
-  const int m = int(verts.size()), nf = int(cell.size()), r = m + nf + 1;
-  ws.W.setZero(nf + 1, m);
+  const int m = int(verts.size()), nf = int(cell.size());
   ws.X.resize(3, m);
   for (int i = 0; i < m; ++i) ws.X.col(i) = mesh.positions().row(verts[i]).transpose();
-  const auto wc = refinement.weights_of_cell(c);
-  for (int i = 0; i < m; ++i) ws.W(nf, i) = wc[i];
-  if (S) ws.As.setZero(r, r);
-  if (M) ws.Am.setZero(r, r);
+  double alpha_s = 0, alpha_m = 0;
+  if (S) {
+    S->setZero(m, m);
+    ws.hs.assign(m, 0.0);
+  }
+  if (M) {
+    M->setZero(m, m);
+    ws.hm.assign(m, 0.0);
+  }
   const Eigen::Vector3d xc = refinement.cell_points.row(c).transpose();
   int t = refinement.tet_offsets[c];
   for (int k = 0; k < nf; ++k) {
@@ -126,40 +157,37 @@ void cell_kernel(const VolumeMesh& mesh, const VolumeRefinement& refinement, int
     const int n = int(face.size());
     const auto wf = refinement.weights_of_face(mesh, f);
     ws.face_local.resize(n);
-    for (int i = 0; i < n; ++i) {
-      ws.face_local[i] = local_index(verts, face[i]);
-      ws.W(k, ws.face_local[i]) = wf[i];
-    }
+    for (int i = 0; i < n; ++i) ws.face_local[i] = local_index(verts, face[i]);
+    if (S) ws.Fs.reset(n);
+    if (M) ws.Fm.reset(n);
     const Eigen::Vector3d xf = refinement.face_points.row(f).transpose();
     for (int i = 0; i < n; ++i, ++t) {
       // Outward order: half-face 2f runs along the face, 2f+1 against it.
-      int ia = i, ib = (i + 1) % n;
+      int ia = i, ib = i + 1 == n ? 0 : i + 1;
       if (hf & 1) std::swap(ia, ib);
-      const int loc[4] = {ws.face_local[ia], ws.face_local[ib], m + k, m + nf};
-      const Eigen::Vector3d pa = ws.X.col(loc[0]);
-      const Eigen::Vector3d e1 = ws.X.col(loc[1]) - pa, e2 = xf - pa, e3 = xc - pa;
+      const Eigen::Vector3d pa = ws.X.col(ws.face_local[ia]);
+      const Eigen::Vector3d e1 = ws.X.col(ws.face_local[ib]) - pa, e2 = xf - pa, e3 = xc - pa;
       const Eigen::Vector3d c23 = e2.cross(e3), c31 = e3.cross(e1), c12 = e1.cross(e2);
       const double det = e1.dot(c23), vol = std::abs(det) / 6.0;
       if (M) {
-        const double d = vol / 20.0;
-        for (int p = 0; p < 4; ++p)
-          for (int q = 0; q < 4; ++q) ws.Am(loc[p], loc[q]) += p == q ? 2 * d : d;
+        const double d = vol / 20.0, d2 = 2 * d;  // vol/20 (I + 1 1^T)
+        ws.Fm.add(ia, ib, i, d2, d, d, d, d2, d, d, d2, d, d2);
       }
       if (S && refinement.tets[t] != SubTet::Degenerate) {
         // Hat gradients: rows of [e1 e2 e3]^-1 (tet_hat_gradients), scaled by det.
-        Eigen::Matrix<double, 3, 4> G;
-        G.col(1) = c23;
-        G.col(2) = c31;
-        G.col(3) = c12;
-        G.col(0) = -(c23 + c31 + c12);
-        const Eigen::Matrix4d K = (-vol / (det * det)) * (G.transpose() * G);
-        for (int p = 0; p < 4; ++p)
-          for (int q = 0; q < 4; ++q) ws.As(loc[p], loc[q]) += K(p, q);
+        const Eigen::Vector3d g0 = -(c23 + c31 + c12);
+        const double s = -vol / (det * det);
+        ws.Fs.add(ia, ib, i, s * g0.squaredNorm(), s * g0.dot(c23), s * g0.dot(c31), s * g0.dot(c12),
+                  s * c23.squaredNorm(), s * c23.dot(c31), s * c23.dot(c12), s * c31.squaredNorm(),
+                  s * c31.dot(c12), s * c12.squaredNorm());
       }
     }
+    if (S) fold_face(ws.Fs, wf, ws.face_local, *S, ws.hs, alpha_s);
+    if (M) fold_face(ws.Fm, wf, ws.face_local, *M, ws.hm, alpha_m);
   }
-  if (S) coarsen(ws.As, ws.W, ws.T, *S);
-  if (M) coarsen(ws.Am, ws.W, ws.T, *M);
+  const auto wc = refinement.weights_of_cell(c);
+  if (S) add_cell_point(ws.hs, alpha_s, wc, *S);
+  if (M) add_cell_point(ws.hm, alpha_m, wc, *M);
 }
 
 }  // namespace
