@@ -228,7 +228,7 @@ TEST_CASE("policy: duplicate faces", "[robust][degenerate]") {
   }
 }
 
-TEST_CASE("policy: a zero-area face adds nothing; vertices only it holds are unreachable",
+TEST_CASE("policy: a zero-area face adds nothing, vertices only it holds are unreachable",
           "[robust][degenerate]") {
   // A collinear triangle hanging off the bottom boundary edge (a, b) of a grid: c on the line
   // through a and b, beyond b.
@@ -279,7 +279,7 @@ TEST_CASE("policy: a row of collapsed quads splits the mesh for the operators", 
   check_distances(HeatGeodesics(mesh).distance(source), reach);
 }
 
-TEST_CASE("policy: collinear consecutive corners are accepted; linear precision holds",
+TEST_CASE("policy: collinear consecutive corners are accepted, linear precision holds",
           "[robust][degenerate]") {
   // A T-junction: a pentagon (0,0) (1,0) (1,1) (1,2) (0,2) beside two unit quads; the pentagon's
   // corner (1,1) is collinear with its neighbours.

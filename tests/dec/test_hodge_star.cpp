@@ -135,7 +135,7 @@ TEST_CASE("on triangle meshes star1 is the standard Whitney mass and star2 = dia
   }
 }
 
-TEST_CASE("coarse stars assembled face by face equal P_k^T star_k^f P_k; star0 equals M", "[feec]") {
+TEST_CASE("coarse stars assembled face by face equal P_k^T star_k^f P_k, star0 equals M", "[feec]") {
   for (const auto& [name, mesh] : test::feec_meshes()) {
     INFO(name);
     const Refinement r = refine(mesh);

@@ -254,7 +254,7 @@ TEST_CASE("writers refuse bad scalar fields, unknown formats and unwritable path
   CHECK_THROWS_WITH(read_mesh((temp_dir() / "dir.off").string()), Catch::Contains("is a directory"));
 }
 
-TEST_CASE("Matrix Market round-trips every double exactly; symmetric files are mirrored", "[io]") {
+TEST_CASE("Matrix Market round-trips every double exactly, symmetric files are mirrored", "[io]") {
   const int n = 40;
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> U(-1, 1);

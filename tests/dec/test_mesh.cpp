@@ -75,7 +75,7 @@ TEST_CASE("connectivity of a quad grid", "[mesh]") {
   CHECK(m.is_boundary_vertex(0));
 }
 
-TEST_CASE("unreferenced vertices are accepted and counted; components counted", "[mesh]") {
+TEST_CASE("unreferenced vertices are accepted and counted, components counted", "[mesh]") {
   auto p = square_pts();
   p.push_back({5, 5, 5});
   p.push_back({6, 5, 5});

@@ -101,7 +101,7 @@ TEST_CASE("virtual-vertex variants: affine weights, symmetry, invariance", "[com
   }
 }
 
-TEST_CASE("abs-area: never worse than the centroid and the squared-area point; inside an L", "[compare][virtual_vertex]") {
+TEST_CASE("abs-area: never worse than the centroid and the squared-area point, inside an L", "[compare][virtual_vertex]") {
   const PolygonPositions X = thin_l();
   const double polygon_area = 4 * 0.5 + 0.5 * 3.5;
   const Eigen::Vector3d c = X.colwise().mean().transpose();

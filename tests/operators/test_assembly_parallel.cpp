@@ -216,7 +216,7 @@ TEST_CASE("allocation-free squared-area weights equal an SVD route and eq. (38)"
     }
 }
 
-TEST_CASE("CHOLMOD and Eigen Cholesky backends agree; refactorization reuses the analysis", "[perf]") {
+TEST_CASE("CHOLMOD and Eigen Cholesky backends agree, refactorization reuses the analysis", "[perf]") {
   const Mesh mesh = add_noise(hex_sphere(3), 0.2, 2);
   const Laplacian L = assemble_laplacian(mesh, refine(mesh));
   const double t = mesh.mean_edge_length() * mesh.mean_edge_length();

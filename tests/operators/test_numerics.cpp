@@ -136,7 +136,7 @@ TEST_CASE("squared-area weights equal the least-norm solution of eq. (38)", "[ro
   CHECK(n_tested == 200);
 }
 
-TEST_CASE("squared-area weights do not depend on position or size; eq. (38) does", "[robust][numerics]") {
+TEST_CASE("squared-area weights do not depend on position or size, eq. (38) does", "[robust][numerics]") {
   std::mt19937 rng(12);
   double worst_ours = 0, worst_direct_1e4 = 0;
   for (int trial = 0; trial < 60; ++trial) {

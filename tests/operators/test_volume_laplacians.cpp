@@ -49,7 +49,7 @@ TEST_CASE("volume operators: S = D G, and S equals the volume Laplacian's", "[vo
     }
 }
 
-TEST_CASE("volume gradient is exact on linear functions; divergence sums to zero", "[volume-gradient]") {
+TEST_CASE("volume gradient is exact on linear functions, divergence sums to zero", "[volume-gradient]") {
   std::mt19937 rng(11);
   std::normal_distribution<double> n01;
   for (const auto& [label, mesh] : meshes()) {

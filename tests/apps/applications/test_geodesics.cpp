@@ -65,7 +65,7 @@ TEST_CASE("geodesics converge to the great-circle distance on spheres", "[geodes
   }
 }
 
-TEST_CASE("several sources: distance is the minimum over sources; solver reused", "[geodesics]") {
+TEST_CASE("several sources: distance is the minimum over sources, solver reused", "[geodesics]") {
   const Mesh mesh = quad_grid(24, 24);
   const HeatGeodesics heat(mesh);
   const int a = 0, b = mesh.n_vertices() - 1;
@@ -83,7 +83,7 @@ TEST_CASE("several sources: distance is the minimum over sources; solver reused"
   CHECK_THROWS_AS(heat.distance(std::span<const int>()), std::out_of_range);
 }
 
-TEST_CASE("unreachable vertices get +infinity; reachable ones finite", "[geodesics]") {
+TEST_CASE("unreachable vertices get +infinity, reachable ones finite", "[geodesics]") {
   PolygonSoup s;
   const Mesh g = quad_grid(3, 3);
   s.positions.resize(g.n_vertices() * 2 + 1, 3);
@@ -119,7 +119,7 @@ TEST_CASE("Table 4: geodesic RMSE as the authors' program computes it (within 1%
   }
 }
 
-TEST_CASE("TETRIS 1: degenerate fan triangles get zero weight; result well defined", "[geodesics][paper]") {
+TEST_CASE("TETRIS 1: degenerate fan triangles get zero weight, result well defined", "[geodesics][paper]") {
   POLYDEC_SHARED_MESH(path, "tetris.obj");
   const Mesh mesh = read_mesh(path);
   const double err = euclidean_rmse(mesh);

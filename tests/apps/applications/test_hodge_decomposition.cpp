@@ -100,7 +100,7 @@ TEST_CASE("Hodge parts are star1-orthogonal, harmonic part closed and co-closed,
 }
 
 TEST_CASE(
-    "harmonic dimension = dim W1 - rank d0 - rank d1 counted densely; co-exact part is orthogonal to ker d1",
+    "harmonic dimension = dim W1 - rank d0 - rank d1 counted densely, co-exact part is orthogonal to ker d1",
     "[feec]") {
   for (const auto& [name, mesh] : std::vector<std::pair<std::string, Mesh>>{
            {"noisy hexagon torus", test::torus(8, 6, 0.15, true)},
@@ -166,7 +166,7 @@ TEST_CASE("decomposition recovers parts built from known potentials", "[feec]") 
   }
 }
 
-TEST_CASE("the gradient of a function is purely exact; bad input is rejected", "[feec]") {
+TEST_CASE("the gradient of a function is purely exact, bad input is rejected", "[feec]") {
   const Mesh mesh = test::torus(12, 8, 0.15, true);
   const HodgeDecomposer hd(mesh);
   const Eigen::VectorXd f = mesh.positions().col(0) + mesh.positions().col(2).array().square().matrix();
