@@ -4,6 +4,7 @@
 
 #include <Spectra/MatOp/SparseSymMatProd.h>
 #include <Spectra/SymGEigsShiftSolver.h>
+#include <numeric>
 #include <fmt/format.h>
 
 #include <Eigen/Eigenvalues>
@@ -164,6 +165,57 @@ int thick_restart_lanczos(const Op& op, int n, int k, int m, double tol, int max
   return 0;
 }
 
+// Lanczos from one start vector meets further copies of a multiple eigenvalue only through
+// round-off and can converge without them (hex_sphere(3), k = 9: 4 of the 5 copies of lambda = 6).
+// The check: Lanczos on op deflated by the pairs found (z -> (I - Z Z^T) op (I - Z Z^T) z, their
+// Ritz values mapped to 0); a Ritz value of it above the k-th one (Ritz values bound the largest
+// eigenvalues from below) is a missed pair: merged in, the k largest kept, and checked again.
+// theta (descending) and the top n rows of Z (orthonormal columns) are updated in place.
+template <class Op>
+void complete_multiplicities(const Op& op, int n, const SpectrumOptions& options, Eigen::VectorXd& theta,
+                             Eigen::MatrixXd& Z, int& n_ops) {
+  const int k = options.k;
+  const int kk = std::min(3, n - k - 1);
+  if (kk < 1) return;
+  for (int pass = 0; pass < k; ++pass) {
+    const Eigen::MatrixXd Zk = Z.topRows(n).leftCols(k);
+    Eigen::VectorXd u(n);
+    auto deflated = [&](const double* x, double* y) {
+      u = Eigen::Map<const Eigen::VectorXd>(x, n);
+      u.noalias() -= Zk * (Zk.transpose() * u);
+      op(u.data(), y);
+      Eigen::Map<Eigen::VectorXd> w(y, n);
+      w.noalias() -= Zk * (Zk.transpose() * w);
+    };
+    Eigen::VectorXd theta2;
+    Eigen::MatrixXd Z2(n, kk);
+    thick_restart_lanczos(deflated, n, kk, std::min(n - k, spectrum_krylov_size(kk, n)), options.tolerance,
+                          options.max_iterations, theta2, Z2, n_ops);
+    const double margin = theta[k - 1] * (1 + 1e3 * options.tolerance);
+    int missed = 0;
+    while (missed < kk && theta2[missed] > margin) ++missed;
+    if (missed == 0) return;
+    // Merge: the missed pairs, orthogonalized against the found ones, then the k largest of all.
+    Eigen::MatrixXd all(n, k + missed);
+    all.leftCols(k) = Zk;
+    Eigen::VectorXd values(k + missed);
+    values.head(k) = theta.head(k);
+    for (int i = 0; i < missed; ++i) {
+      Eigen::VectorXd w = Z2.col(i);
+      orthogonalize(all.leftCols(k + i), w);
+      all.col(k + i) = w / w.norm();
+      values[k + i] = theta2[i];
+    }
+    std::vector<int> order(size_t(k + missed));
+    std::iota(order.begin(), order.end(), 0);
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return values[a] > values[b]; });
+    for (int i = 0; i < k; ++i) {
+      theta[i] = values[order[size_t(i)]];
+      Z.col(i).head(n) = all.col(order[size_t(i)]);
+    }
+  }
+}
+
 }  // namespace
 
 int spectrum_krylov_size(int k, int n) { return std::min(n, std::max(2 * k + 1, k + 20)); }
@@ -224,6 +276,7 @@ Spectrum laplacian_spectrum(const OperatorSet& ops, const SpectrumOptions& optio
     if (result.n_converged < options.k)
       throw SolverError(fmt::format("spectrum: Lanczos did not converge ({} of {} eigenpairs after {} restarts)",
                                     result.n_converged, options.k, options.max_iterations));
+    complete_multiplicities(op, n, options, theta, Z, result.n_solves);
     result.eigenvalues = (result.shift + theta.array().inverse()).matrix();
     // x = M^-1/2 z, moved from row i to row keep[i] (keep ascending: in place, last row first).
     for (int c = 0; c < options.k; ++c) {
