@@ -93,13 +93,13 @@ Eigen::VectorXd start_vector(int n) {
 // wanted Ritz pair (theta, y). Returns the Ritz values (descending) and vectors.
 template <class Op>
 int thick_restart_lanczos(const Op& op, int n, int k, int m, double tol, int max_restarts, Eigen::VectorXd& theta_out,
-                          Eigen::MatrixXd& Z, int& n_ops) {
+                          Eigen::MatrixXd& Z, int& n_ops, const Eigen::VectorXd* v0 = nullptr) {
   // Fresh pages cost ~13 us each on the CI's virtual machine: huge pages for the two bases.
   Eigen::MatrixXd V(n, m + 1), W(n, m);
   advise_huge_pages(V.data(), sizeof(double) * V.size());
   advise_huge_pages(W.data(), sizeof(double) * W.size());
   Eigen::MatrixXd H = Eigen::MatrixXd::Zero(m, m);
-  V.col(0) = start_vector(n);
+  V.col(0) = v0 ? *v0 : start_vector(n);
   int p = 0;  // kept Ritz vectors: columns [0, p) of V, v_p the current Lanczos vector
   const double eps23 = std::pow(std::numeric_limits<double>::epsilon(), 2.0 / 3.0);
   for (int restart = 0; restart <= max_restarts; ++restart) {
@@ -167,9 +167,13 @@ int thick_restart_lanczos(const Op& op, int n, int k, int m, double tol, int max
 
 // Lanczos from one start vector meets further copies of a multiple eigenvalue only through
 // round-off and can converge without them (hex_sphere(3), k = 9: 4 of the 5 copies of lambda = 6).
-// The check: Lanczos on op deflated by the pairs found (z -> (I - Z Z^T) op (I - Z Z^T) z, their
-// Ritz values mapped to 0); a Ritz value of it above the k-th one (Ritz values bound the largest
-// eigenvalues from below) is a missed pair: merged in, the k largest kept, and checked again.
+// The check: one Lanczos cycle (no restart, 12 steps, from another start vector) on op deflated by
+// the pairs found (z -> (I - Z Z^T) op (I - Z Z^T) z, their Ritz values mapped to 0). Its largest
+// Ritz value bounds the deflated operator's largest eigenvalue from below, so one above the k-th
+// value proves a missed pair; then the missed pairs are computed to the tolerance, merged in, the
+// k largest kept, and the check repeated. A missed pair whose value the short cycle underestimates
+// below the k-th escapes the check (it costs 12 solves; converging the deflated operator's top
+// pair every time cost 4x the whole spectrum on clustered spectra).
 // theta (descending) and the top n rows of Z (orthonormal columns) are updated in place.
 template <class Op>
 void complete_multiplicities(const Op& op, int n, const SpectrumOptions& options, Eigen::VectorXd& theta,
@@ -177,6 +181,8 @@ void complete_multiplicities(const Op& op, int n, const SpectrumOptions& options
   const int k = options.k;
   const int kk = std::min(3, n - k - 1);
   if (kk < 1) return;
+  // Another start vector than the first run's, which was (nearly) orthogonal to the missed pairs.
+  const Eigen::VectorXd v0 = start_vector(2 * n).tail(n).normalized();
   for (int pass = 0; pass < k; ++pass) {
     const Eigen::MatrixXd Zk = Z.topRows(n).leftCols(k);
     Eigen::VectorXd u(n);
@@ -187,11 +193,13 @@ void complete_multiplicities(const Op& op, int n, const SpectrumOptions& options
       Eigen::Map<Eigen::VectorXd> w(y, n);
       w.noalias() -= Zk * (Zk.transpose() * w);
     };
+    const double margin = theta[k - 1] * (1 + 1e3 * options.tolerance);
     Eigen::VectorXd theta2;
     Eigen::MatrixXd Z2(n, kk);
+    thick_restart_lanczos(deflated, n, 1, std::min(n - k, 12), options.tolerance, 0, theta2, Z2, n_ops, &v0);
+    if (!(theta2[0] > margin)) return;
     thick_restart_lanczos(deflated, n, kk, std::min(n - k, spectrum_krylov_size(kk, n)), options.tolerance,
-                          options.max_iterations, theta2, Z2, n_ops);
-    const double margin = theta[k - 1] * (1 + 1e3 * options.tolerance);
+                          options.max_iterations, theta2, Z2, n_ops, &v0);
     int missed = 0;
     while (missed < kk && theta2[missed] > margin) ++missed;
     if (missed == 0) return;
