@@ -111,7 +111,13 @@ HeatGeodesics::HeatGeodesics(OperatorSet operators, double mean_edge_length, con
   poisson_ = std::make_unique<SparseCholesky>(pin_to_identity(-ops_.S, pinned_), "Poisson operator -S", copt);
 }
 
-Eigen::VectorXd HeatGeodesics::distance(std::span<const int> sources) const {
+double suggested_time_factor(double factor, const HeatDiagnostics& diagnostics, double extent) {
+  if (diagnostics.unresolved_vertices == 0) return factor;
+  const double r = diagnostics.resolved_radius > 0 ? diagnostics.resolved_radius : extent / 1e3;
+  return factor * std::max(1.0, (1.25 * extent / r) * (1.25 * extent / r));
+}
+
+Eigen::VectorXd HeatGeodesics::distance(std::span<const int> sources, HeatDiagnostics* diagnostics) const {
   const int nv = int(ops_.S.rows()), n_out = ops_.n_input_vertices;
   if (sources.empty()) throw std::out_of_range("heat geodesics: no source vertex given");
   Eigen::VectorXd delta = Eigen::VectorXd::Zero(nv);
@@ -161,6 +167,20 @@ Eigen::VectorXd HeatGeodesics::distance(std::span<const int> sources) const {
   for (int v = 0; v < n_out; ++v) {
     const int c = component_[v];
     d[v] = (c >= 0 && reached_component[c]) ? d[v] - cmin[c] : std::numeric_limits<double>::infinity();
+  }
+  if (diagnostics) {
+    // Resolution of the direct solve: double precision's range (see HeatDiagnostics).
+    double umax = 0;
+    for (int v = 0; v < n_out; ++v)
+      if (std::isfinite(d[v])) umax = std::max(umax, u[v]);
+    *diagnostics = {};
+    for (int v = 0; v < n_out; ++v) {
+      if (!std::isfinite(d[v])) continue;
+      if (u[v] > 1e-280 * umax)
+        diagnostics->resolved_radius = std::max(diagnostics->resolved_radius, d[v]);
+      else
+        ++diagnostics->unresolved_vertices;
+    }
   }
   return d;
 }

@@ -16,6 +16,7 @@
 #include "polydec/operators/cholesky.h"
 #include "polydec/operators/laplacians.h"
 
+#include <limits>
 #include <span>
 
 namespace polydec {
@@ -29,6 +30,21 @@ struct HeatGeodesicsOptions {
   bool mass_weighted_source = true;
 };
 
+// How far the heat step (eq. 31) carries. Its solution decays like exp(-d / sqrt(t)) with the distance
+// d from the sources; where it falls below what the solve resolves, its gradient and so the distance
+// are noise. For the direct solver that is double precision's range (values below 1e-280 of the
+// maximum): about 650 sqrt(t) from the sources, 650 mean edge lengths at the paper's t = h^2, so
+// meshes more than ~650 edges across need a larger time step factor (suggested_time_factor).
+struct HeatDiagnostics {
+  int unresolved_vertices = 0;  // reached vertices whose heat value lies below the resolution
+  double resolved_radius = 0;   // the largest distance among the reached vertices that are resolved
+};
+
+// The time step factor that makes the heat step reach `extent` (e.g. the bounding-box diagonal), the
+// reach growing as sqrt(t): factor * (1.25 extent / resolved_radius)^2; `factor` itself when nothing
+// was unresolved.
+double suggested_time_factor(double factor, const HeatDiagnostics& diagnostics, double extent);
+
 class HeatGeodesics {
  public:
   // With the paper's operator ("ours").
@@ -38,7 +54,9 @@ class HeatGeodesics {
 
   // Distances from the given source vertices (at least one; throws std::out_of_range for a
   // vertex index outside the mesh).
-  Eigen::VectorXd distance(std::span<const int> sources) const;
+  Eigen::VectorXd distance(std::span<const int> sources) const { return distance(sources, nullptr); }
+  // The same, and how far the heat step was resolved (HeatDiagnostics) when `diagnostics` is given.
+  Eigen::VectorXd distance(std::span<const int> sources, HeatDiagnostics* diagnostics) const;
   Eigen::VectorXd distance(int source) const { return distance(std::span<const int>(&source, 1)); }
 
   double time_step() const { return t_; }

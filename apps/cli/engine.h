@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "polydec/apps/applications/geodesics.h"
 #include "polydec/apps/applications/spectrum.h"
 #include "polydec/dec/mesh.h"
 #include "polydec/dec/refinement.h"
@@ -42,8 +43,11 @@ inline void add_engine_options(CLI::App& app, EngineOptions& e) {
 // engine holds the mesh in compact form only, and rank 0 builds the Mesh on the first get().
 struct LazyMesh {
   int n_vertices = 0, n_faces = 0;
+  double extent = 0;  // bounding-box diagonal of the vertices
   std::function<const Mesh&()> get;
-  static LazyMesh of(const Mesh& m) { return {m.n_vertices(), m.n_faces(), [&m]() -> const Mesh& { return m; }}; }
+  static LazyMesh of(const Mesh& m) {
+    return {m.n_vertices(), m.n_faces(), m.bounding_box_diagonal(), [&m]() -> const Mesh& { return m; }};
+  }
 };
 
 // What rank 0 hands to the geodesics command's output code.
@@ -52,13 +56,14 @@ struct EngineGeodesics {
   const std::vector<int>& sources;  // mesh vertices
   const Eigen::VectorXd& distance;  // |V|, mesh order
   double time_step;
+  HeatDiagnostics heat;  // how far the heat step was resolved
   FanQuality quality;
   nlohmann::json summary;  // engine, ranks, solver, iterations, per-rank timings and memory
 };
 
 // Heat geodesics from file vertices `file_sources` (mapped as the serial command maps them).
 void petsc_geodesics(const std::string& mesh_path, bool repair, const std::vector<int>& file_sources, bool lumped_mass,
-                     bool mass_weighted_source, const EngineOptions& engine,
+                     bool mass_weighted_source, double time_step_factor, const EngineOptions& engine,
                      const std::function<void(const EngineGeodesics&)>& write);
 
 // What rank 0 hands to the spectrum command's output code.

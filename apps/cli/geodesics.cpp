@@ -25,11 +25,29 @@ struct Options {
   std::vector<int> sources;
   bool json = false, euclidean = false, delta_source = false, volume = false;
   std::string mass = "lumped", laplacian = "ours", time_step_edges = "input";
+  double time_factor = 1.0;  // --time-factor
   EngineOptions engine;  // --engine, --solver, --petsc-options
 };
 
 void report(const Options& o, const LazyMesh& mesh, const std::vector<int>& sources, const Eigen::VectorXd& d,
-            const std::string& laplacian, double time_step, const FanQuality& quality, const nlohmann::json* engine);
+            const std::string& laplacian, double time_step, const HeatDiagnostics& heat, const FanQuality& quality,
+            const nlohmann::json* engine);
+
+// The heat step's reach into the JSON summary, and a warning (on stderr) when it fell short.
+void report_heat(const Options& o, const HeatDiagnostics& heat, int n_vertices, double extent, nlohmann::json& j) {
+  const double suggested = suggested_time_factor(o.time_factor, heat, extent);
+  j["time_factor"] = o.time_factor;
+  j["heat_unresolved_vertices"] = heat.unresolved_vertices;
+  j["heat_resolved_radius"] = heat.resolved_radius;
+  if (heat.unresolved_vertices == 0) return;
+  j["suggested_time_factor"] = suggested;
+  fmt::print(stderr,
+             "polydec: warning: the heat step's solution lies below the solve's resolution at {} of {} vertices, "
+             "beyond a distance of about {:.4g} from the sources (the heat decays like exp(-d / sqrt(t))): "
+             "distances there are wrong. A larger time step reaches further: --time-factor {:.3g} should cover "
+             "the bounding-box diagonal {:.4g} (distances near the sources get smoother)\n",
+             heat.unresolved_vertices, n_vertices, heat.resolved_radius, suggested, extent);
+}
 
 // --engine petsc: the distributed run (apps/cli/engine.h); rank 0 reports as the serial run does.
 void run_petsc(const Options& o) {
@@ -38,9 +56,9 @@ void run_petsc(const Options& o) {
   if (o.time_step_edges != "input" && o.time_step_edges != "operator")
     throw UsageError("--time-step-edges must be input or operator");
 #ifdef POLYDEC_HAVE_PETSC
-  petsc_geodesics(o.mesh, o.repair, o.sources, o.mass == "lumped", !o.delta_source, o.engine,
+  petsc_geodesics(o.mesh, o.repair, o.sources, o.mass == "lumped", !o.delta_source, o.time_factor, o.engine,
                   [&](const EngineGeodesics& r) {
-                    report(o, r.mesh, r.sources, r.distance, "ours", r.time_step, r.quality, &r.summary);
+                    report(o, r.mesh, r.sources, r.distance, "ours", r.time_step, r.heat, r.quality, &r.summary);
                   });
 #else
   throw UsageError("--engine petsc: this polydec was built without PETSc (configure with -DPOLYDEC_WITH_PETSC=ON)");
@@ -90,10 +108,12 @@ void run_volume(const Options& o) {
   HeatGeodesicsOptions hopt;
   hopt.lumped_mass = o.mass == "lumped";
   hopt.mass_weighted_source = !o.delta_source;
+  hopt.time_step_factor = o.time_factor;
   SubTetQuality quality;
   const HeatGeodesics heat(build_volume_operators(mesh, parse_volume_laplacian(o.laplacian), true, &quality),
                            mesh.mean_edge_length(), hopt);
-  const Eigen::VectorXd d = heat.distance(o.sources);
+  HeatDiagnostics diagnostics;
+  const Eigen::VectorXd d = heat.distance(o.sources, &diagnostics);
   const Stats st = stats(d);
   nlohmann::json j = {{"mesh", o.mesh},
                       {"laplacian", heat.operators().name},
@@ -107,6 +127,7 @@ void run_volume(const Options& o) {
                       {"cells", mesh.n_cells()},
                       {"subtet_degenerate", quality.n_degenerate},
                       {"subtet_inverted", quality.n_inverted}};
+  report_heat(o, diagnostics, mesh.n_vertices(), mesh.bounding_box_diagonal(), j);
   if (o.euclidean) j["rmse_vs_euclidean"] = euclidean_rmse(mesh.positions(), o.sources[0], d);
   if (!o.out.empty()) {
     write_volume_vtk_with_point_data(mesh, o.out, {{"distance", d}});
@@ -152,18 +173,22 @@ void run(const Options& o) {
   HeatGeodesicsOptions hopt;
   hopt.lumped_mass = o.mass == "lumped";
   hopt.mass_weighted_source = !o.delta_source;
+  hopt.time_step_factor = o.time_factor;
   if (o.time_step_edges != "input" && o.time_step_edges != "operator")
     throw UsageError("--time-step-edges must be input or operator");
   OperatorSet ops = build_operators(mesh, parse_laplacian(o.laplacian));
   const double h = o.time_step_edges == "input" ? mesh.mean_edge_length() : ops.mean_edge_length;
   const HeatGeodesics heat(std::move(ops), h, hopt);
-  const Eigen::VectorXd d = heat.distance(sources);
-  report(o, LazyMesh::of(mesh), sources, d, heat.operators().name, heat.time_step(), heat.operators().quality, nullptr);
+  HeatDiagnostics diagnostics;
+  const Eigen::VectorXd d = heat.distance(sources, &diagnostics);
+  report(o, LazyMesh::of(mesh), sources, d, heat.operators().name, heat.time_step(), diagnostics,
+         heat.operators().quality, nullptr);
 }
 
 // The outputs of both engines: text or JSON (with the engine's summary), the PLY, the picture.
 void report(const Options& o, const LazyMesh& mesh, const std::vector<int>& sources, const Eigen::VectorXd& d,
-            const std::string& laplacian, double time_step, const FanQuality& quality, const nlohmann::json* engine) {
+            const std::string& laplacian, double time_step, const HeatDiagnostics& heat, const FanQuality& quality,
+            const nlohmann::json* engine) {
   const Stats st = stats(d);
   const double mn = st.min, mx = st.max;
   nlohmann::json j = {{"mesh", o.mesh},
@@ -176,6 +201,7 @@ void report(const Options& o, const LazyMesh& mesh, const std::vector<int>& sour
                       {"unreached", st.unreached},
                       {"fan_degenerate", quality.n_degenerate},
                       {"fan_inverted", quality.n_inverted}};
+  report_heat(o, heat, mesh.n_vertices, mesh.extent, j);
   if (engine) j["engine"] = *engine;
   if (o.euclidean) {
     // Error against the Euclidean distance from the first source, shifted to minimum 0 (planar meshes).
@@ -220,6 +246,10 @@ const RegisterCommand reg("geodesics", "Geodesic distances by the heat method (p
       "picture of the distance with isolines and a colour bar (.png; volumes: the solid cut by the plane "
       "z = centre, front half removed)");
   app.add_option("--mass", o->mass, "lumped (default) or unlumped mass in the heat step");
+  app.add_option("--time-factor", o->time_factor,
+                 "time step t = factor x (mean edge length)^2 (default 1, the paper's); larger reaches further "
+                 "(meshes more than ~650 edges across need it; the run suggests a value when needed)")
+      ->check(CLI::PositiveNumber);
   app.add_option("--laplacian", o->laplacian,
                  "Laplacian: " + fmt::format("{}", fmt::join(laplacian_names(), ", ")) +
                      " (volumes: " + fmt::format("{}", fmt::join(volume_laplacian_names(), ", ")) + ")");

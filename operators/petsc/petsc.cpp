@@ -13,6 +13,7 @@
 #include <tuple>
 #include <numeric>
 #include <stdexcept>
+#include <string>
 
 #include "polydec/dec/io.h"
 #include "polydec/dec/union_find.h"
@@ -23,11 +24,29 @@
 
 namespace polydec::petsc {
 
+namespace {
+
+// PETSc's own words for the error being returned: the message and function where it was raised
+// (the innermost call), recorded by the error handler and appended by check().
+thread_local std::string petsc_detail;
+
+PetscErrorCode record_error(MPI_Comm, int, const char* func, const char*, PetscErrorCode code, PetscErrorType type,
+                            const char* message, void*) {
+  if (type == PETSC_ERROR_INITIAL)
+    petsc_detail = fmt::format("{} (in {})", message && *message ? message : "no detail", func ? func : "?");
+  return code;
+}
+
+}  // namespace
+
 void check(PetscErrorCode code, const char* what) {
   if (code == 0) return;
   const char* text = nullptr;
   PetscErrorMessage(code, &text, nullptr);
-  throw SolverError(fmt::format("PETSc: {} failed (error {}: {})", what, int(code), text ? text : "?"));
+  std::string detail = std::move(petsc_detail);
+  petsc_detail.clear();
+  throw SolverError(fmt::format("PETSc: {} failed (error {}: {}{}{})", what, int(code), text ? text : "?",
+                                detail.empty() ? "" : ": ", detail));
 }
 
 Session::Session(const std::string& options) {
@@ -41,7 +60,7 @@ Session::Session(const std::string& options) {
   }
   // PETSc reads its options at initialization and when objects call *SetFromOptions.
   if (SlepcInitialize(nullptr, nullptr, nullptr, nullptr) != 0) throw SolverError("SlepcInitialize failed");
-  PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
+  PetscPushErrorHandler(record_error, nullptr);
   if (!options.empty()) check(PetscOptionsInsertString(nullptr, options.c_str()), "reading --petsc-options");
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank_);
   MPI_Comm_size(PETSC_COMM_WORLD, &size_);

@@ -209,14 +209,16 @@ class HeatGeodesics {
   // Iterations of the last distance() call's two solves (1 each for the direct solver).
   int heat_iterations() const { return heat_its_; }
   int poisson_iterations() const { return poisson_its_; }
-  // Vertices of the last distance() call whose heat value u lies below the iterative solve's
-  // resolution, 10 rtol max(u): the heat step (31) decays about e^-1 per sqrt(t) from the sources,
-  // so on meshes many edges across u drops under the CG residual there, and the normalized gradient
-  // (32), hence the distance, may be noise at those vertices (a cautious count: on hex_sphere(3)
-  // 70 vertices count while the distances stay within 1e-6 of the diameter; on a 30k-quad torus the
-  // far field was off by 70%). Always 0 for the direct solver (its triangular solves keep small
-  // values accurate); callers warn when it is not 0.
+  // Vertices of the last distance() call whose heat value u lies below the solve's resolution, and
+  // the largest distance among the resolved ones. The heat step (31) decays about e^-1 per sqrt(t)
+  // from the sources; where u is below the resolution its normalized gradient (32), hence the
+  // distance, is noise. Resolution: 10 rtol max(u) for CG (the residual: about 30 sqrt(t) from the
+  // sources at rtol 1e-14; a cautious count: on hex_sphere(3) 70 vertices count while the distances
+  // stay within 1e-6 of the diameter; on a 30k-quad torus the far field was off by 70%), 1e-280
+  // max(u) for the direct solver (double precision's range: ~650 sqrt(t)). Callers warn and suggest
+  // a larger time step factor (apps/applications/geodesics.h, suggested_time_factor).
   long heat_unresolved() const { return heat_unresolved_; }
+  double heat_resolved_radius() const { return heat_resolved_radius_; }
 
  private:
   MPI_Comm comm_;
@@ -231,6 +233,7 @@ class HeatGeodesics {
   Handle<MatNullSpace> null_space_;
   mutable int heat_its_ = 0, poisson_its_ = 0;
   mutable long heat_unresolved_ = 0;
+  mutable double heat_resolved_radius_ = 0;
 };
 
 struct SpectrumOptions {

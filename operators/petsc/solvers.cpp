@@ -240,19 +240,6 @@ Eigen::VectorXd HeatGeodesics::distance(std::span<const int> sources) const {
   zero_rows(rhs.get(), uncoupled);
   check(VecDuplicate(delta.get(), u.out()), "VecDuplicate");
   heat_its_ = solve(heat_.get(), rhs.get(), u.get(), "heat operator M - t S");
-  heat_unresolved_ = 0;
-  if (options_.solver != LinearSolver::MumpsCholesky) {
-    PetscReal umax = 0;
-    check(VecMax(u.get(), nullptr, &umax), "VecMax");
-    const double resolution = 10 * options_.rtol * umax;
-    const PetscScalar* ua = nullptr;
-    check(VecGetArrayRead(u.get(), &ua), "VecGetArrayRead");
-    long below = 0;
-    for (PetscInt r = lo; r < hi; ++r)
-      if (coupled_[size_t(r - lo)] && !(ua[r - lo] > resolution)) ++below;
-    check(VecRestoreArrayRead(u.get(), &ua), "VecRestoreArrayRead");
-    MPI_Allreduce(&below, &heat_unresolved_, 1, MPI_LONG, MPI_SUM, comm_);
-  }
   // (32), (33): -D g with g = -grad u / |grad u| per fan triangle, face by face on each rank.
   check(VecDuplicate(delta.get(), b.out()), "VecDuplicate");
   divergence_of_gradient(ops_, u.get(), b.get(), true);
@@ -277,7 +264,25 @@ Eigen::VectorXd HeatGeodesics::distance(std::span<const int> sources) const {
     a[r - lo] = coupled_[size_t(r - lo)] && reached[size_t(c)] ? a[r - lo] - cmin[size_t(c)]
                                                                : std::numeric_limits<double>::infinity();
   }
+  // How far the heat step was resolved (see heat_unresolved()).
+  PetscReal umax = 0;
+  check(VecMax(u.get(), nullptr, &umax), "VecMax");
+  const double resolution = (options_.solver == LinearSolver::MumpsCholesky ? 1e-280 : 10 * options_.rtol) * umax;
+  const PetscScalar* ua = nullptr;
+  check(VecGetArrayRead(u.get(), &ua), "VecGetArrayRead");
+  long below = 0;
+  double radius = 0;
+  for (PetscInt r = lo; r < hi; ++r) {
+    if (!std::isfinite(a[r - lo])) continue;
+    if (ua[r - lo] > resolution)
+      radius = std::max(radius, double(a[r - lo]));
+    else
+      ++below;
+  }
+  check(VecRestoreArrayRead(u.get(), &ua), "VecRestoreArrayRead");
   check(VecRestoreArray(d.get(), &a), "VecRestoreArray");
+  MPI_Allreduce(&below, &heat_unresolved_, 1, MPI_LONG, MPI_SUM, comm_);
+  MPI_Allreduce(&radius, &heat_resolved_radius_, 1, MPI_DOUBLE, MPI_MAX, comm_);
   return gather_to_root(d.get(), part_, std::numeric_limits<double>::infinity());
 }
 

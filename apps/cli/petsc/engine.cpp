@@ -93,7 +93,9 @@ PolygonSoup read_everywhere(MPI_Comm comm, const std::string& path, bool repair,
 
 // The whole Mesh of the compact arrays, built on the first call (rank 0's file and picture outputs).
 LazyMesh lazy_mesh(const PolygonSoup& soup, std::optional<Mesh>& cache) {
-  return {soup.n_vertices(), soup.n_faces(), [&soup, &cache]() -> const Mesh& {
+  const double extent =
+      soup.n_vertices() ? (soup.positions.colwise().maxCoeff() - soup.positions.colwise().minCoeff()).norm() : 0.0;
+  return {soup.n_vertices(), soup.n_faces(), extent, [&soup, &cache]() -> const Mesh& {
             if (!cache) cache.emplace(PolygonSoup(soup));
             return *cache;
           }};
@@ -121,10 +123,11 @@ nlohmann::json per_rank(MPI_Comm comm, const std::vector<double>& v) {
 }  // namespace engine_petsc
 
 void petsc_geodesics(const std::string& mesh_path, bool repair, const std::vector<int>& file_sources, bool lumped_mass,
-                     bool mass_weighted_source, const EngineOptions& engine,
+                     bool mass_weighted_source, double time_step_factor, const EngineOptions& engine,
                      const std::function<void(const EngineGeodesics&)>& write) {
   using namespace engine_petsc;
   petsc::GeodesicsOptions go;
+  go.time_step_factor = time_step_factor;
   go.solver = petsc::parse_linear_solver(engine.solver);
   go.lumped_mass = lumped_mass;
   go.mass_weighted_source = mass_weighted_source;
@@ -160,20 +163,13 @@ void petsc_geodesics(const std::string& mesh_path, bool repair, const std::vecto
       {"solver", petsc::linear_solver_name(go.solver)},
       {"heat_iterations", heat.heat_iterations()},
       {"poisson_iterations", heat.poisson_iterations()},
-      {"heat_unresolved_vertices", heat.heat_unresolved()},
       {"per_rank", per_rank(comm, {double(ops.n_local_faces), double(ops.n_local_vertices),
                                    double(part.vertex_begin[size_t(r) + 1] - part.vertex_begin[size_t(r)]),
                                    double(ops.n_coo_entries), t_read, t_partition, t_assembly, t_setup, t_solve,
                                    petsc::peak_rss_mb()})}};
-  if (r == 0 && heat.heat_unresolved() > 0)
-    std::cerr << fmt::format(
-        "polydec: warning: the heat solution lies below the {} solve's resolution at {} of {} vertices (far "
-        "from the sources): distances there may be noise; use --solver direct (a tighter CG tolerance "
-        "cannot help: those values are near round-off)\n",
-        petsc::linear_solver_name(go.solver), heat.heat_unresolved(), part.n_global());
   petsc::agree(comm, [&] {
     std::optional<Mesh> whole;
-    if (r == 0) write({lazy_mesh(mesh, whole), sources, d, heat.time_step(), ops.quality, summary});
+    if (r == 0) write({lazy_mesh(mesh, whole), sources, d, heat.time_step(), HeatDiagnostics{int(heat.heat_unresolved()), heat.heat_resolved_radius()}, ops.quality, summary});
   });
 }
 

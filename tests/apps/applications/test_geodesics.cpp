@@ -154,4 +154,34 @@ TEST_CASE("TETRIS 1: the two regimes around exactly degenerate fan triangles", "
   CHECK(std::abs(slivers_kept - dropped) > 0.01);
 }
 
+TEST_CASE("a strip 2000 edges long: the heat step's reach is reported, and the suggested time factor covers it",
+          "[geodesics]") {
+  // 2000 x 4 square quads (edge 0.01): at t = h^2 the heat solution falls below double precision's
+  // range ~650 edges from the source, beyond which the distance is wrong (flat, too small); the
+  // diagnostics must say so, and the suggested factor must give the strip's length (20) to 0.5%.
+  Mesh strip = quad_grid(2000, 4);
+  Eigen::MatrixX3d X = strip.positions();
+  X.col(0) *= 20.0;
+  X.col(1) *= 0.04;
+  strip = strip.with_positions(X);
+  const double length = 20.0;
+  HeatDiagnostics first;
+  const Eigen::VectorXd d1 = HeatGeodesics(strip).distance(std::span<const int>({0}), &first);
+  CHECK(first.unresolved_vertices > strip.n_vertices() / 2);
+  CHECK(first.resolved_radius > 0.2 * length);
+  CHECK(first.resolved_radius < 0.5 * length);
+  CHECK(d1.maxCoeff() < 0.5 * length);
+  const double factor = suggested_time_factor(1.0, first, strip.bounding_box_diagonal());
+  CHECK(factor > 1.0);
+  HeatGeodesicsOptions o;
+  o.time_step_factor = factor;
+  HeatDiagnostics second;
+  const Eigen::VectorXd d2 = HeatGeodesics(strip, o).distance(std::span<const int>({0}), &second);
+  CHECK(second.unresolved_vertices == 0);
+  CHECK(second.resolved_radius == Approx(d2.maxCoeff()).epsilon(1e-12));
+  CHECK(std::abs(d2.maxCoeff() - length) < 0.005 * length);
+  // Nothing to suggest when everything is resolved.
+  CHECK(suggested_time_factor(factor, second, strip.bounding_box_diagonal()) == factor);
+}
+
 }  // namespace test_geodesics
