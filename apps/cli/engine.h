@@ -74,7 +74,8 @@ struct EngineSpectrum {
 };
 
 // The k smallest eigenpairs of -S x = lambda M x with SLEPc.
-void petsc_spectrum(const std::string& mesh_path, bool repair, int k, bool lumped_mass, const EngineOptions& engine,
+void petsc_spectrum(const std::string& mesh_path, bool repair, int k, bool lumped_mass, bool vectors,
+                    const EngineOptions& engine,
                     const std::function<void(const EngineSpectrum&)>& write);
 
 }  // namespace polydec::cli

@@ -131,7 +131,8 @@ void run(const Options& o) {
     if (o.laplacian != "ours") throw UsageError("--engine petsc computes the paper's Laplacian only (--laplacian ours)");
     if (!o.png.empty() && (o.png_index < 0 || o.png_index >= o.k)) throw UsageError("--png-index must lie in [0, k)");
 #ifdef POLYDEC_HAVE_PETSC
-    petsc_spectrum(o.mesh, o.repair, o.k, o.mass == "lumped", o.engine, [&](const EngineSpectrum& r) {
+    const bool vectors = !o.out.empty() || !o.png.empty();  // only the files and the picture need them
+    petsc_spectrum(o.mesh, o.repair, o.k, o.mass == "lumped", vectors, o.engine, [&](const EngineSpectrum& r) {
       report(o, r.mesh, "ours", r.mesh.n_vertices, r.spectrum, &r.summary);
     });
     return;

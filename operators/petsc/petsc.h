@@ -243,6 +243,7 @@ struct SpectrumOptions {
   double tolerance = 1e-10;   // SLEPc's relative tolerance
   int max_iterations = 1000;
   LinearSolver solver = LinearSolver::MumpsCholesky;  // of the shift-invert solves
+  bool vectors = true;  // gather the eigenvectors on rank 0 (|V| x k doubles there)
 };
 
 struct Spectrum {
@@ -251,6 +252,10 @@ struct Spectrum {
   double shift = 0;
   int n_converged = 0;    // pairs found over all passes (at least k)
   int n_iterations = 0;   // Krylov-Schur restarts, summed over the passes
+  // Largest backward error of the k pairs, ||A x - lambda B x|| / ((||A|| + |lambda| ||B||) ||x||)
+  // with A = -S, B the mass and the infinity norm of the matrices: computed from the returned pairs,
+  // independently of SLEPc's own test.
+  double max_residual = 0;
   int n_passes = 0;       // solves with the pairs found so far as deflation space (see spectrum())
 };
 

@@ -384,7 +384,11 @@ Spectrum spectrum(MPI_Comm comm, const Partition& part, const DistributedOperato
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return lambda[size_t(a)] < lambda[size_t(b)]; });
   result.eigenvalues.resize(options.k);
-  Handle<Vec> Bx;
+  Handle<Vec> Ax, Bx;
+  PetscReal normA = 0, normB = 0;
+  check(MatNorm(A.get(), NORM_INFINITY, &normA), "MatNorm");
+  check(MatNorm(B.get(), NORM_INFINITY, &normB), "MatNorm");
+  check(MatCreateVecs(A.get(), nullptr, Ax.out()), "MatCreateVecs");
   check(MatCreateVecs(A.get(), nullptr, Bx.out()), "MatCreateVecs");
   for (int c = 0; c < options.k; ++c) {
     const int i = order[size_t(c)];
@@ -394,6 +398,15 @@ Spectrum spectrum(MPI_Comm comm, const Partition& part, const DistributedOperato
     PetscScalar xBx = 0;
     check(VecDot(x, Bx.get(), &xBx), "VecDot");
     check(VecScale(x, 1.0 / std::sqrt(xBx)), "VecScale");
+    check(VecScale(Bx.get(), 1.0 / std::sqrt(xBx)), "VecScale");
+    check(MatMult(A.get(), x, Ax.get()), "MatMult");
+    PetscReal nx = 0, nr = 0;
+    check(VecNorm(x, NORM_2, &nx), "VecNorm");
+    check(VecAXPY(Ax.get(), -lambda[size_t(i)], Bx.get()), "VecAXPY");
+    check(VecNorm(Ax.get(), NORM_2, &nr), "VecNorm");
+    result.max_residual =
+        std::max(result.max_residual, double(nr / ((normA + std::abs(lambda[size_t(i)]) * normB) * nx)));
+    if (!options.vectors) continue;
     const Eigen::VectorXd col = gather_to_root(x, part, 0.0);
     if (col.size() > 0) {
       if (result.eigenvectors.size() == 0) result.eigenvectors.resize(col.size(), options.k);

@@ -173,13 +173,15 @@ void petsc_geodesics(const std::string& mesh_path, bool repair, const std::vecto
   });
 }
 
-void petsc_spectrum(const std::string& mesh_path, bool repair, int k, bool lumped_mass, const EngineOptions& engine,
+void petsc_spectrum(const std::string& mesh_path, bool repair, int k, bool lumped_mass, bool vectors,
+                    const EngineOptions& engine,
                     const std::function<void(const EngineSpectrum&)>& write) {
   using namespace engine_petsc;
   petsc::SpectrumOptions so;
   so.solver = petsc::parse_linear_solver(engine.solver);
   so.k = k;
   so.lumped_mass = lumped_mass;
+  so.vectors = vectors;
   const petsc::Session session(engine.petsc_options);
   const MPI_Comm comm = session.comm();
   Laps laps;
@@ -197,12 +199,12 @@ void petsc_spectrum(const std::string& mesh_path, bool repair, int k, bool lumpe
   const double t_partition = laps.lap();
   const petsc::DistributedOperators ops = petsc::assemble_operators(comm, mesh, part, false, !lumped_mass);
   const double t_assembly = laps.lap();
-  const petsc::Spectrum ps = petsc::spectrum(comm, part, ops, so);
+  petsc::Spectrum ps = petsc::spectrum(comm, part, ops, so);
   const double t_solve = laps.lap();
   const int r = session.rank();
   Spectrum sp;
   sp.eigenvalues = ps.eigenvalues;
-  sp.eigenvectors = ps.eigenvectors;
+  sp.eigenvectors = std::move(ps.eigenvectors);
   sp.shift = ps.shift;
   sp.n_converged = ps.n_converged;
   sp.method = "SLEPc Krylov-Schur, shift-and-invert (" + petsc::linear_solver_name(so.solver) + ")";
@@ -213,6 +215,7 @@ void petsc_spectrum(const std::string& mesh_path, bool repair, int k, bool lumpe
       {"method", sp.method},
       {"restarts", ps.n_iterations},
       {"converged", ps.n_converged},
+      {"max_residual", ps.max_residual},
       {"per_rank", per_rank(comm, {double(ops.n_local_faces), double(ops.n_local_vertices),
                                    double(part.vertex_begin[size_t(r) + 1] - part.vertex_begin[size_t(r)]),
                                    double(ops.n_coo_entries), t_read, t_partition, t_assembly, 0.0, t_solve,
