@@ -25,8 +25,9 @@ OperatorSet refined_operators(const VolumeMesh& mesh, CellPointRule rule, bool w
   ops.M.swap(L.M);
   ops.M_lumped = std::move(L.M_lumped);
   if (with_gradient) {
-    ops.G = volume_gradient(mesh, r);
-    ops.D = volume_divergence(ops.G, sub_tet_volumes(mesh, r));
+    Eigen::VectorXd volumes;
+    ops.G = volume_gradient(mesh, r, &volumes);
+    ops.D = volume_divergence(ops.G, volumes);
   }
   if (quality) *quality = r.quality;
   return ops;
@@ -83,15 +84,17 @@ OperatorSet build_volume_operators(const VolumeMesh& mesh, const LaplacianChoice
   return ops;
 }
 
-SparseMatrix volume_gradient(const VolumeMesh& mesh, const VolumeRefinement& refinement) {
+SparseMatrix volume_gradient(const VolumeMesh& mesh, const VolumeRefinement& refinement, Eigen::VectorXd* volumes) {
   const std::vector<RefinedTet> tets = refined_tets(mesh, refinement);
   const int n_refined = mesh.n_vertices() + mesh.n_faces() + mesh.n_cells();
   std::vector<Eigen::Triplet<double>> t;
   t.reserve(tets.size() * 12);
+  if (volumes) volumes->setZero(Eigen::Index(tets.size()));
   for (size_t k = 0; k < tets.size(); ++k) {
     if (tets[k].quality == SubTet::Degenerate) continue;
     Eigen::Vector3d p[4];
     for (int a = 0; a < 4; ++a) p[a] = refined_position(mesh, refinement, tets[k].v[a]);
+    if (volumes) (*volumes)[Eigen::Index(k)] = std::abs(tet_signed_volume(p[0], p[1], p[2], p[3]));
     const Matrix34d g = tet_hat_gradients(p[0], p[1], p[2], p[3]);
     for (int a = 0; a < 4; ++a)
       for (int d = 0; d < 3; ++d) t.emplace_back(int(3 * k) + d, tets[k].v[a], g(d, a));

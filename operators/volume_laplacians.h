@@ -40,8 +40,10 @@ LaplacianChoice parse_volume_laplacian(const std::string& spec);
 OperatorSet build_volume_operators(const VolumeMesh& mesh, const LaplacianChoice& choice,
                                    bool with_gradient = true, SubTetQuality* quality = nullptr);
 
-// Gradient G = G^tet P, (3T) x |V| (T = number of sub-tetrahedra), see above.
-SparseMatrix volume_gradient(const VolumeMesh& mesh, const VolumeRefinement& refinement);
+// Gradient G = G^tet P, (3T) x |V| (T = number of sub-tetrahedra), see above; with `volumes`, also
+// the sub-tetrahedra's volumes from the same pass (as sub_tet_volumes).
+SparseMatrix volume_gradient(const VolumeMesh& mesh, const VolumeRefinement& refinement,
+                             Eigen::VectorXd* volumes = nullptr);
 
 // Volumes of the sub-tetrahedra (absolute; 0 for degenerate ones), order of refined_tets.
 Eigen::VectorXd sub_tet_volumes(const VolumeMesh& mesh, const VolumeRefinement& refinement);
