@@ -1,6 +1,6 @@
 // python/src/bindings.h — shared pieces of the extension polydec._polydec: meshes passed as
 // (positions, indices, offsets) arrays already checked and converted by the Python package
-// (python/polydec/_convert.py), and the registration functions of the three binding files.
+// (python/polydec/_convert.py), and the registration functions of the binding files.
 // Every binding copies its inputs into C++ objects while holding the GIL, then releases it
 // (py::gil_scoped_release) for validation, assembly, factorization and solves.
 #pragma once
@@ -33,5 +33,7 @@ py::tuple mesh_to_arrays(const Mesh& mesh);
 void register_meshes(py::module_& m);
 void register_operators(py::module_& m);
 void register_solvers(py::module_& m);
+void register_spectral(py::module_& m);
+void register_volumes(py::module_& m);
 
 }  // namespace polydec::python
