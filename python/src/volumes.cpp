@@ -237,10 +237,13 @@ void register_volumes(py::module_& m) {
     }
     py::dict d;
     d["max_degree"] = D.max_degree;
+    const char* d_names[] = {"d0", "d1", "d2"};
+    const char* P_names[] = {"P0", "P1", "P2", "P3"};
+    const char* star_names[] = {"star0", "star1", "star2", "star3"};
     for (int k = 0; k <= D.max_degree; ++k) {
-      if (k < D.max_degree) d[py::str("d" + std::to_string(k))] = D.d[k];
-      d[py::str("P" + std::to_string(k))] = D.P[k];
-      d[py::str("star" + std::to_string(k))] = D.star[k];
+      if (k < D.max_degree) d[d_names[k]] = D.d[k];
+      d[P_names[k]] = D.P[k];
+      d[star_names[k]] = D.star[k];
     }
     if (D.max_degree >= 1) d["pairs"] = D.coarse.simplices(1);
     if (D.max_degree >= 2) d["triples"] = D.coarse.simplices(2);
@@ -263,22 +266,9 @@ void register_volumes(py::module_& m) {
   m.def("volume_spectrum", [](const VolumeMesh& mesh, int k, const std::string& spec, bool dirichlet, bool lumped_mass,
                               double tolerance, int max_iterations) {
     const LaplacianChoice choice = parse_volume_laplacian(spec);
-    Spectrum s;
-    {
-      py::gil_scoped_release release;
-      SpectrumOptions options;
-      options.k = k;
-      options.lumped_mass = lumped_mass;
-      options.tolerance = tolerance;
-      options.max_iterations = max_iterations;
-      s = volume_laplacian_spectrum(build_volume_operators(mesh, choice, false), mesh, dirichlet, options);
-    }
-    py::dict info;
-    info["shift"] = s.shift;
-    info["n_converged"] = s.n_converged;
-    info["n_solves"] = s.n_solves;
-    info["method"] = s.method;
-    return py::make_tuple(s.eigenvalues, s.eigenvectors, info);
+    return spectrum_released(k, lumped_mass, tolerance, max_iterations, [&](const SpectrumOptions& options) {
+      return volume_laplacian_spectrum(build_volume_operators(mesh, choice, false), mesh, dirichlet, options);
+    });
   });
   m.def("ball_eigenvalues", [](int count, bool dirichlet) {
     const std::vector<BallEigenvalue> b = ball_eigenvalues(count, dirichlet);
@@ -318,24 +308,7 @@ void register_volumes(py::module_& m) {
         py::gil_scoped_release release;
         return std::make_unique<VolumeHodgeDecomposer>(mesh, options);
       }))
-      .def("decompose",
-           [](const VolumeHodgeDecomposer& h, const Eigen::VectorXd& omega) {
-             VolumeHodgeParts p;
-             {
-               py::gil_scoped_release release;
-               p = h.decompose(omega);
-             }
-             py::dict d;
-             d["exact"] = p.exact;
-             d["coexact"] = p.coexact;
-             d["harmonic"] = p.harmonic;
-             d["potential"] = p.potential;
-             d["norm"] = p.norm;
-             d["norm_exact"] = p.norm_exact;
-             d["norm_coexact"] = p.norm_coexact;
-             d["norm_harmonic"] = p.norm_harmonic;
-             return d;
-           })
+      .def("decompose", &decompose_to_dict<VolumeHodgeDecomposer>)
       .def_property_readonly("pairs", [](const VolumeHodgeDecomposer& h) { return h.dec().coarse.simplices(1); })
       .def_property_readonly("d0", [](const VolumeHodgeDecomposer& h) { return h.dec().d[0]; })
       .def_property_readonly("star1", [](const VolumeHodgeDecomposer& h) { return h.dec().star[1]; })
