@@ -279,6 +279,17 @@ def test_mesh_errors_name_the_cell():
         polydec.volume_stiffness(MESHES["tet"], "cotan")
 
 
+def test_meshes_without_cells_raise_instead_of_crashing():
+    for mesh in (polydec.VolumeMesh(np.zeros((0, 3)), []), polydec.VolumeMesh(np.zeros((3, 3)), [])):
+        assert mesh.n_cells == 0 and polydec.volume_stiffness(mesh).nnz == 0
+        with pytest.raises(polydec.InvalidMeshError, match="no cells"):
+            polydec.VolumeHodgeDecomposer(mesh)
+        with pytest.raises(ValueError, match="k = 1"):
+            polydec.volume_spectrum(mesh, 1)
+        with pytest.raises(ValueError, match="boundary"):
+            polydec.volume_franke_poisson(mesh)
+
+
 @pytest.mark.parametrize("ext", ["ovm", "vtk", "mesh"])
 def test_write_and_read_back(ext, tmp_path):
     mesh = polydec.tet_grid_volume(2, 2, 1, jitter=0.3) if ext == "mesh" else MESHES["truncated"]
