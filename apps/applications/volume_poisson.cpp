@@ -74,7 +74,8 @@ VolumePoissonError volume_dirichlet_poisson(const OperatorSet& ops, const Volume
   const int nv = mesh.n_vertices();
   if (ops.S.rows() != nv) throw std::invalid_argument("volume Poisson: operators do not match the mesh");
   if (exact.size() != nv || b.size() != nv)
-    throw std::invalid_argument("volume Poisson: one exact value and one Laplacian value per vertex expected");
+    throw std::invalid_argument(
+        "volume Poisson: one exact value and one Laplacian value per vertex expected");
   if (!exact.allFinite() || !b.allFinite())
     throw std::invalid_argument("volume Poisson: exact values and Laplacian values must be finite");
   VolumePoissonError e;

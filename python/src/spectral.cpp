@@ -26,8 +26,8 @@ Spectrum spectrum_of(const Eigen::VectorXd& evals, const Eigen::MatrixXd& evecs)
 }  // namespace
 
 void register_spectral(py::module_& m) {
-  m.def("form_spectrum", [](const PositionArray& V, const IndexArray& I, const IndexArray& O, int degree, int k,
-                            bool lumped_mass, double tolerance, int max_iterations, bool decompose) {
+  m.def("form_spectrum", [](const PositionArray& V, const IndexArray& I, const IndexArray& O, int degree,
+                            int k, bool lumped_mass, double tolerance, int max_iterations, bool decompose) {
     const Mesh mesh = mesh_from_arrays(V, I, O);
     FormSpectrum s;
     {
@@ -87,11 +87,12 @@ void register_spectral(py::module_& m) {
     py::gil_scoped_release release;
     return wave_kernel_signature(s, energies, sigma);
   });
-  m.def("biharmonic_distance", [](const Eigen::VectorXd& evals, const Eigen::MatrixXd& evecs, int source, int k) {
-    const Spectrum s = spectrum_of(evals, evecs);
-    py::gil_scoped_release release;
-    return biharmonic_distance(s, source, k);
-  });
+  m.def("biharmonic_distance",
+        [](const Eigen::VectorXd& evals, const Eigen::MatrixXd& evecs, int source, int k) {
+          const Spectrum s = spectrum_of(evals, evecs);
+          py::gil_scoped_release release;
+          return biharmonic_distance(s, source, k);
+        });
   m.def("diffusion_distance",
         [](const Eigen::VectorXd& evals, const Eigen::MatrixXd& evecs, double t, int source, int k) {
           const Spectrum s = spectrum_of(evals, evecs);

@@ -21,7 +21,8 @@ namespace polydec::python {
 namespace {
 
 Eigen::MatrixX3d positions_from_array(const PositionArray& V) {
-  if (V.ndim() != 2 || V.shape(1) != 3) throw std::invalid_argument("positions must be an array of shape (|V|, 3)");
+  if (V.ndim() != 2 || V.shape(1) != 3)
+    throw std::invalid_argument("positions must be an array of shape (|V|, 3)");
   Eigen::MatrixX3d X(long(V.shape(0)), 3);
   const double* v = V.data();
   for (long i = 0; i < X.rows(); ++i)
@@ -37,7 +38,8 @@ std::vector<int> to_vector(const IndexArray& a) {
 // Checks offsets of a flat list: |offsets| >= 1, starts at 0, ends at n, never decreases.
 void check_offsets(const std::vector<int>& offsets, size_t n, const char* what) {
   if (offsets.empty() || offsets.front() != 0 || offsets.back() != long(n))
-    throw std::invalid_argument(std::string(what) + " offsets must start at 0 and end at the number of indices");
+    throw std::invalid_argument(std::string(what) +
+                                " offsets must start at 0 and end at the number of indices");
   for (size_t k = 0; k + 1 < offsets.size(); ++k)
     if (offsets[k] > offsets[k + 1])
       throw std::invalid_argument(std::string(what) + " offsets decrease at entry " + std::to_string(k));
@@ -57,12 +59,14 @@ py::tuple cell_arrays(const VolumeMesh& mesh) {
     for (int h : mesh.cell(c)) hf.push_back(h);
     off.push_back(int(hf.size()));
   }
-  return py::make_tuple(py::array_t<int>(long(hf.size()), hf.data()), py::array_t<int>(long(off.size()), off.data()));
+  return py::make_tuple(py::array_t<int>(long(hf.size()), hf.data()),
+                        py::array_t<int>(long(off.size()), off.data()));
 }
 
 const char* kParts[] = {"S", "M", "M_lumped", "G", "D"};
 
-py::dict volume_operator_dict(const VolumeMesh& mesh, const std::string& spec, const std::set<std::string>& parts) {
+py::dict volume_operator_dict(const VolumeMesh& mesh, const std::string& spec,
+                              const std::set<std::string>& parts) {
   for (const auto& p : parts)
     if (std::find(std::begin(kParts), std::end(kParts), p) == std::end(kParts))
       throw std::invalid_argument("unknown operator part '" + p + "' (known: S, M, M_lumped, G, D)");
@@ -121,29 +125,31 @@ void register_volumes(py::module_& m) {
                     soup.cell_offsets = to_vector(cell_offsets);
                     return released([&] { return VolumeMesh(std::move(soup)); });
                   })
-      .def_static("from_cells",
-                  [](const PositionArray& V, const IndexArray& polygon_indices, const IndexArray& polygon_offsets,
-                     const IndexArray& cell_offsets) {
-                    const std::vector<int> pi = to_vector(polygon_indices), po = to_vector(polygon_offsets),
-                                           co = to_vector(cell_offsets);
-                    check_offsets(po, pi.size(), "polygon");
-                    check_offsets(co, po.size() - 1, "cell");
-                    PolyhedronSoupBuilder builder(positions_from_array(V));
-                    return released([&] {
-                      for (size_t c = 0; c + 1 < co.size(); ++c) {
-                        for (int p = co[c]; p < co[c + 1]; ++p)
-                          if (builder.add_polygon({pi.data() + po[p], size_t(po[p + 1] - po[p])}) < 0)
-                            throw InvalidMeshError(
-                                "cell", long(c),
-                                "cell " + std::to_string(c) + ", face " + std::to_string(p - co[c]) +
-                                    ": the vertices of an earlier face in a cyclic order that is neither the same "
-                                    "nor reversed");
-                        builder.end_cell();
-                      }
-                      return VolumeMesh(builder.take());
-                    });
-                  })
-      .def_static("read", [](const std::string& path) { return released([&] { return read_volume_mesh(path); }); })
+      .def_static(
+          "from_cells",
+          [](const PositionArray& V, const IndexArray& polygon_indices, const IndexArray& polygon_offsets,
+             const IndexArray& cell_offsets) {
+            const std::vector<int> pi = to_vector(polygon_indices), po = to_vector(polygon_offsets),
+                                   co = to_vector(cell_offsets);
+            check_offsets(po, pi.size(), "polygon");
+            check_offsets(co, po.size() - 1, "cell");
+            PolyhedronSoupBuilder builder(positions_from_array(V));
+            return released([&] {
+              for (size_t c = 0; c + 1 < co.size(); ++c) {
+                for (int p = co[c]; p < co[c + 1]; ++p)
+                  if (builder.add_polygon({pi.data() + po[p], size_t(po[p + 1] - po[p])}) < 0)
+                    throw InvalidMeshError(
+                        "cell", long(c),
+                        "cell " + std::to_string(c) + ", face " + std::to_string(p - co[c]) +
+                            ": the vertices of an earlier face in a cyclic order that is neither the same "
+                            "nor reversed");
+                builder.end_cell();
+              }
+              return VolumeMesh(builder.take());
+            });
+          })
+      .def_static("read",
+                  [](const std::string& path) { return released([&] { return read_volume_mesh(path); }); })
       .def("write",
            [](const VolumeMesh& mesh, const std::string& path, const VertexScalars& scalars) {
              py::gil_scoped_release release;
@@ -176,14 +182,16 @@ void register_volumes(py::module_& m) {
       .def_property_readonly("face_cells",
                              [](const VolumeMesh& m) {
                                Eigen::MatrixX2i fc(m.n_faces(), 2);
-                               for (int f = 0; f < m.n_faces(); ++f) fc.row(f) << m.face_cells(f)[0], m.face_cells(f)[1];
+                               for (int f = 0; f < m.n_faces(); ++f)
+                                 fc.row(f) << m.face_cells(f)[0], m.face_cells(f)[1];
                                return fc;
                              })
       .def_property_readonly("edges", [](const VolumeMesh& m) { return Eigen::MatrixX2i(m.edges()); })
       .def_property_readonly("boundary_vertices",
                              [](const VolumeMesh& m) {
                                py::array_t<bool> b(m.n_vertices());
-                               for (int v = 0; v < m.n_vertices(); ++v) b.mutable_data()[v] = m.is_boundary_vertex(v);
+                               for (int v = 0; v < m.n_vertices(); ++v)
+                                 b.mutable_data()[v] = m.is_boundary_vertex(v);
                                return b;
                              })
       .def_property_readonly("cell_volumes",
@@ -259,12 +267,12 @@ void register_volumes(py::module_& m) {
     options.time_step_factor = time_step_factor;
     options.lumped_mass = lumped_mass;
     options.mass_weighted_source = mass_weighted_source;
-    return std::make_unique<HeatGeodesics>(build_volume_operators(mesh, choice, true), mesh.mean_edge_length(),
-                                           options);
+    return std::make_unique<HeatGeodesics>(build_volume_operators(mesh, choice, true),
+                                           mesh.mean_edge_length(), options);
   });
 
-  m.def("volume_spectrum", [](const VolumeMesh& mesh, int k, const std::string& spec, bool dirichlet, bool lumped_mass,
-                              double tolerance, int max_iterations) {
+  m.def("volume_spectrum", [](const VolumeMesh& mesh, int k, const std::string& spec, bool dirichlet,
+                              bool lumped_mass, double tolerance, int max_iterations) {
     const LaplacianChoice choice = parse_volume_laplacian(spec);
     return spectrum_released(k, lumped_mass, tolerance, max_iterations, [&](const SpectrumOptions& options) {
       return volume_laplacian_spectrum(build_volume_operators(mesh, choice, false), mesh, dirichlet, options);
@@ -282,13 +290,14 @@ void register_volumes(py::module_& m) {
     return py::make_tuple(lambda, l, n);
   });
 
-  m.def("volume_poisson", [](const VolumeMesh& mesh, const Eigen::VectorXd& exact, const Eigen::VectorXd& laplacian,
-                             const std::string& spec, bool lumped_mass) {
+  m.def("volume_poisson", [](const VolumeMesh& mesh, const Eigen::VectorXd& exact,
+                             const Eigen::VectorXd& laplacian, const std::string& spec, bool lumped_mass) {
     const LaplacianChoice choice = parse_volume_laplacian(spec);
     VolumePoissonError e;
     {
       py::gil_scoped_release release;
-      e = volume_dirichlet_poisson(build_volume_operators(mesh, choice, false), mesh, exact, laplacian, lumped_mass);
+      e = volume_dirichlet_poisson(build_volume_operators(mesh, choice, false), mesh, exact, laplacian,
+                                   lumped_mass);
     }
     return poisson_dict(e);
   });
@@ -309,7 +318,8 @@ void register_volumes(py::module_& m) {
         return std::make_unique<VolumeHodgeDecomposer>(mesh, options);
       }))
       .def("decompose", &decompose_to_dict<VolumeHodgeDecomposer>)
-      .def_property_readonly("pairs", [](const VolumeHodgeDecomposer& h) { return h.dec().coarse.simplices(1); })
+      .def_property_readonly("pairs",
+                             [](const VolumeHodgeDecomposer& h) { return h.dec().coarse.simplices(1); })
       .def_property_readonly("d0", [](const VolumeHodgeDecomposer& h) { return h.dec().d[0]; })
       .def_property_readonly("star1", [](const VolumeHodgeDecomposer& h) { return h.dec().star[1]; })
       .def_property_readonly("harmonic_basis", &VolumeHodgeDecomposer::harmonic_basis);
