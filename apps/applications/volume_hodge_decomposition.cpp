@@ -10,6 +10,8 @@
 namespace polydec {
 
 VolumeHodgeDecomposer::VolumeHodgeDecomposer(const VolumeMesh& mesh, const VolumeRefinementOptions& options) {
+  if (mesh.n_cells() == 0)
+    throw InvalidMeshError("cell", 0, "volume Hodge decomposition: the mesh has no cells");
   const VolumeRefinement refinement = refine_volume(mesh, options);
   dec_ = volume_dec(mesh, refinement, 2);  // 1-forms need d1 and star2, not the 3-forms
   const SparseMatrix& d0 = dec_.d[0];

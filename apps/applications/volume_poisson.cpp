@@ -59,20 +59,33 @@ VolumePoissonError volume_dirichlet_poisson(const OperatorSet& ops, const Volume
                                             const ScalarField3& exact, const ScalarField3& laplacian,
                                             bool lumped_mass) {
   const int nv = mesh.n_vertices();
+  Eigen::VectorXd f(nv), b(nv);
+  for (int v = 0; v < nv; ++v) {
+    const Eigen::Vector3d p = mesh.position(v);
+    f[v] = exact(p);
+    b[v] = laplacian(p);
+  }
+  return volume_dirichlet_poisson(ops, mesh, f, b, lumped_mass);
+}
+
+VolumePoissonError volume_dirichlet_poisson(const OperatorSet& ops, const VolumeMesh& mesh,
+                                            const Eigen::VectorXd& exact, const Eigen::VectorXd& b,
+                                            bool lumped_mass) {
+  const int nv = mesh.n_vertices();
   if (ops.S.rows() != nv) throw std::invalid_argument("volume Poisson: operators do not match the mesh");
+  if (exact.size() != nv || b.size() != nv)
+    throw std::invalid_argument(
+        "volume Poisson: one exact value and one Laplacian value per vertex expected");
+  if (!exact.allFinite() || !b.allFinite())
+    throw std::invalid_argument("volume Poisson: exact values and Laplacian values must be finite");
   VolumePoissonError e;
   e.n_vertices = nv;
   e.n_cells = mesh.n_cells();
   e.h = mesh.mean_edge_length();
-  e.exact.resize(nv);
-  Eigen::VectorXd b(nv);
+  e.exact = exact;
   std::vector<int> fixed;
-  for (int v = 0; v < nv; ++v) {
-    const Eigen::Vector3d p = mesh.position(v);
-    e.exact[v] = exact(p);
-    b[v] = laplacian(p);
+  for (int v = 0; v < nv; ++v)
     if (mesh.is_boundary_vertex(v)) fixed.push_back(v);
-  }
   if (fixed.empty()) throw std::invalid_argument("volume Poisson problem: the mesh has no boundary vertices");
   e.n_boundary = int(fixed.size());
   e.solution = solve_dirichlet_poisson(ops, b, fixed, e.exact, lumped_mass);

@@ -46,6 +46,10 @@ struct VolumePoissonError {
 VolumePoissonError volume_dirichlet_poisson(const OperatorSet& operators, const VolumeMesh& mesh,
                                             const ScalarField3& exact, const ScalarField3& laplacian,
                                             bool lumped_mass = false);
+// The same with the exact solution and its Laplacian given at the vertices (|V| values each).
+VolumePoissonError volume_dirichlet_poisson(const OperatorSet& operators, const VolumeMesh& mesh,
+                                            const Eigen::VectorXd& exact, const Eigen::VectorXd& laplacian,
+                                            bool lumped_mass = false);
 // The Franke problem (franke3d, franke3d_laplacian) on a mesh of the unit cube, with the volume
 // Laplacian `laplacian` (operators/volume_laplacians.h; default "ours").
 VolumePoissonError volume_franke_poisson(const VolumeMesh& mesh, bool lumped_mass = false,

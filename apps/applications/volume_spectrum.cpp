@@ -98,7 +98,14 @@ std::vector<BallEigenvalue> ball_eigenvalues(int count, bool dirichlet) {
 }
 
 Spectrum volume_laplacian_spectrum(const VolumeMesh& mesh, bool dirichlet, const SpectrumOptions& options) {
-  OperatorSet ops = build_volume_operators(mesh, LaplacianChoice{}, false);
+  return volume_laplacian_spectrum(build_volume_operators(mesh, LaplacianChoice{}, false), mesh, dirichlet,
+                                   options);
+}
+
+Spectrum volume_laplacian_spectrum(const OperatorSet& ops, const VolumeMesh& mesh, bool dirichlet,
+                                   const SpectrumOptions& options) {
+  if (ops.S.rows() != mesh.n_vertices())
+    throw std::invalid_argument("volume spectrum: operators do not match the mesh");
   if (!dirichlet) return laplacian_spectrum(ops, options);
   const int nv = mesh.n_vertices();
   std::vector<int> index(size_t(nv), -1), interior;
@@ -112,7 +119,7 @@ Spectrum volume_laplacian_spectrum(const VolumeMesh& mesh, bool dirichlet, const
   OperatorSet inner;
   inner.name = ops.name + ", Dirichlet";
   inner.S = principal_submatrix(ops.S, index);
-  inner.M = principal_submatrix(ops.M, index);
+  if (ops.M.rows() > 0) inner.M = principal_submatrix(ops.M, index);
   inner.M_lumped.resize(Eigen::Index(interior.size()));
   for (size_t i = 0; i < interior.size(); ++i) inner.M_lumped[Eigen::Index(i)] = ops.M_lumped[interior[i]];
   Spectrum s = laplacian_spectrum(inner, options);

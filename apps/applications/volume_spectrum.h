@@ -39,6 +39,9 @@ std::vector<BallEigenvalue> ball_eigenvalues(int count, bool dirichlet);
 // laplacian_spectrum (apps/applications/spectrum.h).
 Spectrum volume_laplacian_spectrum(const VolumeMesh& mesh, bool dirichlet,
                                    const SpectrumOptions& options = {});
+// The same with any volume operator set of `mesh` (operators/volume_laplacians.h).
+Spectrum volume_laplacian_spectrum(const OperatorSet& operators, const VolumeMesh& mesh, bool dirichlet,
+                                   const SpectrumOptions& options = {});
 
 struct BallSpectrum {
   int n = 0;  // hex_ball_volume(n)

@@ -15,6 +15,8 @@ Conventions (docs/python.md):
   * The GIL is released during validation, assembly, factorization and solves.
   * Errors: InvalidMeshError (a ValueError naming the face, vertex or edge), FileError (an
     OSError and a ValueError with the file and line), SolverError (a RuntimeError).
+  * Volume meshes: VolumeMesh and the volume_* functions (polydec._volume); spectra of forms and
+    spectral shape tools: polydec._spectral.
 """
 
 import os
@@ -36,6 +38,14 @@ __all__ = [
     "HeatGeodesics", "spectrum", "HodgeDecomposer", "HodgeParts", "hodge_decomposition",
     "mean_curvature", "vertex_normals", "CurvatureFlow", "curvature_flow",
     "conformal_parametrization", "conformal_distortion",
+    "form_spectrum", "hks_times", "heat_kernel_signature", "wave_kernel_signature", "biharmonic_distance",
+    "diffusion_distance", "lowpass_filter",
+    "VolumeMesh", "read_volume_mesh", "write_volume_mesh", "jitter_interior", "hex_grid_volume", "tet_grid_volume",
+    "pyramid_grid_volume", "truncated_octahedra_volume", "cuboctahedra_volume", "hex_torus_volume",
+    "hex_ball_volume", "volume_laplacian_names", "volume_operators", "volume_stiffness", "volume_mass",
+    "volume_lumped_mass", "volume_laplacian", "volume_gradient", "volume_divergence", "volume_dec_max_degree",
+    "volume_dec", "VolumeHeatGeodesics", "volume_spectrum", "ball_eigenvalues", "volume_poisson",
+    "volume_franke_poisson", "VolumeHodgeDecomposer",
 ]
 
 
@@ -426,3 +436,14 @@ def conformal_parametrization(V, F, laplacian="ours", return_eigenvalue=False):
 def conformal_distortion(V, F, uv):
     """Area-weighted RMS difference (radians) between the corner angles in 3D and in uv (|V|, 2)."""
     return _polydec.conformal_distortion(*_convert.mesh(V, F), np.asarray(uv, dtype=np.float64))
+
+
+from ._spectral import (  # noqa: E402
+    biharmonic_distance, diffusion_distance, form_spectrum, heat_kernel_signature, hks_times, lowpass_filter,
+    wave_kernel_signature)
+from ._volume import (  # noqa: E402
+    VolumeHeatGeodesics, VolumeHodgeDecomposer, VolumeMesh, ball_eigenvalues, cuboctahedra_volume, hex_ball_volume,
+    hex_grid_volume, hex_torus_volume, jitter_interior, pyramid_grid_volume, read_volume_mesh, tet_grid_volume,
+    truncated_octahedra_volume, volume_dec, volume_dec_max_degree, volume_divergence, volume_franke_poisson,
+    volume_gradient, volume_laplacian, volume_laplacian_names, volume_lumped_mass, volume_mass, volume_operators,
+    volume_poisson, volume_spectrum, volume_stiffness, write_volume_mesh)

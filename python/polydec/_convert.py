@@ -69,54 +69,59 @@ def _mesh_error(element, index, message):
     return err
 
 
-def faces(F, n_vertices):
-    """Flat int32 (indices, offsets) of F, checked against n_vertices.
+def lists(F, bound, element="face", item="vertex"):
+    """Flat int32 (indices, offsets) of a list of index lists F (faces of vertices, cells of
+    half-faces), each index checked against [0, bound).
 
-    Accepted forms: a sequence of faces (each a sequence of vertex indices; valences may differ),
-    an (|F|, k) integer array, or the flat form: a tuple of two 1-D integer numpy arrays
-    (indices, offsets) with offsets[0] = 0, offsets[-1] = len(indices), face f =
+    Accepted forms: a sequence of lists (each a sequence of indices; lengths may differ), an
+    (|F|, k) integer array, or the flat form: a tuple of two 1-D integer numpy arrays
+    (indices, offsets) with offsets[0] = 0, offsets[-1] = len(indices), list f =
     indices[offsets[f]:offsets[f+1]]. Any integer dtype. Raises InvalidMeshError (a ValueError)
-    naming the face for an index outside [0, n_vertices).
+    naming the `element` for an index outside [0, bound).
     """
     if _is_flat(F):
-        idx = _integers(F[0], "face indices")
-        off = _integers(F[1], "face offsets")
+        idx = _integers(F[0], f"{element} indices")
+        off = _integers(F[1], f"{element} offsets")
         if off.size == 0 or off[0] != 0 or off[-1] != idx.size:
-            raise ValueError("flat faces: offsets must start at 0 and end at len(indices)")
+            raise ValueError(f"flat {element}s: offsets must start at 0 and end at len(indices)")
         steps = np.diff(off.astype(np.int64))
         if np.any(steps < 0):
             f = int(np.argmax(steps < 0))
-            raise _mesh_error("face", f, f"face {f} has negative size (offsets decrease)")
+            raise _mesh_error(element, f, f"{element} {f} has negative size (offsets decrease)")
     elif isinstance(F, np.ndarray):
         if F.ndim != 2:
-            raise ValueError(f"a face array must have shape (|F|, k), got {F.shape}; use a list of lists or "
-                             "(indices, offsets) for mixed valences")
-        idx = _integers(F, "faces").reshape(-1)
+            raise ValueError(f"a {element} array must have shape (n, k), got {F.shape}; use a list of lists or "
+                             "(indices, offsets) for mixed sizes")
+        idx = _integers(F, f"{element}s").reshape(-1)
         off = np.arange(F.shape[0] + 1, dtype=np.int64) * F.shape[1]
     else:
         try:
             F = list(F)
             sizes = [len(f) for f in F]
         except TypeError:
-            raise TypeError("faces must be a list of lists, an (|F|, k) integer array or (indices, offsets)") from None
+            raise TypeError(f"{element}s must be a list of lists, an (n, k) integer array or (indices, offsets)") from None
         flat = [v for f in F for v in f]
         if not all(isinstance(v, (numbers.Integral, np.integer)) and not isinstance(v, bool) for v in flat):
-            raise TypeError("faces must hold integer vertex indices")
+            raise TypeError(f"{element}s must hold integer {item} indices")
         if any(abs(int(v)) > 2**62 for v in flat):
-            raise ValueError("face index too large")
+            raise ValueError(f"{item} index too large")
         idx = np.array(flat, dtype=np.int64)
         off = np.concatenate([[0], np.cumsum(sizes, dtype=np.int64)])
     if off.size - 1 > _INT32_MAX or idx.size > _INT32_MAX:
-        raise ValueError("too many faces for polydec (32-bit indices)")
+        raise ValueError(f"too many {element}s for polydec (32-bit indices)")
     if idx.size:
-        bad = (idx < 0) | (idx >= n_vertices)
+        bad = (idx < 0) | (idx >= bound)
         if np.any(bad):
             pos = int(np.argmax(bad))
             f = int(np.searchsorted(off, pos, side="right") - 1)
-            raise _mesh_error(
-                "face", f, f"face {f} refers to vertex {int(idx[pos])}, outside [0, {n_vertices})"
-            )
+            raise _mesh_error(element, f, f"{element} {f} refers to {item} {int(idx[pos])}, outside [0, {bound})")
     return np.ascontiguousarray(idx, dtype=np.int32), np.ascontiguousarray(off, dtype=np.int32)
+
+
+def faces(F, n_vertices):
+    """Flat int32 (indices, offsets) of the faces F, checked against n_vertices (lists() with
+    element "face", item "vertex": a sequence of faces, an (|F|, k) array or the flat tuple)."""
+    return lists(F, n_vertices)
 
 
 def mesh(V, F):

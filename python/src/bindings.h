@@ -1,6 +1,6 @@
 // python/src/bindings.h — shared pieces of the extension polydec._polydec: meshes passed as
 // (positions, indices, offsets) arrays already checked and converted by the Python package
-// (python/polydec/_convert.py), and the registration functions of the three binding files.
+// (python/polydec/_convert.py), and the registration functions of the binding files.
 // Every binding copies its inputs into C++ objects while holding the GIL, then releases it
 // (py::gil_scoped_release) for validation, assembly, factorization and solves.
 #pragma once
@@ -10,6 +10,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include "polydec/apps/applications/spectrum.h"
 #include "polydec/dec/mesh.h"
 
 namespace polydec::python {
@@ -30,8 +31,52 @@ Mesh mesh_from_arrays(const PositionArray& V, const IndexArray& indices, const I
 // (positions |V| x 3, indices, offsets) of a mesh, as numpy arrays.
 py::tuple mesh_to_arrays(const Mesh& mesh);
 
+// (eigenvalues, eigenvectors, info dict with shift, n_converged, n_solves, method) of a spectrum,
+// as `spectrum` and `volume_spectrum` return it.
+py::tuple spectrum_to_python(const Spectrum& s);
+
+// solve(options) (a Spectrum) with the GIL released, the options set from the arguments, as
+// spectrum_to_python.
+template <class Solve>
+py::tuple spectrum_released(int k, bool lumped_mass, double tolerance, int max_iterations, Solve&& solve) {
+  Spectrum s;
+  {
+    py::gil_scoped_release release;
+    SpectrumOptions options;
+    options.k = k;
+    options.lumped_mass = lumped_mass;
+    options.tolerance = tolerance;
+    options.max_iterations = max_iterations;
+    s = solve(options);
+  }
+  return spectrum_to_python(s);
+}
+
+// h.decompose(omega) with the GIL released, as a dict (HodgeDecomposer and VolumeHodgeDecomposer:
+// parts with the same fields).
+template <class Decomposer>
+py::dict decompose_to_dict(const Decomposer& h, const Eigen::VectorXd& omega) {
+  decltype(h.decompose(omega)) p;
+  {
+    py::gil_scoped_release release;
+    p = h.decompose(omega);
+  }
+  py::dict d;
+  d["exact"] = p.exact;
+  d["coexact"] = p.coexact;
+  d["harmonic"] = p.harmonic;
+  d["potential"] = p.potential;
+  d["norm"] = p.norm;
+  d["norm_exact"] = p.norm_exact;
+  d["norm_coexact"] = p.norm_coexact;
+  d["norm_harmonic"] = p.norm_harmonic;
+  return d;
+}
+
 void register_meshes(py::module_& m);
 void register_operators(py::module_& m);
 void register_solvers(py::module_& m);
+void register_spectral(py::module_& m);
+void register_volumes(py::module_& m);
 
 }  // namespace polydec::python

@@ -99,4 +99,6 @@ PYBIND11_MODULE(_polydec, m) {
   register_meshes(m);
   register_operators(m);
   register_solvers(m);
+  register_spectral(m);
+  register_volumes(m);
 }

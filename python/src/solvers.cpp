@@ -11,6 +11,15 @@
 
 namespace polydec::python {
 
+py::tuple spectrum_to_python(const Spectrum& s) {
+  py::dict info;
+  info["shift"] = s.shift;
+  info["n_converged"] = s.n_converged;
+  info["n_solves"] = s.n_solves;
+  info["method"] = s.method;
+  return py::make_tuple(s.eigenvalues, s.eigenvectors, info);
+}
+
 void register_solvers(py::module_& m) {
   py::class_<HeatGeodesics>(m, "HeatGeodesics")
       .def(py::init([](const PositionArray& V, const IndexArray& I, const IndexArray& O,
@@ -36,22 +45,9 @@ void register_solvers(py::module_& m) {
   m.def("spectrum", [](const PositionArray& V, const IndexArray& I, const IndexArray& O, int k,
                        const std::string& spec, bool lumped_mass, double tolerance, int max_iterations) {
     const Mesh mesh = mesh_from_arrays(V, I, O);
-    Spectrum s;
-    {
-      py::gil_scoped_release release;
-      SpectrumOptions options;
-      options.k = k;
-      options.lumped_mass = lumped_mass;
-      options.tolerance = tolerance;
-      options.max_iterations = max_iterations;
-      s = laplacian_spectrum(build_operators(mesh, parse_laplacian(spec), false), options);
-    }
-    py::dict info;
-    info["shift"] = s.shift;
-    info["n_converged"] = s.n_converged;
-    info["n_solves"] = s.n_solves;
-    info["method"] = s.method;
-    return py::make_tuple(s.eigenvalues, s.eigenvectors, info);
+    return spectrum_released(k, lumped_mass, tolerance, max_iterations, [&](const SpectrumOptions& options) {
+      return laplacian_spectrum(build_operators(mesh, parse_laplacian(spec), false), options);
+    });
   });
 
   py::class_<HodgeDecomposer>(m, "HodgeDecomposer")
@@ -63,24 +59,7 @@ void register_solvers(py::module_& m) {
             options.rule = parse_virtual_vertex_rule(rule);
             return std::make_unique<HodgeDecomposer>(mesh, options);
           }))
-      .def("decompose",
-           [](const HodgeDecomposer& h, const Eigen::VectorXd& omega) {
-             HodgeParts p;
-             {
-               py::gil_scoped_release release;
-               p = h.decompose(omega);
-             }
-             py::dict d;
-             d["exact"] = p.exact;
-             d["coexact"] = p.coexact;
-             d["harmonic"] = p.harmonic;
-             d["potential"] = p.potential;
-             d["norm"] = p.norm;
-             d["norm_exact"] = p.norm_exact;
-             d["norm_coexact"] = p.norm_coexact;
-             d["norm_harmonic"] = p.norm_harmonic;
-             return d;
-           })
+      .def("decompose", &decompose_to_dict<HodgeDecomposer>)
       .def_property_readonly("pairs",
                              [](const HodgeDecomposer& h) { return Eigen::MatrixX2i(h.complex().pairs()); })
       .def_property_readonly("d0", [](const HodgeDecomposer& h) { return h.d0(); })

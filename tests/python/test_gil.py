@@ -83,6 +83,22 @@ def test_python_threads_run_during_factorization_and_solves(big_mesh):
     assert during > 0.1 * alone, f"spinner rate during solves {during:.0f}/s, alone {alone:.0f}/s"
 
 
+def test_python_threads_run_during_volume_work():
+    """Volume meshes: generation and validation, assembly, factorization and solves."""
+    mesh = polydec.hex_grid_volume(20, 20, 20, jitter=0.2)
+    heat = {}
+
+    def work():
+        polydec.hex_grid_volume(20, 20, 20, jitter=0.2)
+        polydec.volume_operators(mesh, "ours", {"S", "M", "G", "D"})
+        heat["h"] = polydec.VolumeHeatGeodesics(mesh)
+        for s in range(5):
+            heat["h"].distance(s)
+
+    during, alone = _count_during(work, 0.2)
+    assert during > 0.1 * alone, f"spinner rate during volume work {during:.0f}/s, alone {alone:.0f}/s"
+
+
 def _median_time(fn, repeat):
     times = []
     for _ in range(repeat):

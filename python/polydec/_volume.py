@@ -1,0 +1,376 @@
+"""polydec._volume — polyhedral volume meshes (issue 17; docs/volumes.md, docs/python.md): the
+VolumeMesh class, its readers, writer and generators, the volume Laplacians ("ours",
+"polylaplace", "diamond"), volume DEC and the volume applications. Imported into polydec.
+
+Conventions as on surfaces: S symmetric NEGATIVE semi-definite (S @ 1 = 0), M the Galerkin mass,
+the lumped mass its row sums; sparse results are scipy.sparse.csc_matrix of float64 in the
+mesh's vertex order; the GIL is released during validation, assembly and solves.
+"""
+
+import os
+
+import numpy as np
+
+from . import _convert, _polydec
+
+
+def _flat_cells(cells, n_vertices):
+    """(polygon indices, polygon offsets, cell offsets) int32 of cells given as lists of polygons,
+    every polygon checked (3 or more vertices, indices in [0, n_vertices))."""
+    if isinstance(cells, np.ndarray):
+        if cells.ndim != 3:
+            raise ValueError(f"a cell array must have shape (|C|, faces per cell, vertices per face), got {cells.shape}")
+        c, f, k = cells.shape
+        polygons = cells.reshape(c * f, k)
+        cell_sizes = np.full(c, f, dtype=np.int64)
+    else:
+        try:
+            cells = [list(c) for c in cells]
+        except TypeError:
+            raise TypeError("cells must be a list of cells, each a list of faces (vertex index lists)") from None
+        polygons = [p for c in cells for p in c]
+        cell_sizes = np.array([len(c) for c in cells], dtype=np.int64)
+    cell_offsets = np.concatenate([[0], np.cumsum(cell_sizes)]).astype(np.int64)
+    try:
+        idx, off = _convert.lists(polygons, n_vertices, "face", "vertex")
+    except _polydec.InvalidMeshError as e:  # "face P refers to ...", P counted over all cells
+        c = int(np.searchsorted(cell_offsets, e.index, side="right") - 1)
+        detail = str(e).split(" ", 2)[2]
+        raise _convert._mesh_error("cell", c, f"cell {c}, face {e.index - int(cell_offsets[c])} {detail}") from None
+    sizes = np.diff(off)
+    if np.any(sizes < 3):
+        p = int(np.argmax(sizes < 3))
+        c = int(np.searchsorted(cell_offsets, p, side="right") - 1)
+        raise _convert._mesh_error("cell", c, f"cell {c}, face {p - int(cell_offsets[c])} has {int(sizes[p])} "
+                                   "vertices (at least 3 needed)")
+    return idx, off, np.ascontiguousarray(cell_offsets, dtype=np.int32)
+
+
+class VolumeMesh:
+    """A validated polyhedral volume mesh (dec/volume_mesh.h): positions, polygonal faces (each
+    stored once) and cells as cycles of oriented faces; immutable.
+
+    Build one with VolumeMesh(V, cells) (= VolumeMesh.from_cells), VolumeMesh.from_soup(V, faces,
+    cells), read_volume_mesh(path) or a generator (hex_grid_volume, ...). Validation raises
+    InvalidMeshError (a ValueError) naming the vertex, face, cell or edge. After validation every
+    cell's half-faces have right-hand normals pointing out of the cell (a mesh given consistently
+    inward, as polyLaplace's OVM files, is flipped once).
+
+    Attributes: n_vertices, n_edges, n_faces, n_cells, positions (|V|, 3), faces (flat (indices,
+    offsets)), cells (flat (half-faces, offsets): half-face 2f is face f as listed, 2f+1 reversed),
+    face_cells (|F|, 2) (-1 where none), edges (|E|, 2) (i < j, lexicographic), boundary_vertices
+    (bool |V|), cell_volumes (|C|,), volume, mean_edge_length, bounding_box_diagonal.
+    """
+
+    def __init__(self, V, cells):
+        """From positions V (|V|, 3) and cells, each a list of faces, each a list of vertex indices
+        (a shared face is recognized by its vertex set; its two cells must list it in opposite
+        cyclic orders), or a (|C|, faces per cell, vertices per face) integer array."""
+        X = _convert.positions(V)
+        self._m = _polydec.VolumeMesh.from_cells(X, *_flat_cells(cells, X.shape[0]))
+
+    @classmethod
+    def from_cells(cls, V, cells):
+        """VolumeMesh(V, cells)."""
+        return cls(V, cells)
+
+    @classmethod
+    def _wrap(cls, m):
+        mesh = cls.__new__(cls)
+        mesh._m = m
+        return mesh
+
+    @classmethod
+    def from_soup(cls, V, faces, cells):
+        """The library's soup form (dec/volume_mesh.h, PolyhedronSoup): faces as vertex lists (each
+        face once; any form polydec accepts for surface faces), cells as lists of half-faces
+        (2f: face f as listed, 2f+1: reversed), lists of lists, an (n, k) array or the flat tuple
+        (indices, offsets)."""
+        X = _convert.positions(V)
+        fi, fo = _convert.faces(faces, X.shape[0])
+        ci, co = _convert.lists(cells, 2 * (fo.size - 1), "cell", "half-face")
+        return cls._wrap(_polydec.VolumeMesh.from_soup(X, fi, fo, ci, co))
+
+    @classmethod
+    def read(cls, path):
+        """read_volume_mesh(path)."""
+        return read_volume_mesh(path)
+
+    def write(self, path, scalars=None):
+        """write_volume_mesh(path, self, scalars)."""
+        write_volume_mesh(path, self, scalars)
+
+    def with_positions(self, V):
+        """The same connectivity with new positions (|V|, 3)."""
+        return VolumeMesh._wrap(self._m.with_positions(_convert.positions(V)))
+
+    def boundary_surface(self, faces="auto"):
+        """The boundary faces, oriented outward, as a surface mesh (V, F) on all |V| vertices
+        (interior vertices unreferenced), for every surface tool of polydec."""
+        X, idx, off = self._m.boundary_surface()
+        return np.ascontiguousarray(X), _convert.faces_out(idx, off, faces)
+
+    def cell_faces(self, c):
+        """Cell c as a list of faces (vertex lists), each oriented with its normal out of the cell."""
+        hf, off = self.cells
+        fi, fo = self.faces
+        if not 0 <= c < self.n_cells:
+            raise IndexError(f"cell {c} outside [0, {self.n_cells})")
+        out = []
+        for h in hf[off[c]:off[c + 1]]:
+            f = fi[fo[h // 2]:fo[h // 2 + 1]].tolist()
+            out.append(f if h % 2 == 0 else f[::-1])
+        return out
+
+    def __getattr__(self, name):
+        if name in ("n_vertices", "n_edges", "n_faces", "n_cells", "n_unreferenced_vertices", "positions", "faces",
+                    "cells", "face_cells", "edges", "boundary_vertices", "cell_volumes", "volume",
+                    "mean_edge_length", "bounding_box_diagonal"):
+            m = self.__dict__.get("_m")
+            if m is not None:
+                return getattr(m, name)
+        raise AttributeError(name)
+
+    def __repr__(self):
+        return (f"VolumeMesh({self.n_vertices} vertices, {self.n_faces} faces, {self.n_cells} cells, "
+                f"volume {self.volume:.6g})")
+
+
+def _mesh(mesh):
+    if not isinstance(mesh, VolumeMesh):
+        raise TypeError(f"a polydec.VolumeMesh is needed, got {type(mesh).__name__}")
+    return mesh._m
+
+
+def read_volume_mesh(path):
+    """Reads an OVM (OpenVolumeMesh ASCII), VTK legacy unstructured grid or MEDIT .mesh file (by
+    extension; others by their first word) -> VolumeMesh, in the file's vertex order. Raises
+    FileError (OSError and ValueError) naming the file and line for a missing, unreadable or
+    malformed file or an invalid mesh in it."""
+    return VolumeMesh._wrap(_polydec.VolumeMesh.read(os.fspath(path)))
+
+
+def write_volume_mesh(path, mesh, scalars=None):
+    """Writes by extension (.ovm, .vtk, .mesh; MEDIT holds tetrahedra and hexahedra only),
+    positions with 17 significant digits. scalars: optional {name: (|V|,) array}, written as VTK
+    POINT_DATA (.vtk only). Raises FileError."""
+    s = {str(k): np.asarray(v, dtype=np.float64).reshape(-1) for k, v in (scalars or {}).items()}
+    _mesh(mesh).write(os.fspath(path), s)
+
+
+def jitter_interior(mesh, amplitude, seed=1):
+    """Every interior vertex moved by a uniform random vector in the ball of radius amplitude times
+    its shortest incident edge (0 <= amplitude < 0.5 keeps the generators' cells valid); boundary
+    vertices stay. Deterministic for a seed -> VolumeMesh."""
+    return VolumeMesh._wrap(_polydec.jitter_interior(_mesh(mesh), float(amplitude), int(seed)))
+
+
+def hex_grid_volume(nx, ny, nz, jitter=0.0, seed=1):
+    """nx x ny x nz hexahedra filling [0, 1]^3; vertex (i, j, k) is i + (nx+1)(j + (ny+1) k);
+    jitter: amplitude of jitter_interior."""
+    return VolumeMesh._wrap(_polydec.hex_grid_volume(int(nx), int(ny), int(nz), float(jitter), int(seed)))
+
+
+def tet_grid_volume(nx, ny, nz, jitter=0.0, seed=1):
+    """The hex grid with every cube split into 6 tetrahedra (Kuhn subdivision)."""
+    return VolumeMesh._wrap(_polydec.tet_grid_volume(int(nx), int(ny), int(nz), float(jitter), int(seed)))
+
+
+def pyramid_grid_volume(nx, ny, nz, jitter=0.0, seed=1):
+    """The hex grid with every cube split into 6 pyramids around its centre (centres numbered
+    after the grid vertices)."""
+    return VolumeMesh._wrap(_polydec.pyramid_grid_volume(int(nx), int(ny), int(nz), float(jitter), int(seed)))
+
+
+def truncated_octahedra_volume(n, jitter=0.0, seed=1):
+    """The bitruncated cubic honeycomb clipped to [0, 1]^3 (n cubes per side): truncated octahedra
+    inside, convex clipped cells at the boundary; n^3 + (n+1)^3 cells."""
+    return VolumeMesh._wrap(_polydec.truncated_octahedra_volume(int(n), float(jitter), int(seed)))
+
+
+def cuboctahedra_volume(n, jitter=0.0, seed=1):
+    """Each of n^3 cubes of [0, 1]^3 split into a cuboctahedron and 8 corner tetrahedra (polyLaplace's
+    cube_truncated family; n = 2^(L-1) is level L); 9 n^3 cells."""
+    return VolumeMesh._wrap(_polydec.cuboctahedra_volume(int(n), float(jitter), int(seed)))
+
+
+def hex_torus_volume(n_around, n_cross, R=1.0, r=0.4, jitter=0.0, seed=1):
+    """A hexahedral solid torus around the z axis (first Betti number 1), 0 < r < R."""
+    return VolumeMesh._wrap(_polydec.hex_torus_volume(int(n_around), int(n_cross), float(R), float(r), float(jitter),
+                                                      int(seed)))
+
+
+def hex_ball_volume(n, jitter=0.0, seed=1):
+    """A hexahedral unit ball from the n x n x n grid of [-1, 1]^3 (boundary vertices on the unit sphere)."""
+    return VolumeMesh._wrap(_polydec.hex_ball_volume(int(n), float(jitter), int(seed)))
+
+
+# -------------------------------------------------------------------------------------- operators
+
+def volume_laplacian_names():
+    """The volume Laplacians: "ours" (least-norm cell-point weights), "polylaplace" (polyLaplace's
+    cell-point weights, the same cell point), "diamond" (Bunge, Botsch & Alexa 2021)."""
+    return list(_polydec.volume_laplacian_names())
+
+
+def volume_operators(mesh, laplacian="ours", parts=("S", "M", "M_lumped", "G", "D")):
+    """The parts asked for ("S", "M", "M_lumped", "G", "D") from one assembly -> dict with those
+    (S, M, G, D csc_matrix; M_lumped a (|V|,) vector), "G_blocks" with G (row blocks the heat method
+    normalizes as one vector; empty: blocks of 3), "name", and the refinement's sub-tetrahedron
+    counts "subtet_degenerate", "subtet_inverted", "cells_affected"."""
+    return _polydec.volume_operators(_mesh(mesh), str(laplacian), set(parts))
+
+
+def volume_stiffness(mesh, laplacian="ours"):
+    """Stiffness S = P^T S^tet P (|V|, |V|) csc_matrix, symmetric NEGATIVE semi-definite, S @ 1 = 0,
+    exact on linear functions at interior vertices."""
+    return volume_operators(mesh, laplacian, {"S"})["S"]
+
+
+def volume_mass(mesh, laplacian="ours"):
+    """Galerkin mass M = P^T M^tet P (|V|, |V|) csc_matrix, positive semi-definite, summing to the volume."""
+    return volume_operators(mesh, laplacian, {"M"})["M"]
+
+
+def volume_lumped_mass(mesh, laplacian="ours"):
+    """Lumped mass (row sums of M) as a diagonal (|V|, |V|) csc_matrix."""
+    from . import _diagonal
+
+    return _diagonal(volume_operators(mesh, laplacian, {"M_lumped"})["M_lumped"])
+
+
+def volume_laplacian(mesh, laplacian="ours", mass="lumped"):
+    """(S, M) from one assembly; mass="lumped" (diagonal, default) or "galerkin"; L = M^-1 S."""
+    from . import _diagonal
+
+    lumped = _convert.lumped_flag(mass)
+    d = volume_operators(mesh, laplacian, {"S", "M_lumped" if lumped else "M"})
+    return d["S"], _diagonal(d["M_lumped"]) if lumped else d["M"]
+
+
+def volume_gradient(mesh, laplacian="ours"):
+    """Gradient G, (3T, |V|) csc_matrix: rows 3t..3t+2 the constant gradient on sub-tetrahedron t
+    of the refinement ("diamond": per sub-diamond). S = D @ G."""
+    return volume_operators(mesh, laplacian, {"G"})["G"]
+
+
+def volume_divergence(mesh, laplacian="ours"):
+    """Divergence D = -G^T W (W the sub-tetrahedron volumes, each three times), (|V|, 3T) csc_matrix."""
+    return volume_operators(mesh, laplacian, {"D"})["D"]
+
+
+def volume_dec_max_degree(mesh):
+    """The largest form degree (0..3) whose Hodge star every cell's size allows (dec/volume_complex.h)."""
+    return _polydec.volume_dec_max_degree(_mesh(mesh))
+
+
+def volume_dec(mesh, max_degree=None, cell_point="squared-volume"):
+    """DEC on a volume mesh from one refinement (dec/volume_hodge_star.h) -> dict with d0, d1, d2
+    (d_k for k < max_degree; integer-valued, d_{k+1} @ d_k = 0 exactly), P0..P3 and star0..star3
+    (for k <= max_degree; star0 is the Galerkin mass, S = -d0.T @ star1 @ d0), all csc_matrix,
+    the coarse cell lists pairs, triples, quads ((n, k+1) int32, increasing indices,
+    lexicographic: the numbering of d and star) and max_degree. max_degree=None: the largest the
+    cells allow (volume_dec_max_degree); a larger one raises ValueError naming the cell.
+    cell_point: "squared-volume" (default, method "ours") or "polylaplace"."""
+    k = -1 if max_degree is None else int(max_degree)
+    if max_degree is not None and not 0 <= k <= 3:
+        raise ValueError(f"max_degree must be 0..3, got {max_degree}")
+    return _polydec.volume_dec(_mesh(mesh), k, str(cell_point))
+
+
+# ---------------------------------------------------------------------------------------- solvers
+
+class VolumeHeatGeodesics:
+    """Geodesic distances in a volume by the heat method, the surface HeatGeodesics on a volume
+    operator set (factored once; t = time_step_factor * mean edge length^2).
+
+    VolumeHeatGeodesics(mesh, laplacian="ours", time_step_factor=1.0, mass="lumped",
+    mass_weighted_source=True); distance(sources) -> (|V|,) float64, 0 at the nearest source,
+    +inf where no source reaches. Equal to `polydec geodesics MESH --source ...` on a volume mesh.
+    """
+
+    def __init__(self, mesh, laplacian="ours", time_step_factor=1.0, mass="lumped", mass_weighted_source=True):
+        m = _mesh(mesh)
+        self._n = m.n_vertices
+        self._solver = _polydec.volume_heat_geodesics(m, str(laplacian), float(time_step_factor),
+                                                      _convert.lumped_flag(mass), bool(mass_weighted_source))
+
+    def distance(self, sources):
+        """Distances from a vertex index or a sequence of them -> (|V|,) float64."""
+        return self._solver.distance(_convert.sources(sources, self._n))
+
+    @property
+    def time_step(self):
+        return self._solver.time_step
+
+
+def volume_spectrum(mesh, k, laplacian="ours", boundary="neumann", mass="lumped", tolerance=1e-10,
+                    max_iterations=1000, return_info=False):
+    """The k smallest eigenpairs of -S x = lambda M x on the volume -> (evals (k,) ascending,
+    evecs (|V|, k) M-orthonormal). boundary="neumann" (every vertex free; lambda_0 = 0 with a
+    constant vector per connected component) or "dirichlet" (boundary vertices removed, their rows
+    0). return_info=True adds a dict (shift, n_converged, n_solves, method)."""
+    if boundary not in ("neumann", "dirichlet"):
+        raise ValueError(f"boundary must be 'neumann' or 'dirichlet', got {boundary!r}")
+    evals, evecs, info = _polydec.volume_spectrum(_mesh(mesh), int(k), str(laplacian), boundary == "dirichlet",
+                                                  _convert.lumped_flag(mass), float(tolerance), int(max_iterations))
+    return (evals, evecs, info) if return_info else (evals, evecs)
+
+
+def ball_eigenvalues(count, boundary="neumann"):
+    """The `count` smallest eigenvalues of -Delta on the unit ball, each repeated 2l + 1 times ->
+    (lambda (count,), l, n): squared zeros of the spherical Bessel j_l (Dirichlet) or of j_l'
+    (Neumann, with the 0 of the constants)."""
+    if boundary not in ("neumann", "dirichlet"):
+        raise ValueError(f"boundary must be 'neumann' or 'dirichlet', got {boundary!r}")
+    return _polydec.ball_eigenvalues(int(count), boundary == "dirichlet")
+
+
+def _vertex_values(f, X, what):
+    v = f(X) if callable(f) else f
+    v = np.asarray(v, dtype=np.float64).reshape(-1)
+    if v.shape[0] != X.shape[0]:
+        raise ValueError(f"{what}: one value per vertex expected ({X.shape[0]}), got {v.shape[0]}")
+    if not np.all(np.isfinite(v)):
+        raise ValueError(f"{what}: values must be finite (vertex {int(np.argmax(~np.isfinite(v)))})")
+    return v
+
+
+def volume_poisson(mesh, exact, laplacian_of_exact, laplacian="ours", mass="galerkin"):
+    """Solves Delta f = b with f = exact on the boundary vertices (S f = M b at the interior ones)
+    and measures the error -> dict: solution, exact (|V|,), l2_error sqrt(e^T M e), rms_error (over
+    all vertices), h (mean edge length), n_vertices, n_cells, n_boundary. exact and
+    laplacian_of_exact: (|V|,) arrays or functions of the (|V|, 3) positions. ValueError on a mesh
+    without boundary."""
+    m = _mesh(mesh)
+    X = m.positions
+    return _polydec.volume_poisson(m, _vertex_values(exact, X, "exact"),
+                                   _vertex_values(laplacian_of_exact, X, "laplacian_of_exact"), str(laplacian),
+                                   _convert.lumped_flag(mass))
+
+
+def volume_franke_poisson(mesh, laplacian="ours", mass="galerkin"):
+    """The 3D Franke Poisson problem on a mesh of the unit cube (apps/applications/volume_poisson.h,
+    as `polydec poisson` on a volume) -> the dict of volume_poisson."""
+    return _polydec.volume_franke_poisson(_mesh(mesh), str(laplacian), _convert.lumped_flag(mass))
+
+
+class VolumeHodgeDecomposer:
+    """Hodge decomposition of coarse 1-cochains on a volume mesh, omega = d0 alpha + co-exact +
+    harmonic, orthogonal in star1 (apps/applications/volume_hodge_decomposition.h; dense harmonic
+    part: meshes of up to a few thousand coarse pairs, cells of at most 16 vertices).
+
+    decompose(omega) with omega (|C1|,) on the pairs -> HodgeParts. Attributes pairs, d0, star1,
+    harmonic_basis (|C1|, first Betti number), star1-orthonormal."""
+
+    def __init__(self, mesh, cell_point="squared-volume"):
+        self._h = _polydec.VolumeHodgeDecomposer(_mesh(mesh), str(cell_point))
+        self.pairs = self._h.pairs
+        self.d0 = self._h.d0
+        self.star1 = self._h.star1
+        self.harmonic_basis = self._h.harmonic_basis
+
+    def decompose(self, omega):
+        from . import HodgeParts
+
+        return HodgeParts(self._h.decompose(np.asarray(omega, dtype=np.float64).reshape(-1)))

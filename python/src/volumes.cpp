@@ -1,0 +1,328 @@
+// python/src/volumes.cpp — bindings of polyhedral volume meshes (issue 17): the VolumeMesh class
+// (dec/volume_mesh.h, dec/io_volume.h, dec/volume_generators.h), the volume operators
+// (operators/volume_laplacians.h), volume DEC (dec/volume_hodge_star.h) and the volume applications
+// (heat geodesics, spectrum, Poisson, Hodge decomposition). The Python package (polydec/_volume.py)
+// checks the array inputs and carries the docstrings.
+#include <algorithm>
+#include <set>
+
+#include "bindings.h"
+#include "polydec/apps/applications/geodesics.h"
+#include "polydec/apps/applications/volume_hodge_decomposition.h"
+#include "polydec/apps/applications/volume_poisson.h"
+#include "polydec/apps/applications/volume_spectrum.h"
+#include "polydec/dec/io_volume.h"
+#include "polydec/dec/polyhedron_builder.h"
+#include "polydec/dec/volume_generators.h"
+#include "polydec/dec/volume_hodge_star.h"
+#include "polydec/operators/volume_laplacians.h"
+
+namespace polydec::python {
+namespace {
+
+Eigen::MatrixX3d positions_from_array(const PositionArray& V) {
+  if (V.ndim() != 2 || V.shape(1) != 3)
+    throw std::invalid_argument("positions must be an array of shape (|V|, 3)");
+  Eigen::MatrixX3d X(long(V.shape(0)), 3);
+  const double* v = V.data();
+  for (long i = 0; i < X.rows(); ++i)
+    for (int c = 0; c < 3; ++c) X(i, c) = v[3 * i + c];
+  return X;
+}
+
+std::vector<int> to_vector(const IndexArray& a) {
+  if (a.ndim() != 1) throw std::invalid_argument("index lists must be 1-D arrays");
+  return std::vector<int>(a.data(), a.data() + a.size());
+}
+
+// Checks offsets of a flat list: |offsets| >= 1, starts at 0, ends at n, never decreases.
+void check_offsets(const std::vector<int>& offsets, size_t n, const char* what) {
+  if (offsets.empty() || offsets.front() != 0 || offsets.back() != long(n))
+    throw std::invalid_argument(std::string(what) +
+                                " offsets must start at 0 and end at the number of indices");
+  for (size_t k = 0; k + 1 < offsets.size(); ++k)
+    if (offsets[k] > offsets[k + 1])
+      throw std::invalid_argument(std::string(what) + " offsets decrease at entry " + std::to_string(k));
+}
+
+// Runs `make` (a VolumeMesh factory) with the GIL released.
+template <class F>
+VolumeMesh released(F&& make) {
+  py::gil_scoped_release release;
+  return make();
+}
+
+// Flat (half-faces, offsets) of the cells.
+py::tuple cell_arrays(const VolumeMesh& mesh) {
+  std::vector<int> hf, off{0};
+  for (int c = 0; c < mesh.n_cells(); ++c) {
+    for (int h : mesh.cell(c)) hf.push_back(h);
+    off.push_back(int(hf.size()));
+  }
+  return py::make_tuple(py::array_t<int>(long(hf.size()), hf.data()),
+                        py::array_t<int>(long(off.size()), off.data()));
+}
+
+const char* kParts[] = {"S", "M", "M_lumped", "G", "D"};
+
+py::dict volume_operator_dict(const VolumeMesh& mesh, const std::string& spec,
+                              const std::set<std::string>& parts) {
+  for (const auto& p : parts)
+    if (std::find(std::begin(kParts), std::end(kParts), p) == std::end(kParts))
+      throw std::invalid_argument("unknown operator part '" + p + "' (known: S, M, M_lumped, G, D)");
+  const LaplacianChoice choice = parse_volume_laplacian(spec);
+  OperatorSet ops;
+  SubTetQuality q;
+  {
+    py::gil_scoped_release release;
+    ops = build_volume_operators(mesh, choice, parts.count("G") || parts.count("D"), &q);
+  }
+  py::dict d;
+  d["name"] = ops.name;
+  d["subtet_degenerate"] = q.n_degenerate;
+  d["subtet_inverted"] = q.n_inverted;
+  d["cells_affected"] = q.n_cells_affected;
+  if (parts.count("S")) d["S"] = ops.S;
+  if (parts.count("M")) d["M"] = ops.M;
+  if (parts.count("M_lumped")) d["M_lumped"] = ops.M_lumped;
+  if (parts.count("G")) d["G"] = ops.G;
+  if (parts.count("D")) d["D"] = ops.D;
+  if (parts.count("G")) d["G_blocks"] = ops.G_blocks;
+  return d;
+}
+
+py::dict poisson_dict(const VolumePoissonError& e) {
+  py::dict d;
+  d["h"] = e.h;
+  d["l2_error"] = e.l2_error;
+  d["rms_error"] = e.rms_error;
+  d["n_vertices"] = e.n_vertices;
+  d["n_cells"] = e.n_cells;
+  d["n_boundary"] = e.n_boundary;
+  d["solution"] = e.solution;
+  d["exact"] = e.exact;
+  return d;
+}
+
+VolumeRefinementOptions refinement_options(const std::string& cell_point) {
+  VolumeRefinementOptions o;
+  o.cell_rule = parse_cell_point_rule(cell_point);
+  return o;
+}
+
+}  // namespace
+
+void register_volumes(py::module_& m) {
+  py::class_<VolumeMesh>(m, "VolumeMesh")
+      .def_static("from_soup",
+                  [](const PositionArray& V, const IndexArray& face_indices, const IndexArray& face_offsets,
+                     const IndexArray& cell_halffaces, const IndexArray& cell_offsets) {
+                    PolyhedronSoup soup;
+                    soup.positions = positions_from_array(V);
+                    soup.face_indices = to_vector(face_indices);
+                    soup.face_offsets = to_vector(face_offsets);
+                    soup.cell_halffaces = to_vector(cell_halffaces);
+                    soup.cell_offsets = to_vector(cell_offsets);
+                    return released([&] { return VolumeMesh(std::move(soup)); });
+                  })
+      .def_static(
+          "from_cells",
+          [](const PositionArray& V, const IndexArray& polygon_indices, const IndexArray& polygon_offsets,
+             const IndexArray& cell_offsets) {
+            const std::vector<int> pi = to_vector(polygon_indices), po = to_vector(polygon_offsets),
+                                   co = to_vector(cell_offsets);
+            check_offsets(po, pi.size(), "polygon");
+            check_offsets(co, po.size() - 1, "cell");
+            PolyhedronSoupBuilder builder(positions_from_array(V));
+            return released([&] {
+              for (size_t c = 0; c + 1 < co.size(); ++c) {
+                for (int p = co[c]; p < co[c + 1]; ++p)
+                  if (builder.add_polygon({pi.data() + po[p], size_t(po[p + 1] - po[p])}) < 0)
+                    throw InvalidMeshError(
+                        "cell", long(c),
+                        "cell " + std::to_string(c) + ", face " + std::to_string(p - co[c]) +
+                            ": the vertices of an earlier face in a cyclic order that is neither the same "
+                            "nor reversed");
+                builder.end_cell();
+              }
+              return VolumeMesh(builder.take());
+            });
+          })
+      .def_static("read",
+                  [](const std::string& path) { return released([&] { return read_volume_mesh(path); }); })
+      .def("write",
+           [](const VolumeMesh& mesh, const std::string& path, const VertexScalars& scalars) {
+             py::gil_scoped_release release;
+             if (scalars.empty())
+               write_volume_mesh(mesh, path);
+             else
+               write_volume_vtk_with_point_data(mesh, path, scalars);
+           })
+      .def("with_positions",
+           [](const VolumeMesh& mesh, const PositionArray& V) {
+             Eigen::MatrixX3d X = positions_from_array(V);
+             if (X.rows() != mesh.n_vertices())
+               throw std::invalid_argument("with_positions: " + std::to_string(mesh.n_vertices()) +
+                                           " positions expected, got " + std::to_string(X.rows()));
+             return released([&] { return mesh.with_positions(std::move(X)); });
+           })
+      .def_property_readonly("n_vertices", &VolumeMesh::n_vertices)
+      .def_property_readonly("n_edges", &VolumeMesh::n_edges)
+      .def_property_readonly("n_faces", &VolumeMesh::n_faces)
+      .def_property_readonly("n_cells", &VolumeMesh::n_cells)
+      .def_property_readonly("n_unreferenced_vertices", &VolumeMesh::n_unreferenced_vertices)
+      .def_property_readonly("positions", [](const VolumeMesh& m) { return Eigen::MatrixX3d(m.positions()); })
+      .def_property_readonly("faces",
+                             [](const VolumeMesh& m) {
+                               const auto &I = m.face_indices(), &O = m.face_offsets();
+                               return py::make_tuple(py::array_t<int>(long(I.size()), I.data()),
+                                                     py::array_t<int>(long(O.size()), O.data()));
+                             })
+      .def_property_readonly("cells", &cell_arrays)
+      .def_property_readonly("face_cells",
+                             [](const VolumeMesh& m) {
+                               Eigen::MatrixX2i fc(m.n_faces(), 2);
+                               for (int f = 0; f < m.n_faces(); ++f)
+                                 fc.row(f) << m.face_cells(f)[0], m.face_cells(f)[1];
+                               return fc;
+                             })
+      .def_property_readonly("edges", [](const VolumeMesh& m) { return Eigen::MatrixX2i(m.edges()); })
+      .def_property_readonly("boundary_vertices",
+                             [](const VolumeMesh& m) {
+                               py::array_t<bool> b(m.n_vertices());
+                               for (int v = 0; v < m.n_vertices(); ++v)
+                                 b.mutable_data()[v] = m.is_boundary_vertex(v);
+                               return b;
+                             })
+      .def_property_readonly("cell_volumes",
+                             [](const VolumeMesh& m) {
+                               Eigen::VectorXd w(m.n_cells());
+                               for (int c = 0; c < m.n_cells(); ++c) w[c] = m.cell_volume(c);
+                               return w;
+                             })
+      .def_property_readonly("volume", &VolumeMesh::volume)
+      .def_property_readonly("mean_edge_length", &VolumeMesh::mean_edge_length)
+      .def_property_readonly("bounding_box_diagonal", &VolumeMesh::bounding_box_diagonal)
+      .def("boundary_surface", [](const VolumeMesh& m) { return mesh_to_arrays(m.boundary_surface()); });
+
+  const auto jitter = [](double amplitude, std::uint64_t seed) { return VolumeJitter{amplitude, seed}; };
+  m.def("jitter_interior", [=](const VolumeMesh& mesh, double amplitude, std::uint64_t seed) {
+    return released([&] { return jitter_interior(mesh, jitter(amplitude, seed)); });
+  });
+  m.def("hex_grid_volume", [=](int nx, int ny, int nz, double a, std::uint64_t s) {
+    return released([&] { return hex_grid_volume(nx, ny, nz, jitter(a, s)); });
+  });
+  m.def("tet_grid_volume", [=](int nx, int ny, int nz, double a, std::uint64_t s) {
+    return released([&] { return tet_grid_volume(nx, ny, nz, jitter(a, s)); });
+  });
+  m.def("pyramid_grid_volume", [=](int nx, int ny, int nz, double a, std::uint64_t s) {
+    return released([&] { return pyramid_grid_volume(nx, ny, nz, jitter(a, s)); });
+  });
+  m.def("truncated_octahedra_volume", [=](int n, double a, std::uint64_t s) {
+    return released([&] { return truncated_octahedra_volume(n, jitter(a, s)); });
+  });
+  m.def("cuboctahedra_volume", [=](int n, double a, std::uint64_t s) {
+    return released([&] { return cuboctahedra_volume(n, jitter(a, s)); });
+  });
+  m.def("hex_torus_volume", [=](int n_around, int n_cross, double R, double r, double a, std::uint64_t s) {
+    return released([&] { return hex_torus_volume(n_around, n_cross, R, r, jitter(a, s)); });
+  });
+  m.def("hex_ball_volume", [=](int n, double a, std::uint64_t s) {
+    return released([&] { return hex_ball_volume(n, jitter(a, s)); });
+  });
+
+  m.def("volume_laplacian_names", &volume_laplacian_names);
+  m.def("volume_operators", &volume_operator_dict);
+
+  m.def("volume_dec_max_degree", &volume_dec_max_degree);
+  m.def("volume_dec", [](const VolumeMesh& mesh, int max_degree, const std::string& cell_point) {
+    const VolumeRefinementOptions ropt = refinement_options(cell_point);
+    VolumeDec D;
+    {
+      py::gil_scoped_release release;
+      if (max_degree < 0) max_degree = volume_dec_max_degree(mesh);
+      D = volume_dec(mesh, refine_volume(mesh, ropt), max_degree);
+    }
+    py::dict d;
+    d["max_degree"] = D.max_degree;
+    const char* d_names[] = {"d0", "d1", "d2"};
+    const char* P_names[] = {"P0", "P1", "P2", "P3"};
+    const char* star_names[] = {"star0", "star1", "star2", "star3"};
+    for (int k = 0; k <= D.max_degree; ++k) {
+      if (k < D.max_degree) d[d_names[k]] = D.d[k];
+      d[P_names[k]] = D.P[k];
+      d[star_names[k]] = D.star[k];
+    }
+    if (D.max_degree >= 1) d["pairs"] = D.coarse.simplices(1);
+    if (D.max_degree >= 2) d["triples"] = D.coarse.simplices(2);
+    if (D.max_degree >= 3) d["quads"] = D.coarse.simplices(3);
+    return d;
+  });
+
+  m.def("volume_heat_geodesics", [](const VolumeMesh& mesh, const std::string& spec, double time_step_factor,
+                                    bool lumped_mass, bool mass_weighted_source) {
+    const LaplacianChoice choice = parse_volume_laplacian(spec);
+    py::gil_scoped_release release;
+    HeatGeodesicsOptions options;
+    options.time_step_factor = time_step_factor;
+    options.lumped_mass = lumped_mass;
+    options.mass_weighted_source = mass_weighted_source;
+    return std::make_unique<HeatGeodesics>(build_volume_operators(mesh, choice, true),
+                                           mesh.mean_edge_length(), options);
+  });
+
+  m.def("volume_spectrum", [](const VolumeMesh& mesh, int k, const std::string& spec, bool dirichlet,
+                              bool lumped_mass, double tolerance, int max_iterations) {
+    const LaplacianChoice choice = parse_volume_laplacian(spec);
+    return spectrum_released(k, lumped_mass, tolerance, max_iterations, [&](const SpectrumOptions& options) {
+      return volume_laplacian_spectrum(build_volume_operators(mesh, choice, false), mesh, dirichlet, options);
+    });
+  });
+  m.def("ball_eigenvalues", [](int count, bool dirichlet) {
+    const std::vector<BallEigenvalue> b = ball_eigenvalues(count, dirichlet);
+    Eigen::VectorXd lambda(long(b.size()));
+    Eigen::VectorXi l(long(b.size())), n(long(b.size()));
+    for (size_t i = 0; i < b.size(); ++i) {
+      lambda[long(i)] = b[i].lambda;
+      l[long(i)] = b[i].l;
+      n[long(i)] = b[i].n;
+    }
+    return py::make_tuple(lambda, l, n);
+  });
+
+  m.def("volume_poisson", [](const VolumeMesh& mesh, const Eigen::VectorXd& exact,
+                             const Eigen::VectorXd& laplacian, const std::string& spec, bool lumped_mass) {
+    const LaplacianChoice choice = parse_volume_laplacian(spec);
+    VolumePoissonError e;
+    {
+      py::gil_scoped_release release;
+      e = volume_dirichlet_poisson(build_volume_operators(mesh, choice, false), mesh, exact, laplacian,
+                                   lumped_mass);
+    }
+    return poisson_dict(e);
+  });
+  m.def("volume_franke_poisson", [](const VolumeMesh& mesh, const std::string& spec, bool lumped_mass) {
+    const LaplacianChoice choice = parse_volume_laplacian(spec);
+    VolumePoissonError e;
+    {
+      py::gil_scoped_release release;
+      e = volume_franke_poisson(mesh, lumped_mass, choice);
+    }
+    return poisson_dict(e);
+  });
+
+  py::class_<VolumeHodgeDecomposer>(m, "VolumeHodgeDecomposer")
+      .def(py::init([](const VolumeMesh& mesh, const std::string& cell_point) {
+        const VolumeRefinementOptions options = refinement_options(cell_point);
+        py::gil_scoped_release release;
+        return std::make_unique<VolumeHodgeDecomposer>(mesh, options);
+      }))
+      .def("decompose", &decompose_to_dict<VolumeHodgeDecomposer>)
+      .def_property_readonly("pairs",
+                             [](const VolumeHodgeDecomposer& h) { return h.dec().coarse.simplices(1); })
+      .def_property_readonly("d0", [](const VolumeHodgeDecomposer& h) { return h.dec().d[0]; })
+      .def_property_readonly("star1", [](const VolumeHodgeDecomposer& h) { return h.dec().star[1]; })
+      .def_property_readonly("harmonic_basis", &VolumeHodgeDecomposer::harmonic_basis);
+}
+
+}  // namespace polydec::python
