@@ -62,9 +62,12 @@ SparseMatrix cell_pattern(const VolumeMesh& mesh) {
     std::sort(inner.begin() + long(begin), inner.end());
     outer[v + 1] = int(inner.size());
   }
-  std::vector<double> values(inner.size(), 0.0);
-  return Eigen::Map<const SparseMatrix>(nV, nV, long(inner.size()), outer.data(), inner.data(),
-                                        values.data());
+  SparseMatrix pattern(nV, nV);
+  pattern.resizeNonZeros(long(inner.size()));
+  std::copy(outer.begin(), outer.end(), pattern.outerIndexPtr());
+  std::copy(inner.begin(), inner.end(), pattern.innerIndexPtr());
+  std::fill(pattern.valuePtr(), pattern.valuePtr() + inner.size(), 0.0);
+  return pattern;
 }
 
 namespace volume_laplacian_detail {
@@ -74,10 +77,14 @@ namespace {
 // (a, b, face point, cell point) couple only a corner with itself, with its next corner, with the
 // face point and with the cell point, and the two points with each other.
 struct FaceMatrix {
-  std::vector<double> diag, next, face, cell;  // (i, i), (i, i + 1 mod n), (i, face point), (i, cell point)
-  double ff = 0, fc = 0, cc = 0;               // (face, face), (face, cell), (cell, cell)
-  void reset(int n) {
-    diag.assign(n, 0.0), next.assign(n, 0.0), face.assign(n, 0.0), cell.assign(n, 0.0);
+  std::vector<double> buffer;                             // 4n entries, the four arrays below
+  double *diag = nullptr, *next = nullptr, *face = nullptr, *cell = nullptr;  // (i, i), (i, i + 1 mod n), (i, face point), (i, cell point)
+  double ff = 0, fc = 0, cc = 0;                          // (face, face), (face, cell), (cell, cell)
+  // Room for n corners (no allocation once grown); with `zero`, every entry set to 0.
+  void prepare(int n, bool zero) {
+    if (buffer.size() < 4 * size_t(n)) buffer.resize(4 * size_t(n));
+    diag = buffer.data(), next = diag + n, face = next + n, cell = face + n;
+    if (zero) std::fill(diag, diag + 4 * n, 0.0);
     ff = fc = cc = 0;
   }
 };
@@ -174,9 +181,9 @@ void cell_kernel(const VolumeMesh& mesh, const VolumeRefinement& refinement, int
     ws.face_local.resize(n);
     ws.d.resize(n);
     for (int i = 0; i < n; ++i) ws.face_local[i] = local_index(verts, face[i]);
-    ws.Fs.reset(n);
-    ws.Fm.reset(n);
-    double *diag = ws.Fs.diag.data(), *next = ws.Fs.next.data(), *fp = ws.Fs.face.data(), *cp = ws.Fs.cell.data();
+    ws.Fs.prepare(n, true);
+    ws.Fm.prepare(n, false);  // face_mass() writes every entry
+    double *diag = ws.Fs.diag, *next = ws.Fs.next, *fp = ws.Fs.face, *cp = ws.Fs.cell;
     double ff = 0, fc = 0, cc = 0;
     const Eigen::Vector3d xf = refinement.face_points.row(f).transpose();
     for (int i = 0; i < n; ++i, ++t) {
@@ -223,8 +230,12 @@ VolumeLaplacian assemble_volume_laplacian(const VolumeMesh& mesh, const VolumeRe
   using namespace volume_laplacian_detail;
   VolumeLaplacian L;
   L.quality = refinement.quality;
-  L.S = pattern ? *pattern : cell_pattern(mesh);
-  L.S.coeffs().setZero();
+  if (pattern) {
+    L.S = *pattern;
+    L.S.coeffs().setZero();
+  } else {
+    L.S = cell_pattern(mesh);  // values already zero
+  }
   L.M = L.S;
   const int nC = mesh.n_cells(), nV = mesh.n_vertices();
   const int* outer = L.S.outerIndexPtr();
