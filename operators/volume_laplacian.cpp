@@ -77,35 +77,31 @@ namespace {
 // (a, b, face point, cell point) couple only a corner with itself, with its next corner, with the
 // face point and with the cell point, and the two points with each other.
 struct FaceMatrix {
-  std::vector<double> buffer;                             // 4n entries, the four arrays below
-  double *diag = nullptr, *next = nullptr, *face = nullptr, *cell = nullptr;  // (i, i), (i, i + 1 mod n), (i, face point), (i, cell point)
-  double ff = 0, fc = 0, cc = 0;                          // (face, face), (face, cell), (cell, cell)
-  // Room for n corners (no allocation once grown); with `zero`, every entry set to 0.
-  void prepare(int n, bool zero) {
-    if (buffer.size() < 4 * size_t(n)) buffer.resize(4 * size_t(n));
-    diag = buffer.data(), next = diag + n, face = next + n, cell = face + n;
-    if (zero) std::fill(diag, diag + 4 * n, 0.0);
-    ff = fc = cc = 0;
-  }
+  double *diag, *next, *face, *cell;  // n entries each: (i, i), (i, i + 1 mod n), (i, face point), (i, cell point)
+  double ff = 0, fc = 0, cc = 0;      // (face, face), (face, cell), (cell, cell)
+  // The four arrays in the 4n entries at p.
+  FaceMatrix(double* p, int n) : diag(p), next(p + n), face(p + 2 * n), cell(p + 3 * n) {}
 };
 
 // Reused buffers of the cell kernel (no allocation per cell once they have grown).
 struct CellWorkspace {
-  Eigen::Matrix3Xd X;           // the cell's vertex positions (columns), gathered once
-  std::vector<int> face_local;  // a face's corners as indices into cell_vertices(c)
-  std::vector<double> d;        // a face's sub-tetrahedra: volume / 20, by face edge
-  FaceMatrix Fs, Fm;            // per face: fine stiffness and mass
-  std::vector<double> hs, hm;   // per cell: couplings of the vertices with the cell point
+  Eigen::Matrix3Xd X;                // the cell's vertex positions (columns), gathered once
+  std::vector<int> face_local;       // a face's corners as indices into cell_vertices(c)
+  std::vector<double> face_buffer;   // fine stiffness and mass of a face with more corners than the fixed sizes
+  std::vector<double> hs, hm;        // per cell: couplings of the vertices with the cell point
 };
 
-// The fine mass of one face from its sub-tetrahedra's volumes: the linear tetrahedron's mass is
-// vol/20 (I + 1 1^T), and the tetrahedron of face edge i couples corners i and i + 1.
-void face_mass(const std::vector<double>& d, FaceMatrix& F) {
-  const int n = int(d.size());
+// The fine mass of one face from its sub-tetrahedra's volumes, F.next[i] = vol_i / 20 on entry:
+// the linear tetrahedron's mass is vol/20 (I + 1 1^T), and the tetrahedron of face edge i couples
+// corners i and i + 1. N > 0: the corner count n at compile time.
+template <int N>
+void face_mass(int n_dyn, FaceMatrix& F) {
+  const int n = N > 0 ? N : n_dyn;
+  const double* d = F.next;
   double total = 0;
   for (int i = 0; i < n; ++i) {
     const double s = d[i == 0 ? n - 1 : i - 1] + d[i];  // the corner's two sub-tetrahedra
-    F.diag[i] = 2 * s, F.next[i] = d[i], F.face[i] = s, F.cell[i] = s;
+    F.diag[i] = 2 * s, F.face[i] = s, F.cell[i] = s;
     total += d[i];
   }
   F.ff = 2 * total, F.fc = total, F.cc = 2 * total;
@@ -113,9 +109,11 @@ void face_mass(const std::vector<double>& d, FaceMatrix& F) {
 
 // Folds the face point (weights w over the corners) into the corners of the fine stiffness Fs and
 // mass Fm and adds the corner blocks to the coarse m x m matrices S and M (column-major); the cell
-// point's couplings go to hs, hm (per cell vertex) and as, am.
-void fold_face(const FaceMatrix& Fs, const FaceMatrix& Fm, std::span<const double> w, const int* local, int n,
-               long m, double* S, double* M, double* hs, double* hm, double& as, double& am) {
+// point's couplings go to hs, hm (per cell vertex) and as, am. N > 0: n at compile time.
+template <int N>
+void fold_face(const FaceMatrix& Fs, const FaceMatrix& Fm, const double* w, const int* local, int n_dyn, long m,
+               double* S, double* M, double* hs, double* hm, double& as, double& am) {
+  const int n = N > 0 ? N : n_dyn;
   for (int b = 0; b < n; ++b) {
     const double wb = w[b];
     const double ts = Fs.face[b] + wb * Fs.ff, tm = Fm.face[b] + wb * Fm.ff;  // (F P)(face point, b)
@@ -154,12 +152,55 @@ void add_cell_point(const double* hs, double as, const double* hm, double am, st
   }
 }
 
+// One face of the cell, half-face hf with corners `local` (indices into the cell's vertices X)
+// and face point xf, its sub-tetrahedra from t on: their 4 x 4 stiffness and mass accumulated into
+// the face's fine matrices, which are folded into S, M (m x m) and the cell-point couplings hs, hm,
+// as, am. Per sub-tetrahedron the six gradient products (scaled hat gradients by cross products)
+// give the off-diagonal stiffness and the zero row sums its diagonal; the mass needs only the
+// volume. N > 0: n at compile time, the fine matrices on the stack.
+template <int N>
+void add_face(const VolumeRefinement& refinement, int hf, int n_dyn, const int* local, const Eigen::Matrix3Xd& X,
+              const Eigen::Vector3d& xf, const Eigen::Vector3d& xc, int t, const double* w, long m, double* S,
+              double* M, CellWorkspace& ws, double& as, double& am) {
+  const int n = N > 0 ? N : n_dyn;
+  double stack[N > 0 ? 8 * N : 1];
+  double* buffer = stack;
+  if constexpr (N == 0) {
+    if (ws.face_buffer.size() < 8 * size_t(n)) ws.face_buffer.resize(8 * size_t(n));
+    buffer = ws.face_buffer.data();
+  }
+  FaceMatrix Fs(buffer, n), Fm(buffer + 4 * n, n);
+  std::fill(buffer, buffer + 4 * n, 0.0);  // Fs accumulates; face_mass() writes every entry of Fm
+  double *diag = Fs.diag, *next = Fs.next, *fp = Fs.face, *cp = Fs.cell;
+  double ff = 0, fc = 0, cc = 0;
+  for (int i = 0; i < n; ++i, ++t) {
+    // Outward order: half-face 2f runs along the face, 2f+1 against it.
+    int ia = i, ib = i + 1 == n ? 0 : i + 1;
+    if (hf & 1) std::swap(ia, ib);
+    const Eigen::Vector3d pa = X.col(local[ia]);
+    const Eigen::Vector3d e1 = X.col(local[ib]) - pa, e2 = xf - pa, e3 = xc - pa;
+    const Eigen::Vector3d c23 = e2.cross(e3), c31 = e3.cross(e1), c12 = e1.cross(e2);
+    const double det = e1.dot(c23), vol = std::abs(det) / 6.0;
+    Fm.next[i] = vol / 20.0;
+    if (refinement.tets[t] == SubTet::Degenerate) continue;
+    // Hat gradients: rows of [e1 e2 e3]^-1 (tet_hat_gradients), scaled by det; K = s G G^T.
+    const Eigen::Vector3d g0 = -(c23 + c31 + c12);
+    const double s = -vol / (det * det);
+    const double k01 = s * g0.dot(c23), k02 = s * g0.dot(c31), k03 = s * g0.dot(c12);
+    const double k12 = s * c23.dot(c31), k13 = s * c23.dot(c12), k23 = s * c31.dot(c12);
+    diag[ia] -= k01 + k02 + k03, diag[ib] -= k01 + k12 + k13, next[i] += k01;
+    fp[ia] += k02, fp[ib] += k12, cp[ia] += k03, cp[ib] += k13;
+    ff -= k02 + k12 + k23, fc += k23, cc -= k03 + k13 + k23;
+  }
+  Fs.ff = ff, Fs.fc = fc, Fs.cc = cc;
+  face_mass<N>(n, Fm);
+  fold_face<N>(Fs, Fm, w, local, n, m, S, M, ws.hs.data(), ws.hm.data(), as, am);
+}
+
 // P_c^T S^tet P_c and P_c^T M^tet P_c without the cell's fine matrices: per face, the
-// sub-tetrahedra's 4 x 4 stiffness and mass over [face corners, face point, cell point]; the face
-// point is folded into the corners by its weights once per face and the corner block added to the
-// m x m result, the cell point's couplings (row w of P_c) once per cell. Per sub-tetrahedron the
-// six gradient products (scaled hat gradients by cross products) give the off-diagonal stiffness
-// and the zero row sums its diagonal; the mass needs only the volume.
+// sub-tetrahedra's 4 x 4 stiffness and mass over [face corners, face point, cell point]
+// (add_face()); the face point is folded into the corners by its weights once per face and the
+// corner block added to the m x m result, the cell point's couplings (row w of P_c) once per cell.
 void cell_kernel(const VolumeMesh& mesh, const VolumeRefinement& refinement, int c, Eigen::MatrixXd& S,
                  Eigen::MatrixXd& M, CellWorkspace& ws) {
   const auto verts = mesh.cell_vertices(c);
@@ -179,36 +220,16 @@ void cell_kernel(const VolumeMesh& mesh, const VolumeRefinement& refinement, int
     const auto face = mesh.face(f);
     const int n = int(face.size());
     ws.face_local.resize(n);
-    ws.d.resize(n);
     for (int i = 0; i < n; ++i) ws.face_local[i] = local_index(verts, face[i]);
-    ws.Fs.prepare(n, true);
-    ws.Fm.prepare(n, false);  // face_mass() writes every entry
-    double *diag = ws.Fs.diag, *next = ws.Fs.next, *fp = ws.Fs.face, *cp = ws.Fs.cell;
-    double ff = 0, fc = 0, cc = 0;
     const Eigen::Vector3d xf = refinement.face_points.row(f).transpose();
-    for (int i = 0; i < n; ++i, ++t) {
-      // Outward order: half-face 2f runs along the face, 2f+1 against it.
-      int ia = i, ib = i + 1 == n ? 0 : i + 1;
-      if (hf & 1) std::swap(ia, ib);
-      const Eigen::Vector3d pa = ws.X.col(ws.face_local[ia]);
-      const Eigen::Vector3d e1 = ws.X.col(ws.face_local[ib]) - pa, e2 = xf - pa, e3 = xc - pa;
-      const Eigen::Vector3d c23 = e2.cross(e3), c31 = e3.cross(e1), c12 = e1.cross(e2);
-      const double det = e1.dot(c23), vol = std::abs(det) / 6.0;
-      ws.d[i] = vol / 20.0;
-      if (refinement.tets[t] == SubTet::Degenerate) continue;
-      // Hat gradients: rows of [e1 e2 e3]^-1 (tet_hat_gradients), scaled by det; K = s G G^T.
-      const Eigen::Vector3d g0 = -(c23 + c31 + c12);
-      const double s = -vol / (det * det);
-      const double k01 = s * g0.dot(c23), k02 = s * g0.dot(c31), k03 = s * g0.dot(c12);
-      const double k12 = s * c23.dot(c31), k13 = s * c23.dot(c12), k23 = s * c31.dot(c12);
-      diag[ia] -= k01 + k02 + k03, diag[ib] -= k01 + k12 + k13, next[i] += k01;
-      fp[ia] += k02, fp[ib] += k12, cp[ia] += k03, cp[ib] += k13;
-      ff -= k02 + k12 + k23, fc += k23, cc -= k03 + k13 + k23;
-    }
-    ws.Fs.ff = ff, ws.Fs.fc = fc, ws.Fs.cc = cc;
-    face_mass(ws.d, ws.Fm);
-    fold_face(ws.Fs, ws.Fm, refinement.weights_of_face(mesh, f), ws.face_local.data(), n, m, S.data(), M.data(),
-              ws.hs.data(), ws.hm.data(), alpha_s, alpha_m);
+    const double* w = refinement.weights_of_face(mesh, f).data();
+    if (n == 4)
+      add_face<4>(refinement, hf, n, ws.face_local.data(), ws.X, xf, xc, t, w, m, S.data(), M.data(), ws, alpha_s, alpha_m);
+    else if (n == 3)
+      add_face<3>(refinement, hf, n, ws.face_local.data(), ws.X, xf, xc, t, w, m, S.data(), M.data(), ws, alpha_s, alpha_m);
+    else
+      add_face<0>(refinement, hf, n, ws.face_local.data(), ws.X, xf, xc, t, w, m, S.data(), M.data(), ws, alpha_s, alpha_m);
+    t += n;
   }
   add_cell_point(ws.hs.data(), alpha_s, ws.hm.data(), alpha_m, refinement.weights_of_cell(c), m, S.data(), M.data());
 }
