@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <type_traits>
 #include <vector>
 
 namespace polydec {
@@ -132,6 +133,58 @@ inline bool least_norm_affine_weights(T* Y, int n_dyn, const T y[3], T* w, const
     for (int k = j; k < n; ++k) w[k] -= dot * Y[3 * k + j];
   }
   for (int k = 0; k < n; ++k) w[k] += T(1) / T(n);
+  return true;
+}
+
+// least_norm_affine_weights() for a polygon that is planar to round-off, without the QR and the
+// SVD: its unit normal v (Newell's vector area) leaves |Y v| <= 64 eps |Y|_F, which bounds
+// sigma_min and is below the cut, so the SVD would drop exactly that direction; the weights are
+// w = 1/n + Y2 (Y2^T Y2)^-1 (p, q)^T y with Y2 = Y (p, q) the corners in an orthonormal basis of
+// the plane. Taken only when that 2x2 Gram matrix is well conditioned (det >= 1e-4 trace^2: its
+// round-off ~eps cond^2 stays near the SVD's) and its smaller eigenvalue is certainly above the
+// cut (sigma_2 kept, as the SVD would); returns false (w not written) otherwise.
+template <int N>
+inline bool planar_affine_weights(const double* Y, int n_dyn, const double y[3], double* w,
+                                  const PlanarityCut& planarity) {
+  const int n = N > 0 ? N : n_dyn;
+  if (n < 3) return false;
+  Eigen::Vector3d v = Eigen::Vector3d::Zero();
+  double F2 = 0;
+  for (int k = 0; k < n; ++k) {
+    const Eigen::Map<const Eigen::Vector3d> a(Y + 3 * k), b(Y + 3 * (k + 1 == n ? 0 : k + 1));
+    v += a.cross(b);
+    F2 += a.squaredNorm();
+  }
+  const double vn = v.norm(), F = std::sqrt(F2), eps = std::numeric_limits<double>::epsilon();
+  if (!(vn > 0)) return false;
+  v /= vn;
+  double h2 = 0;
+  for (int k = 0; k < n; ++k) {
+    const double h = Eigen::Map<const Eigen::Vector3d>(Y + 3 * k).dot(v);
+    h2 += h * h;
+  }
+  // sigma_min <= |Y v|; sigma_max >= |Y|_F / sqrt(3), so the cut is at least planarity_cut(F / sqrt 3).
+  const double h = std::sqrt(h2);
+  if (!(h <= 64 * eps * F) || !(h + 16 * eps * F <= planarity_cut<double>(planarity, n, F / std::sqrt(3.0))))
+    return false;
+  const Eigen::Vector3d p = v.unitOrthogonal(), q = v.cross(p);
+  double g00 = 0, g01 = 0, g11 = 0;
+  for (int k = 0; k < n; ++k) {
+    const Eigen::Map<const Eigen::Vector3d> a(Y + 3 * k);
+    const double ap = a.dot(p), aq = a.dot(q);
+    g00 += ap * ap, g01 += ap * aq, g11 += aq * aq;
+  }
+  const double tr = g00 + g11, det = g00 * g11 - g01 * g01;
+  // lambda_min(G2) >= det / trace must clear (2 cut)^2, the cut taken at its largest (sigma_max <= |Y|_F).
+  const double cut = planarity_cut<double>(planarity, n, F);
+  if (!(det >= 1e-4 * tr * tr) || !(det > 4 * cut * cut * tr)) return false;
+  const Eigen::Map<const Eigen::Vector3d> yv(y);
+  const double yp = yv.dot(p), yq = yv.dot(q);
+  const double c0 = (g11 * yp - g01 * yq) / det, c1 = (g00 * yq - g01 * yp) / det;
+  for (int k = 0; k < n; ++k) {
+    const Eigen::Map<const Eigen::Vector3d> a(Y + 3 * k);
+    w[k] = a.dot(p) * c0 + a.dot(q) * c1 + 1.0 / double(n);
+  }
   return true;
 }
 
@@ -267,6 +320,8 @@ bool squared_area_weights_t(const double* x, int n_dyn, T* Y, T* w, const Planar
     const Eigen::Matrix<T, 3, 1> ys = psd_solve<T>(A, b);
     for (int d = 0; d < 3; ++d) y[d] = ys[d];
   }
+  if constexpr (std::is_same_v<T, double>)
+    if (certify && planar_affine_weights<N>(Y, n, y, w, planarity)) return true;
   return least_norm_affine_weights<N, T>(Y, n, y, w, planarity, certify);
 }
 

@@ -43,8 +43,9 @@ std::string to_string(VirtualVertexRule rule);
 // depend on where the polygon sits or how large it is: the minimizer solves a 3x3 system (LDL^T,
 // or an eigen-decomposition when it is ill-conditioned), and the least-norm weights reproducing
 // it come from the pseudo-inverse of the centred positions (Householder QR, then R^-T or the SVD
-// of R), whose rank (2 for planar, 3 for non-planar polygons) `planarity` decides (default: the
-// corners are exact doubles, so only round-off counts as planar). No allocation in the pointer version below.
+// of R; for a polygon planar to round-off, the 2x2 Gram matrix in its plane), whose rank (2 for
+// planar, 3 for non-planar polygons) `planarity` decides (default: the corners are exact doubles,
+// so only round-off counts as planar). No allocation in the pointer version below.
 Eigen::VectorXd squared_area_weights(const PolygonPositions& X, const PlanarityCut& planarity = {});
 // The same weights without allocating: x holds the n corners row by row (x[3k..3k+2]), the
 // n weights are written to w; `work` needs 3n doubles of scratch. For per-face inner loops.

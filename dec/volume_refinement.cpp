@@ -9,7 +9,6 @@
 
 #include "polydec/dec/threads.h"
 #include "polydec/dec/virtual_vertex.h"
-#include "polydec/dec/volume_whitney.h"
 
 namespace polydec {
 
@@ -23,13 +22,15 @@ void halfface_vertices(const VolumeMesh& mesh, int hf, std::vector<int>& out) {
   if (hf & 1) std::reverse(out.begin(), out.end());
 }
 
-SubTet classify(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& f,
-                const Eigen::Vector3d& c, double tolerance) {
-  const double vol6 = 6.0 * tet_signed_volume(a, b, f, c);
-  // 6 |vol| > tolerance * longest^3, compared squared (no square roots).
+// Quality of the sub-tetrahedron (a, b, f, c) (face triangle (a, b, f) in outward order, cell point
+// c): degenerate when 6 |vol| <= tolerance * longest edge^3, compared squared (tol2 = tolerance^2,
+// no square roots); inverted when c lies on the outer side of the face triangle.
+inline SubTet classify(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& f,
+                       const Eigen::Vector3d& c, double tol2) {
+  const double vol6 = (b - a).dot((f - a).cross(c - a));  // 6 tet_signed_volume(a, b, f, c)
   const double longest2 = std::max({(b - a).squaredNorm(), (f - a).squaredNorm(), (c - a).squaredNorm(),
                                     (f - b).squaredNorm(), (c - b).squaredNorm(), (c - f).squaredNorm()});
-  if (!(vol6 * vol6 > tolerance * tolerance * longest2 * longest2 * longest2)) return SubTet::Degenerate;
+  if (!(vol6 * vol6 > tol2 * longest2 * longest2 * longest2)) return SubTet::Degenerate;
   // Outward face triangle (a, b, f): its normal n = (b - a) x (f - a) points away from the cell,
   // so a cell point inside gives n . (c - a) < 0, i.e. vol6 < 0.
   return vol6 < 0 ? SubTet::Valid : SubTet::Inverted;
@@ -48,23 +49,34 @@ std::string to_string(CellPointRule rule) {
   return rule == CellPointRule::PolyLaplace ? "polylaplace" : "squared-volume";
 }
 
-Eigen::Vector3d squared_volume_minimizer(const Eigen::MatrixX3d& A, const Eigen::MatrixX3d& B,
-                                         const Eigen::MatrixX3d& C) {
+namespace volume_refinement_detail {
+namespace {
+
+// The squared-volume minimizer (squared_volume_minimizer()) of the triangles that
+// for_each_triangle(visit) passes to visit(a, b, c), in the same order on each call.
+template <class ForEachTriangle>
+Eigen::Vector3d squared_volume_point(ForEachTriangle&& for_each_triangle) {
   // vol(a, b, c, x) = n . (x - a) / 6 with n = (b - a) x (c - a): minimize sum (n_t . x - n_t . a_t)^2.
-  const long T = A.rows();
+  long T = 0;
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-  for (long t = 0; t < T; ++t) centre += (A.row(t) + B.row(t) + C.row(t)).transpose();
+  for_each_triangle([&](const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+    centre += a + b + c;
+    ++T;
+  });
   centre /= double(3 * std::max<long>(T, 1));
   Eigen::Matrix3d N = Eigen::Matrix3d::Zero();
   Eigen::Vector3d r = Eigen::Vector3d::Zero();
-  for (long t = 0; t < T; ++t) {
-    const Eigen::Vector3d a = A.row(t).transpose() - centre, b = B.row(t).transpose() - centre,
-                          c = C.row(t).transpose() - centre;
+  for_each_triangle([&](const Eigen::Vector3d& at, const Eigen::Vector3d& bt, const Eigen::Vector3d& ct) {
+    const Eigen::Vector3d a = at - centre, b = bt - centre, c = ct - centre;
     const Eigen::Vector3d n = (b - a).cross(c - a);
     N += n * n.transpose();
     r += n * n.dot(a);
-  }
-  // Well conditioned (the usual case): a Cholesky solve; the closed-form eigenvalues only decide.
+  });
+  // Well conditioned (the usual case): a Cholesky solve. det N > 1e-6 trace(N)^3 implies
+  // lambda_min >= det / trace^2 > 1e-6 lambda_max without the eigenvalues; otherwise the
+  // closed-form eigenvalues decide.
+  const double tr = N.trace();
+  if (N.determinant() > 1e-6 * tr * tr * tr) return centre + N.llt().solve(r);
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> direct;
   direct.computeDirect(N, Eigen::EigenvaluesOnly);
   if (direct.eigenvalues()(0) > 1e-6 * direct.eigenvalues().cwiseAbs().maxCoeff())
@@ -80,25 +92,72 @@ Eigen::Vector3d squared_volume_minimizer(const Eigen::MatrixX3d& A, const Eigen:
   return centre + x;
 }
 
-Eigen::VectorXd least_norm_affine_weights(const Eigen::MatrixX3d& X, const Eigen::Vector3d& x) {
+// Least-norm affine weights of the points X (m x 3) reproducing x, written to w (m entries);
+// Xc is scratch (least_norm_affine_weights()).
+void affine_weights_into(const Eigen::MatrixX3d& X, const Eigen::Vector3d& x, double* w, Eigen::MatrixX3d& Xc) {
   const long m = X.rows();
   const Eigen::RowVector3d mean = X.colwise().mean();
-  const Eigen::MatrixX3d Xc = X.rowwise() - mean;
+  Xc = X.rowwise() - mean;
   // Full column rank (every 3D cell): Xc^+ = Xc (Xc^T Xc)^-1, through the 3x3 Gram matrix when it
-  // is well conditioned (singular values within 1e-5 of each other's scale, so the Gram's
-  // round-off stays near 1e-6 of the COD's threshold); otherwise the decomposition below.
-  const Eigen::Matrix3d G = Xc.transpose() * Xc;
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
-  eig.computeDirect(G, Eigen::EigenvaluesOnly);
-  if (eig.eigenvalues()(0) > 1e-10 * eig.eigenvalues()(2)) {
+  // is well conditioned (lambda_min > 1e-10 lambda_max: singular values within 1e-5 of each
+  // other's scale, so the Gram's round-off stays near 1e-6 of the COD's threshold; det G > 1e-10
+  // trace(G)^3 implies it without the eigenvalues); otherwise the decomposition below.
+  Eigen::Matrix3d G;
+  for (int i = 0; i < 3; ++i)
+    for (int j = i; j < 3; ++j) G(i, j) = G(j, i) = Xc.col(i).dot(Xc.col(j));
+  const double tr = G.trace();
+  bool gram = G.determinant() > 1e-10 * tr * tr * tr;
+  if (!gram) {
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+    eig.computeDirect(G, Eigen::EigenvaluesOnly);
+    gram = eig.eigenvalues()(0) > 1e-10 * eig.eigenvalues()(2);
+  }
+  if (gram) {
     const Eigen::Vector3d y = G.llt().solve((x - mean.transpose()).eval());
-    return (Eigen::VectorXd::Constant(m, 1.0 / double(m)) + Xc * y).eval();
+    for (long k = 0; k < m; ++k) w[k] = 1.0 / double(m) + Xc.row(k).dot(y);
+    return;
   }
   const Eigen::MatrixXd XcT = Xc.transpose();  // 3 x m
   Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(XcT);
   cod.setThreshold(1e-12);
   const Eigen::VectorXd v = cod.solve((x - mean.transpose()).eval());
-  return Eigen::VectorXd::Constant(m, 1.0 / double(m)) + v;
+  for (long k = 0; k < m; ++k) w[k] = 1.0 / double(m) + v[k];
+}
+
+// Calls visit(x_f, x_i, x_{i+1}) for the sub-tetrahedra of cell c in VolumeRefinement::tets
+// order: over the cell's half-faces and, within one, over its edges (i, i + 1) in outward order.
+template <class Visit>
+void for_each_cell_triangle(const VolumeMesh& mesh, const Eigen::MatrixX3d& face_points, int c, Visit&& visit) {
+  const auto& P = mesh.positions();
+  for (int hf : mesh.cell(c)) {
+    const auto face = mesh.face(hf / 2);
+    const int n = int(face.size());
+    const Eigen::Vector3d xf = face_points.row(hf / 2).transpose();
+    for (int i = 0; i < n; ++i) {
+      // Half-face 2f + 1 runs against the face: its i-th vertex is face[n - 1 - i].
+      const int j = i + 1 == n ? 0 : i + 1;
+      const int u = hf & 1 ? face[n - 1 - i] : face[i], v = hf & 1 ? face[n - 1 - j] : face[j];
+      visit(xf, Eigen::Vector3d(P(u, 0), P(u, 1), P(u, 2)), Eigen::Vector3d(P(v, 0), P(v, 1), P(v, 2)));
+    }
+  }
+}
+
+}  // namespace
+}  // namespace volume_refinement_detail
+
+Eigen::Vector3d squared_volume_minimizer(const Eigen::MatrixX3d& A, const Eigen::MatrixX3d& B,
+                                         const Eigen::MatrixX3d& C) {
+  return volume_refinement_detail::squared_volume_point([&](auto&& visit) {
+    for (long t = 0; t < A.rows(); ++t)
+      visit(A.row(t).transpose(), B.row(t).transpose(), C.row(t).transpose());
+  });
+}
+
+Eigen::VectorXd least_norm_affine_weights(const Eigen::MatrixX3d& X, const Eigen::Vector3d& x) {
+  Eigen::VectorXd w(X.rows());
+  Eigen::MatrixX3d Xc;
+  volume_refinement_detail::affine_weights_into(X, x, w.data(), Xc);
+  return w;
 }
 
 Eigen::VectorXd last_pinned_affine_weights(const Eigen::MatrixX3d& Q, const Eigen::Vector3d& x) {
@@ -156,61 +215,50 @@ VolumeRefinement refine_volume(const VolumeMesh& mesh, const VolumeRefinementOpt
   R.tets.resize(size_t(R.tet_offsets[nC]));
   std::vector<SubTetQuality> quality(T);
   run_on_threads(T, [&](int thread) {
-    std::vector<int> hv;
-    Eigen::MatrixX3d A, B, C, X;  // reused: no allocation per cell of the same size
+    Eigen::MatrixX3d X, Xc;  // reused: no allocation per cell of the same size
     SubTetQuality& Q = quality[thread];
+    const double tol2 = options.degenerate_tolerance * options.degenerate_tolerance;
     for (int c = int(long(nC) * thread / T); c < int(long(nC) * (thread + 1) / T); ++c) {
       const auto cell = mesh.cell(c);
       const auto verts = mesh.cell_vertices(c);
       const int m = int(verts.size());
-      const int n_tets = R.tet_offsets[c + 1] - R.tet_offsets[c];
-      A.resize(n_tets, 3), B.resize(n_tets, 3), C.resize(n_tets, 3);
-      int t = 0;
-      for (int hf : cell) {
-        halfface_vertices(mesh, hf, hv);
-        const int n = int(hv.size());
-        for (int i = 0; i < n; ++i, ++t) {
-          A.row(t) = R.face_points.row(hf / 2);
-          B.row(t) = P.row(hv[i]);
-          C.row(t) = P.row(hv[(i + 1) % n]);
-        }
-      }
-      const Eigen::Vector3d xc = squared_volume_minimizer(A, B, C);
+      const Eigen::Vector3d xc = squared_volume_point(
+          [&](auto&& visit) { for_each_cell_triangle(mesh, R.face_points, c, visit); });
       R.cell_points.row(c) = xc.transpose();
 
       X.resize(m, 3);
       for (int k = 0; k < m; ++k) X.row(k) = P.row(verts[k]);
-      Eigen::VectorXd w;
+      double* w = R.cell_weights.data() + R.cell_weight_offsets[c];
       if (options.cell_rule == CellPointRule::SquaredVolume) {
-        w = least_norm_affine_weights(X, xc);
+        affine_weights_into(X, xc, w, Xc);
       } else {
         const int nf = int(cell.size());
         Eigen::MatrixX3d Qp(nf + m, 3);
         for (int k = 0; k < nf; ++k) Qp.row(k) = R.face_points.row(cell[k] / 2);
         Qp.bottomRows(m) = X;
         const Eigen::VectorXd lambda = last_pinned_affine_weights(Qp, xc);
-        w = lambda.tail(m);
+        for (int k = 0; k < m; ++k) w[k] = lambda(nf + k);
         for (int k = 0; k < nf; ++k) {
           const int f = cell[k] / 2;
           const auto face = mesh.face(f);
           const double* wf = R.face_weights.data() + mesh.face_offsets()[f];
           for (size_t i = 0; i < face.size(); ++i) {
             const int local = int(std::lower_bound(verts.begin(), verts.end(), face[i]) - verts.begin());
-            w(local) += lambda(k) * wf[i];
+            w[local] += lambda(k) * wf[i];
           }
         }
       }
-      std::copy(w.data(), w.data() + m, R.cell_weights.begin() + R.cell_weight_offsets[c]);
 
       bool affected = false;
-      for (int s = 0; s < n_tets; ++s) {
-        const SubTet q = classify(B.row(s).transpose(), C.row(s).transpose(), A.row(s).transpose(), xc,
-                                  options.degenerate_tolerance);
-        R.tets[size_t(R.tet_offsets[c] + s)] = q;
-        if (q == SubTet::Degenerate) ++Q.n_degenerate;
-        if (q == SubTet::Inverted) ++Q.n_inverted;
-        affected = affected || q != SubTet::Valid;
-      }
+      SubTet* q = R.tets.data() + R.tet_offsets[c];
+      for_each_cell_triangle(mesh, R.face_points, c,
+                             [&](const Eigen::Vector3d& f, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+                               *q = classify(a, b, f, xc, tol2);
+                               if (*q == SubTet::Degenerate) ++Q.n_degenerate;
+                               if (*q == SubTet::Inverted) ++Q.n_inverted;
+                               affected = affected || *q != SubTet::Valid;
+                               ++q;
+                             });
       if (affected) ++Q.n_cells_affected;
     }
   });

@@ -62,9 +62,12 @@ SparseMatrix cell_pattern(const VolumeMesh& mesh) {
     std::sort(inner.begin() + long(begin), inner.end());
     outer[v + 1] = int(inner.size());
   }
-  std::vector<double> values(inner.size(), 0.0);
-  return Eigen::Map<const SparseMatrix>(nV, nV, long(inner.size()), outer.data(), inner.data(),
-                                        values.data());
+  SparseMatrix pattern(nV, nV);
+  pattern.resizeNonZeros(long(inner.size()));
+  std::copy(outer.begin(), outer.end(), pattern.outerIndexPtr());
+  std::copy(inner.begin(), inner.end(), pattern.innerIndexPtr());
+  std::fill(pattern.valuePtr(), pattern.valuePtr() + inner.size(), 0.0);
+  return pattern;
 }
 
 namespace volume_laplacian_detail {
@@ -74,120 +77,161 @@ namespace {
 // (a, b, face point, cell point) couple only a corner with itself, with its next corner, with the
 // face point and with the cell point, and the two points with each other.
 struct FaceMatrix {
-  std::vector<double> diag, next, face, cell;  // (i, i), (i, i + 1 mod n), (i, face point), (i, cell point)
-  double ff = 0, fc = 0, cc = 0;               // (face, face), (face, cell), (cell, cell)
-  void reset(int n) {
-    diag.assign(n, 0.0), next.assign(n, 0.0), face.assign(n, 0.0), cell.assign(n, 0.0);
-    ff = fc = cc = 0;
-  }
-  // Adds the symmetric 4 x 4 K (upper triangle k01..k33) of the tetrahedron (corner ia, corner ib,
-  // face point, cell point); e is the edge's index (ib = e + 1 mod n or the reverse).
-  void add(int ia, int ib, int e, double k00, double k01, double k02, double k03, double k11, double k12,
-           double k13, double k22, double k23, double k33) {
-    diag[ia] += k00, diag[ib] += k11, next[e] += k01;
-    face[ia] += k02, face[ib] += k12, cell[ia] += k03, cell[ib] += k13;
-    ff += k22, fc += k23, cc += k33;
-  }
+  double *diag, *next, *face, *cell;  // n entries each: (i, i), (i, i + 1 mod n), (i, face point), (i, cell point)
+  double ff = 0, fc = 0, cc = 0;      // (face, face), (face, cell), (cell, cell)
+  // The four arrays in the 4n entries at p.
+  FaceMatrix(double* p, int n) : diag(p), next(p + n), face(p + 2 * n), cell(p + 3 * n) {}
 };
 
 // Reused buffers of the cell kernel (no allocation per cell once they have grown).
 struct CellWorkspace {
-  Eigen::Matrix3Xd X;           // the cell's vertex positions (columns), gathered once
-  std::vector<int> face_local;  // a face's corners as indices into cell_vertices(c)
-  FaceMatrix Fs, Fm;            // per face: fine stiffness and mass
-  std::vector<double> hs, hm;   // per cell: couplings of the vertices with the cell point
+  Eigen::Matrix3Xd X;                // the cell's vertex positions (columns), gathered once
+  std::vector<int> face_local;       // a face's corners as indices into cell_vertices(c)
+  std::vector<double> face_buffer;   // fine stiffness and mass of a face with more corners than the fixed sizes
+  std::vector<double> hs, hm;        // per cell: couplings of the vertices with the cell point
 };
 
-// Folds the face point (weights w over the corners) into the corners and adds the corner block
-// to the coarse m x m matrix C; the cell point's couplings go to h (per cell vertex) and alpha.
-void fold_face(const FaceMatrix& F, std::span<const double> w, const std::vector<int>& local, Eigen::MatrixXd& C,
-               std::vector<double>& h, double& alpha) {
-  const int n = int(local.size());
-  const long m = C.rows();
-  double* c = C.data();
-  for (int b = 0; b < n; ++b) {
-    const double tb = F.face[b] + w[b] * F.ff;  // (F P)(face point, b) with the face point folded
-    double* out = c + long(local[b]) * m;
-    for (int a = 0; a < n; ++a) out[local[a]] += w[a] * tb + F.face[a] * w[b];
-    out[local[b]] += F.diag[b];
-    const int b1 = b + 1 == n ? 0 : b + 1;
-    out[local[b1]] += F.next[b];
-    c[local[b] + long(local[b1]) * m] += F.next[b];
-    h[local[b]] += F.cell[b] + w[b] * F.fc;
+// The fine mass of one face from its sub-tetrahedra's volumes, F.next[i] = vol_i / 20 on entry:
+// the linear tetrahedron's mass is vol/20 (I + 1 1^T), and the tetrahedron of face edge i couples
+// corners i and i + 1. N > 0: the corner count n at compile time.
+template <int N>
+void face_mass(int n_dyn, FaceMatrix& F) {
+  const int n = N > 0 ? N : n_dyn;
+  const double* d = F.next;
+  double total = 0;
+  for (int i = 0; i < n; ++i) {
+    const double s = d[i == 0 ? n - 1 : i - 1] + d[i];  // the corner's two sub-tetrahedra
+    F.diag[i] = 2 * s, F.face[i] = s, F.cell[i] = s;
+    total += d[i];
   }
-  alpha += F.cc;
+  F.ff = 2 * total, F.fc = total, F.cc = 2 * total;
 }
 
-// C += h w^T + w h^T + alpha w w^T: the cell point's row of P_c is w, so the fine couplings h (vertex,
-// cell point) and alpha (cell point, cell point) become coarse ones.
-void add_cell_point(const std::vector<double>& h, double alpha, std::span<const double> w, Eigen::MatrixXd& C) {
-  const long m = C.rows();
-  for (long j = 0; j < m; ++j) {
-    double* col = C.data() + j * m;
-    const double hj = h[j], wj = w[j], awj = alpha * wj;
-    for (long i = 0; i < m; ++i) col[i] += h[i] * wj + w[i] * hj + w[i] * awj;
+// Folds the face point (weights w over the corners) into the corners of the fine stiffness Fs and
+// mass Fm and adds the corner blocks to the coarse m x m matrices S and M (column-major); the cell
+// point's couplings go to hs, hm (per cell vertex) and as, am. N > 0: n at compile time.
+template <int N>
+void fold_face(const FaceMatrix& Fs, const FaceMatrix& Fm, const double* w, const int* local, int n_dyn, long m,
+               double* S, double* M, double* hs, double* hm, double& as, double& am) {
+  const int n = N > 0 ? N : n_dyn;
+  for (int b = 0; b < n; ++b) {
+    const double wb = w[b];
+    const double ts = Fs.face[b] + wb * Fs.ff, tm = Fm.face[b] + wb * Fm.ff;  // (F P)(face point, b)
+    const long col = long(local[b]) * m;
+    double *os = S + col, *om = M + col;
+    for (int a = 0; a < n; ++a) {
+      const int la = local[a];
+      os[la] += w[a] * ts + Fs.face[a] * wb;
+      om[la] += w[a] * tm + Fm.face[a] * wb;
+    }
+    os[local[b]] += Fs.diag[b];
+    om[local[b]] += Fm.diag[b];
+    const int b1 = b + 1 == n ? 0 : b + 1;
+    os[local[b1]] += Fs.next[b];
+    om[local[b1]] += Fm.next[b];
+    S[local[b] + long(local[b1]) * m] += Fs.next[b];
+    M[local[b] + long(local[b1]) * m] += Fm.next[b];
+    hs[local[b]] += Fs.cell[b] + wb * Fs.fc;
+    hm[local[b]] += Fm.cell[b] + wb * Fm.fc;
   }
+  as += Fs.cc;
+  am += Fm.cc;
+}
+
+// C += h w^T + w h^T + alpha w w^T for C = S and C = M: the cell point's row of P_c is w, so the
+// fine couplings h (vertex, cell point) and alpha (cell point, cell point) become coarse ones.
+void add_cell_point(const double* hs, double as, const double* hm, double am, std::span<const double> w,
+                    long m, double* S, double* M) {
+  for (long j = 0; j < m; ++j) {
+    double *cs = S + j * m, *cm = M + j * m;
+    const double wj = w[j], hsj = hs[j], hmj = hm[j], asj = as * wj, amj = am * wj;
+    for (long i = 0; i < m; ++i) {
+      cs[i] += hs[i] * wj + w[i] * hsj + w[i] * asj;
+      cm[i] += hm[i] * wj + w[i] * hmj + w[i] * amj;
+    }
+  }
+}
+
+// One face of the cell, half-face hf with corners `local` (indices into the cell's vertices X)
+// and face point xf, its sub-tetrahedra from t on: their 4 x 4 stiffness and mass accumulated into
+// the face's fine matrices, which are folded into S, M (m x m) and the cell-point couplings hs, hm,
+// as, am. Per sub-tetrahedron the six gradient products (scaled hat gradients by cross products)
+// give the off-diagonal stiffness and the zero row sums its diagonal; the mass needs only the
+// volume. N > 0: n at compile time, the fine matrices on the stack.
+template <int N>
+void add_face(const VolumeRefinement& refinement, int hf, int n_dyn, const int* local, const Eigen::Matrix3Xd& X,
+              const Eigen::Vector3d& xf, const Eigen::Vector3d& xc, int t, const double* w, long m, double* S,
+              double* M, CellWorkspace& ws, double& as, double& am) {
+  const int n = N > 0 ? N : n_dyn;
+  double stack[N > 0 ? 8 * N : 1];
+  double* buffer = stack;
+  if constexpr (N == 0) {
+    if (ws.face_buffer.size() < 8 * size_t(n)) ws.face_buffer.resize(8 * size_t(n));
+    buffer = ws.face_buffer.data();
+  }
+  FaceMatrix Fs(buffer, n), Fm(buffer + 4 * n, n);
+  std::fill(buffer, buffer + 4 * n, 0.0);  // Fs accumulates; face_mass() writes every entry of Fm
+  double *diag = Fs.diag, *next = Fs.next, *fp = Fs.face, *cp = Fs.cell;
+  double ff = 0, fc = 0, cc = 0;
+  for (int i = 0; i < n; ++i, ++t) {
+    // Outward order: half-face 2f runs along the face, 2f+1 against it.
+    int ia = i, ib = i + 1 == n ? 0 : i + 1;
+    if (hf & 1) std::swap(ia, ib);
+    const Eigen::Vector3d pa = X.col(local[ia]);
+    const Eigen::Vector3d e1 = X.col(local[ib]) - pa, e2 = xf - pa, e3 = xc - pa;
+    const Eigen::Vector3d c23 = e2.cross(e3), c31 = e3.cross(e1), c12 = e1.cross(e2);
+    const double det = e1.dot(c23), vol = std::abs(det) / 6.0;
+    Fm.next[i] = vol / 20.0;
+    if (refinement.tets[t] == SubTet::Degenerate) continue;
+    // Hat gradients: rows of [e1 e2 e3]^-1 (tet_hat_gradients), scaled by det; K = s G G^T.
+    const Eigen::Vector3d g0 = -(c23 + c31 + c12);
+    const double s = -vol / (det * det);
+    const double k01 = s * g0.dot(c23), k02 = s * g0.dot(c31), k03 = s * g0.dot(c12);
+    const double k12 = s * c23.dot(c31), k13 = s * c23.dot(c12), k23 = s * c31.dot(c12);
+    diag[ia] -= k01 + k02 + k03, diag[ib] -= k01 + k12 + k13, next[i] += k01;
+    fp[ia] += k02, fp[ib] += k12, cp[ia] += k03, cp[ib] += k13;
+    ff -= k02 + k12 + k23, fc += k23, cc -= k03 + k13 + k23;
+  }
+  Fs.ff = ff, Fs.fc = fc, Fs.cc = cc;
+  face_mass<N>(n, Fm);
+  fold_face<N>(Fs, Fm, w, local, n, m, S, M, ws.hs.data(), ws.hm.data(), as, am);
 }
 
 // P_c^T S^tet P_c and P_c^T M^tet P_c without the cell's fine matrices: per face, the
-// sub-tetrahedra's 4 x 4 stiffness and mass over [face corners, face point, cell point]; the face
-// point is folded into the corners by its weights once per face and the corner block added to the
-// m x m result, the cell point's couplings (row w of P_c) once per cell.
-void cell_kernel(const VolumeMesh& mesh, const VolumeRefinement& refinement, int c, Eigen::MatrixXd* S,
-                 Eigen::MatrixXd* M, CellWorkspace& ws) {
+// sub-tetrahedra's 4 x 4 stiffness and mass over [face corners, face point, cell point]
+// (add_face()); the face point is folded into the corners by its weights once per face and the
+// corner block added to the m x m result, the cell point's couplings (row w of P_c) once per cell.
+void cell_kernel(const VolumeMesh& mesh, const VolumeRefinement& refinement, int c, Eigen::MatrixXd& S,
+                 Eigen::MatrixXd& M, CellWorkspace& ws) {
   const auto verts = mesh.cell_vertices(c);
   const auto cell = mesh.cell(c);
   const int m = int(verts.size()), nf = int(cell.size());
   ws.X.resize(3, m);
   for (int i = 0; i < m; ++i) ws.X.col(i) = mesh.positions().row(verts[i]).transpose();
+  S.setZero(m, m);
+  M.setZero(m, m);
+  ws.hs.assign(m, 0.0);
+  ws.hm.assign(m, 0.0);
   double alpha_s = 0, alpha_m = 0;
-  if (S) {
-    S->setZero(m, m);
-    ws.hs.assign(m, 0.0);
-  }
-  if (M) {
-    M->setZero(m, m);
-    ws.hm.assign(m, 0.0);
-  }
   const Eigen::Vector3d xc = refinement.cell_points.row(c).transpose();
   int t = refinement.tet_offsets[c];
   for (int k = 0; k < nf; ++k) {
     const int hf = cell[k], f = hf / 2;
     const auto face = mesh.face(f);
     const int n = int(face.size());
-    const auto wf = refinement.weights_of_face(mesh, f);
     ws.face_local.resize(n);
     for (int i = 0; i < n; ++i) ws.face_local[i] = local_index(verts, face[i]);
-    if (S) ws.Fs.reset(n);
-    if (M) ws.Fm.reset(n);
     const Eigen::Vector3d xf = refinement.face_points.row(f).transpose();
-    for (int i = 0; i < n; ++i, ++t) {
-      // Outward order: half-face 2f runs along the face, 2f+1 against it.
-      int ia = i, ib = i + 1 == n ? 0 : i + 1;
-      if (hf & 1) std::swap(ia, ib);
-      const Eigen::Vector3d pa = ws.X.col(ws.face_local[ia]);
-      const Eigen::Vector3d e1 = ws.X.col(ws.face_local[ib]) - pa, e2 = xf - pa, e3 = xc - pa;
-      const Eigen::Vector3d c23 = e2.cross(e3), c31 = e3.cross(e1), c12 = e1.cross(e2);
-      const double det = e1.dot(c23), vol = std::abs(det) / 6.0;
-      if (M) {
-        const double d = vol / 20.0, d2 = 2 * d;  // vol/20 (I + 1 1^T)
-        ws.Fm.add(ia, ib, i, d2, d, d, d, d2, d, d, d2, d, d2);
-      }
-      if (S && refinement.tets[t] != SubTet::Degenerate) {
-        // Hat gradients: rows of [e1 e2 e3]^-1 (tet_hat_gradients), scaled by det.
-        const Eigen::Vector3d g0 = -(c23 + c31 + c12);
-        const double s = -vol / (det * det);
-        ws.Fs.add(ia, ib, i, s * g0.squaredNorm(), s * g0.dot(c23), s * g0.dot(c31), s * g0.dot(c12),
-                  s * c23.squaredNorm(), s * c23.dot(c31), s * c23.dot(c12), s * c31.squaredNorm(),
-                  s * c31.dot(c12), s * c12.squaredNorm());
-      }
-    }
-    if (S) fold_face(ws.Fs, wf, ws.face_local, *S, ws.hs, alpha_s);
-    if (M) fold_face(ws.Fm, wf, ws.face_local, *M, ws.hm, alpha_m);
+    const double* w = refinement.weights_of_face(mesh, f).data();
+    if (n == 4)
+      add_face<4>(refinement, hf, n, ws.face_local.data(), ws.X, xf, xc, t, w, m, S.data(), M.data(), ws, alpha_s, alpha_m);
+    else if (n == 3)
+      add_face<3>(refinement, hf, n, ws.face_local.data(), ws.X, xf, xc, t, w, m, S.data(), M.data(), ws, alpha_s, alpha_m);
+    else
+      add_face<0>(refinement, hf, n, ws.face_local.data(), ws.X, xf, xc, t, w, m, S.data(), M.data(), ws, alpha_s, alpha_m);
+    t += n;
   }
-  const auto wc = refinement.weights_of_cell(c);
-  if (S) add_cell_point(ws.hs, alpha_s, wc, *S);
-  if (M) add_cell_point(ws.hm, alpha_m, wc, *M);
+  add_cell_point(ws.hs.data(), alpha_s, ws.hm.data(), alpha_m, refinement.weights_of_cell(c), m, S.data(), M.data());
 }
 
 }  // namespace
@@ -196,7 +240,10 @@ void cell_kernel(const VolumeMesh& mesh, const VolumeRefinement& refinement, int
 void cell_matrices(const VolumeMesh& mesh, const VolumeRefinement& refinement, int c, Eigen::MatrixXd* S,
                    Eigen::MatrixXd* M) {
   volume_laplacian_detail::CellWorkspace ws;
-  volume_laplacian_detail::cell_kernel(mesh, refinement, c, S, M, ws);
+  Eigen::MatrixXd Sc, Mc;
+  volume_laplacian_detail::cell_kernel(mesh, refinement, c, Sc, Mc, ws);
+  if (S) *S = std::move(Sc);
+  if (M) *M = std::move(Mc);
 }
 
 VolumeLaplacian assemble_volume_laplacian(const VolumeMesh& mesh, const VolumeRefinement& refinement,
@@ -204,8 +251,12 @@ VolumeLaplacian assemble_volume_laplacian(const VolumeMesh& mesh, const VolumeRe
   using namespace volume_laplacian_detail;
   VolumeLaplacian L;
   L.quality = refinement.quality;
-  L.S = pattern ? *pattern : cell_pattern(mesh);
-  L.S.coeffs().setZero();
+  if (pattern) {
+    L.S = *pattern;
+    L.S.coeffs().setZero();
+  } else {
+    L.S = cell_pattern(mesh);  // values already zero
+  }
   L.M = L.S;
   const int nC = mesh.n_cells(), nV = mesh.n_vertices();
   const int* outer = L.S.outerIndexPtr();
@@ -232,7 +283,7 @@ VolumeLaplacian assemble_volume_laplacian(const VolumeMesh& mesh, const VolumeRe
     Eigen::MatrixXd Sc, Mc;
     CellWorkspace ws;
     for (int c = 0; c < nC; ++c) {
-      cell_kernel(mesh, refinement, c, &Sc, &Mc, ws);
+      cell_kernel(mesh, refinement, c, Sc, Mc, ws);
       scatter(c, Sc.data(), Mc.data(), 0, nV);
     }
   } else {
@@ -253,7 +304,7 @@ VolumeLaplacian assemble_volume_laplacian(const VolumeMesh& mesh, const VolumeRe
       run_on_threads(T, [&](int t) {
         Eigen::MatrixXd Sc, Mc;
         for (int c = c0 + (c1 - c0) * t / T; c < c0 + (c1 - c0) * (t + 1) / T; ++c) {
-          cell_kernel(mesh, refinement, c, &Sc, &Mc, ws[t]);
+          cell_kernel(mesh, refinement, c, Sc, Mc, ws[t]);
           double* out = local.data() + offset[c - c0];
           std::copy(Sc.data(), Sc.data() + Sc.size(), out);
           std::copy(Mc.data(), Mc.data() + Mc.size(), out + Sc.size());
