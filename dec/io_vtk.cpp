@@ -12,9 +12,7 @@
 #include <climits>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <optional>
-#include <bit>
 
 #include "polydec/dec/io_common.h"
 #include "polydec/dec/io_volume_common.h"
@@ -352,16 +350,6 @@ void vtk_cells(const VolumeMesh& mesh, std::vector<int>& entries, std::vector<in
   }
 }
 
-// Appends the bytes of a big-endian scalar (VTK's binary byte order).
-template <class T>
-void put_be(std::string& out, T x) {
-  unsigned char b[sizeof(T)];
-  std::memcpy(b, &x, sizeof(T));
-  if (std::endian::native == std::endian::little)
-    for (size_t i = 0; i < sizeof(T) / 2; ++i) std::swap(b[i], b[sizeof(T) - 1 - i]);
-  out.append(reinterpret_cast<const char*>(b), sizeof(T));
-}
-
 std::string write_vtk(const VolumeMesh& mesh, bool binary) {
   const auto& X = mesh.positions();
   std::vector<int> entries, types;
@@ -372,11 +360,11 @@ std::string write_vtk(const VolumeMesh& mesh, bool binary) {
   if (binary) {
     out.reserve(out.size() + 24 * size_t(mesh.n_vertices()) + 4 * (entries.size() + types.size()) + 64);
     for (int v = 0; v < mesh.n_vertices(); ++v)
-      for (int d = 0; d < 3; ++d) put_be(out, X(v, d));
+      for (int d = 0; d < 3; ++d) put_bytes(out, X(v, d), true);
     out += fmt::format("\nCELLS {} {}\n", mesh.n_cells(), entries.size());
-    for (int e : entries) put_be(out, std::int32_t(e));
+    for (int e : entries) put_bytes(out, std::int32_t(e), true);
     out += fmt::format("\nCELL_TYPES {}\n", mesh.n_cells());
-    for (int t : types) put_be(out, std::int32_t(t));
+    for (int t : types) put_bytes(out, std::int32_t(t), true);
     out += '\n';
     return out;
   }

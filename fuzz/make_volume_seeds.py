@@ -85,16 +85,22 @@ def ovm(points, cells):
     return s
 
 
+def face_streams(cells):
+    # Each cell's polyhedron face stream: n_faces, then per face its size and vertices.
+    out = []
+    for polys in polygons(cells):
+        e = [len(polys)]
+        for p in polys:
+            e += [len(p)] + p
+        out.append(e)
+    return out
+
+
 def vtk(points, cells, version="3.0", polyhedron=False):
     s = "# vtk DataFile Version %s\nseed\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS %d double\n" % (version, len(points))
     s += "".join("%r %r %r\n" % p for p in points)
     if polyhedron:
-        entries = []
-        for polys in polygons(cells):
-            e = [len(polys)]
-            for p in polys:
-                e += [len(p)] + p
-            entries.append([len(e)] + e)
+        entries = [[len(e)] + e for e in face_streams(cells)]
         s += "CELLS %d %d\n" % (len(entries), sum(len(e) for e in entries))
         s += "".join(" ".join(map(str, e)) + "\n" for e in entries)
         s += "CELL_TYPES %d\n" % len(cells) + "42\n" * len(cells)
@@ -121,13 +127,7 @@ def vtk_binary(points, cells, version="4.2", polyhedron=False, point_type="doubl
     if metadata:
         s += b"METADATA\nINFORMATION 1\nNAME L2_NORM_RANGE LOCATION vtkDataArray\nDATA 2 0 1.7 \n\n"
     if polyhedron:
-        entries = []
-        for polys in polygons(cells):
-            e = [len(polys)]
-            for p in polys:
-                e += [len(p)] + p
-            entries.append(e)
-        cells_out = [(42, e) for e in entries]
+        cells_out = [(42, e) for e in face_streams(cells)]
     else:
         cells_out = cells
     if version.startswith("5"):
