@@ -124,8 +124,8 @@ class VolumeTokens {
     if (n < 0) fail(where(), fmt::format("negative {} {}", what, n));
     if (n > INT_MAX / 2) fail(where(), fmt::format("{} {} is too large (at most {})", what, n, INT_MAX / 2));
     if (n * min_bytes > (long long)remaining() + 1)
-      fail(where(),
-           fmt::format("{} {} needs at least {} bytes but only {} follow", what, n, n * min_bytes, remaining()));
+      fail(where(), fmt::format("{} {} needs at least {} bytes but only {} follow", what, n, n * min_bytes,
+                                remaining()));
     return n;
   }
   // The keyword k (case-insensitive).

@@ -69,8 +69,9 @@ struct Input {
     const std::string t = io_detail::lower(type);
     if (t == "vtktypeint64") return 8;
     if (t == "vtktypeint32" || t == "int") return 4;
-    in.fail(in.where(), fmt::format("{} type {} is not supported in binary files (vtktypeint32, vtktypeint64)",
-                                    what, io_detail::quote(type)));
+    in.fail(in.where(),
+            fmt::format("{} type {} is not supported in binary files (vtktypeint32, vtktypeint64)", what,
+                        io_detail::quote(type)));
   }
 
   // An integer array of n entries: ASCII tokens, or big-endian binary of `width` bytes (4 or 8)
@@ -153,7 +154,8 @@ PolyhedronRead read_vtk(std::string_view bytes, const std::string& name) {
       r.vertex_where[v] = long(cur.position());
       for (int c = 0; c < 3; ++c) {
         const long at = long(cur.position());
-        const double x = width == 4 ? double(cur.read<float>("a point coordinate")) : cur.read<double>("a point coordinate");
+        const double x = width == 4 ? double(cur.read<float>("a point coordinate"))
+                                    : cur.read<double>("a point coordinate");
         if (!std::isfinite(x)) in.fail(at, fmt::format("point {} has a non-finite coordinate ({})", v, x));
         r.soup.positions(v, c) = x;
       }
@@ -203,8 +205,8 @@ PolyhedronRead read_vtk(std::string_view bytes, const std::string& name) {
     io.end_array();
     cell_where.pop_back();
     if (offsets.back() != size)
-      in.fail(at, fmt::format("the last offset is {} but CELLS announced {} connectivity entries", offsets.back(),
-                              size));
+      in.fail(at, fmt::format("the last offset is {} but CELLS announced {} connectivity entries",
+                              offsets.back(), size));
     io.skip_metadata();
     in.keyword("CONNECTIVITY");
     const int width = io.integer_width(in.expect("the connectivity data type"), "connectivity");
@@ -226,8 +228,9 @@ PolyhedronRead read_vtk(std::string_view bytes, const std::string& name) {
     long long used = 0;
     for (long long c = 0; c < nc; ++c) {
       if (used >= size)
-        in.fail(cells_where, fmt::format("CELLS announced {} cells but its list of {} numbers ends after cell {}",
-                                         nc, size, c - 1));
+        in.fail(cells_where,
+                fmt::format("CELLS announced {} cells but its list of {} numbers ends after cell {}", nc,
+                            size, c - 1));
       const long long k = io.next("cell size", at);
       cell_where.push_back(at);
       if (k < 0 || used + 1 + k > size)
@@ -354,8 +357,9 @@ std::string write_vtk(const VolumeMesh& mesh, bool binary) {
   const auto& X = mesh.positions();
   std::vector<int> entries, types;
   vtk_cells(mesh, entries, types);
-  std::string out = fmt::format("# vtk DataFile Version 4.2\npolydec volume mesh\n{}\nDATASET UNSTRUCTURED_GRID\n",
-                                binary ? "BINARY" : "ASCII");
+  std::string out =
+      fmt::format("# vtk DataFile Version 4.2\npolydec volume mesh\n{}\nDATASET UNSTRUCTURED_GRID\n",
+                  binary ? "BINARY" : "ASCII");
   out += fmt::format("POINTS {} double\n", mesh.n_vertices());
   if (binary) {
     out.reserve(out.size() + 24 * size_t(mesh.n_vertices()) + 4 * (entries.size() + types.size()) + 64);
@@ -370,7 +374,8 @@ std::string write_vtk(const VolumeMesh& mesh, bool binary) {
   }
   fmt::memory_buffer b;
   auto it = std::back_inserter(b);
-  for (int v = 0; v < mesh.n_vertices(); ++v) fmt::format_to(it, "{} {} {}\n", num(X(v, 0)), num(X(v, 1)), num(X(v, 2)));
+  for (int v = 0; v < mesh.n_vertices(); ++v)
+    fmt::format_to(it, "{} {} {}\n", num(X(v, 0)), num(X(v, 1)), num(X(v, 2)));
   fmt::format_to(it, "CELLS {} {}\n", mesh.n_cells(), entries.size());
   for (size_t k = 0; k < entries.size();) {
     const size_t n = size_t(entries[k]);

@@ -25,8 +25,8 @@ namespace {
 // else the mesh's, else the mesh's coordinate noise (`noise`, absolute) or the corners' own
 // double round-off, whichever is larger.
 PlanarityCut face_planarity(const Mesh& mesh, const RefinementOptions& o, double noise, const double* x, int n) {
-  return planarity_cut(o.planarity_tolerance > 0 ? o.planarity_tolerance : mesh.precision().planarity_tolerance,
-                       noise, x, n);
+  return planarity_cut(
+      o.planarity_tolerance > 0 ? o.planarity_tolerance : mesh.precision().planarity_tolerance, noise, x, n);
 }
 
 // Virtual vertex and fan classification of face f with N corners (0: any), written into r.

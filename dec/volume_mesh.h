@@ -24,7 +24,7 @@ struct PolyhedronSoup {
   std::vector<int> face_indices;
   std::vector<int> cell_offsets{0};  // |C| + 1 entries
   std::vector<int> cell_halffaces;
-  CoordinatePrecision precision;     // what the source's digits resolve (dec/mesh.h)
+  CoordinatePrecision precision;  // what the source's digits resolve (dec/mesh.h)
 
   int n_vertices() const { return int(positions.rows()); }
   int n_faces() const { return int(face_offsets.size()) - 1; }

@@ -31,7 +31,7 @@ std::string be(T x) {
 }
 
 // A unit cube (VTK hexahedron order) with a pyramid of height 1 on its top face: volume 4/3.
-const double kPoints[9][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1},
+const double kPoints[9][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},    {0, 0, 1},
                               {1, 0, 1}, {1, 1, 1}, {0, 1, 1}, {0.5, 0.5, 2}};
 const std::vector<std::vector<int>> kCells = {{0, 1, 2, 3, 4, 5, 6, 7}, {4, 5, 6, 7, 8}};
 const std::vector<int> kTypes = {12, 14};
@@ -39,8 +39,8 @@ const std::vector<int> kTypes = {12, 14};
 // The hand-built binary file: points as float or double, classic CELLS (int32) or the version 5.1
 // OFFSETS/CONNECTIVITY layout (vtktypeint64), a METADATA block after POINTS as VTK 8+ writes.
 std::string hex_pyramid_file(bool float_points, bool v51, bool metadata = true) {
-  std::string s = fmt::format("# vtk DataFile Version {}\nhex and pyramid\nBINARY\nDATASET UNSTRUCTURED_GRID\n",
-                              v51 ? "5.1" : "4.2");
+  std::string s = fmt::format(
+      "# vtk DataFile Version {}\nhex and pyramid\nBINARY\nDATASET UNSTRUCTURED_GRID\n", v51 ? "5.1" : "4.2");
   s += fmt::format("POINTS 9 {}\n", float_points ? "float" : "double");
   for (const auto& p : kPoints)
     for (double x : p) s += float_points ? be(float(x)) : be(x);
@@ -61,7 +61,8 @@ std::string hex_pyramid_file(bool float_points, bool v51, bool metadata = true) 
   }
   s += "\nCELL_TYPES 2\n";
   for (int t : kTypes) s += be<std::int32_t>(t);
-  s += "\nCELL_DATA 2\nSCALARS id int 1\nLOOKUP_TABLE default\n" + be<std::int32_t>(0) + be<std::int32_t>(1) + "\n";
+  s += "\nCELL_DATA 2\nSCALARS id int 1\nLOOKUP_TABLE default\n" + be<std::int32_t>(0) + be<std::int32_t>(1) +
+       "\n";
   return s;
 }
 
@@ -135,7 +136,8 @@ TEST_CASE("VTK BINARY: a hand-built hexahedron and pyramid, both layouts, float 
       const double expected = float_points ? 0x1p-24 * 2.0 / m.rms_radius() : 0.0;
       CHECK(m.precision().noise == Approx(expected).epsilon(1e-12));
       // The same mesh as the ASCII file of the same numbers.
-      std::string ascii = "# vtk DataFile Version 3.0\nhp\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 9 double\n";
+      std::string ascii =
+          "# vtk DataFile Version 3.0\nhp\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 9 double\n";
       for (const auto& p : kPoints) ascii += fmt::format("{} {} {}\n", p[0], p[1], p[2]);
       ascii += "CELLS 2 15\n8 0 1 2 3 4 5 6 7\n5 4 5 6 7 8\nCELL_TYPES 2\n12\n14\n";
       check_identical(read_volume_mesh_from_memory(ascii, "vtk", "hp_ascii.vtk"), m);
@@ -150,8 +152,9 @@ TEST_CASE("VTK BINARY: polyhedron cells (type 42) with their face streams", "[vo
   const double P[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   const std::vector<int> stream = {4, 3, 0, 2, 1, 3, 0, 1, 3, 3, 1, 2, 3, 3, 0, 3, 2};
   for (bool v51 : {false, true}) {
-    std::string s = fmt::format("# vtk DataFile Version {}\np\nBINARY\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 double\n",
-                                v51 ? "5.1" : "4.2");
+    std::string s =
+        fmt::format("# vtk DataFile Version {}\np\nBINARY\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 double\n",
+                    v51 ? "5.1" : "4.2");
     for (const auto& p : P)
       for (double x : p) s += be(x);
     if (v51) {
@@ -188,14 +191,15 @@ TEST_CASE("VTK BINARY: ASCII <-> binary round trips are bit-exact", "[volume][io
     CHECK(from_bin.positions() == m.positions());
     REQUIRE(from_bin.n_cells() == m.n_cells());
     int differ = 0;
-    for (int c = 0; c < m.n_cells(); ++c) differ += std::abs(from_bin.cell_volume(c) - m.cell_volume(c)) > 1e-14 * std::abs(m.cell_volume(c));
+    for (int c = 0; c < m.n_cells(); ++c)
+      differ += std::abs(from_bin.cell_volume(c) - m.cell_volume(c)) > 1e-14 * std::abs(m.cell_volume(c));
     CHECK(differ == 0);
   }
   // The shared noisy cube (OVM, 6 significant digits) through binary VTK keeps every double.
   POLYDEC_SHARED_MESH(path, "volume/noisycube.ovm");
   const VolumeMesh noisy = read_volume_mesh(path);
-  const VolumeMesh back = read_volume_mesh_from_memory(write_volume_mesh_to_string(noisy, "vtk", {.binary = true}),
-                                                      "vtk", "noisy.vtk");
+  const VolumeMesh back = read_volume_mesh_from_memory(
+      write_volume_mesh_to_string(noisy, "vtk", {.binary = true}), "vtk", "noisy.vtk");
   CHECK(back.positions() == noisy.positions());
   CHECK(back.volume() == Approx(noisy.volume()).epsilon(1e-14));
 }
@@ -273,8 +277,8 @@ TEST_CASE("VTK BINARY: truncated files and lying counts name the byte offset", "
   // turned inside out, whose base then has the orientation of the hexahedron's top.
   std::string inverted = good;
   const size_t pyramid_at = cells_at + 11 + 36;
-  inverted.replace(pyramid_at + 4, 16, be<std::int32_t>(4) + be<std::int32_t>(7) + be<std::int32_t>(6) +
-                                           be<std::int32_t>(5));
+  inverted.replace(pyramid_at + 4, 16,
+                   be<std::int32_t>(4) + be<std::int32_t>(7) + be<std::int32_t>(6) + be<std::int32_t>(5));
   // (the shared face is named where it was first read: the hexahedron, as in ASCII files)
   expect_error(inverted, long(cells_at + 11), "inconsistent orientation");
 }
@@ -284,8 +288,9 @@ TEST_CASE("volume readers record the coordinate precision of their files", "[vol
   CHECK(g.precision().noise == 0.0);  // generated: exact doubles
   // The mesh moved and scaled so that its coordinates need all their digits, then written with 6
   // significant digits in every text format.
-  const VolumeMesh m = g.with_positions(0.7315926535 * g.positions() +
-                                        Eigen::RowVector3d(0.1234567, 0.2345678, 0.3456789).replicate(g.n_vertices(), 1));
+  const VolumeMesh m =
+      g.with_positions(0.7315926535 * g.positions() +
+                       Eigen::RowVector3d(0.1234567, 0.2345678, 0.3456789).replicate(g.n_vertices(), 1));
   const auto six = [&](std::string s) {
     // Rewrites every 17-digit coordinate of the file with 6 significant digits.
     std::string out;
@@ -327,7 +332,9 @@ TEST_CASE("volume readers record the coordinate precision of their files", "[vol
     CHECK(r.boundary_surface().coordinate_noise() == Approx(r.coordinate_noise()).epsilon(1e-14));
     CHECK(r.with_positions(r.positions()).precision() == r.precision());
     // The exact doubles of the same mesh: 17 digits carry no noise.
-    CHECK(read_volume_mesh_from_memory(write_volume_mesh_to_string(m, format), format, "m").precision().noise == 0.0);
+    CHECK(
+        read_volume_mesh_from_memory(write_volume_mesh_to_string(m, format), format, "m").precision().noise ==
+        0.0);
   }
   // Binary VTK: float points half an ulp, double points none.
   CHECK(read_volume_mesh_from_memory(write_volume_mesh_to_string(m, "vtk", {.binary = true}), "vtk", "b")
@@ -345,13 +352,15 @@ TEST_CASE("face-point planarity follows the volume file's coordinate precision",
       const double a = 2 * M_PI * k / 6 + 0.3 * (k % 2);  // an irregular hexagon
       P.push_back({std::cos(a) * (1 + 0.2 * (k % 3)), std::sin(a) * (1 + 0.2 * (k % 3)), z});
     }
-  std::string text = "# vtk DataFile Version 3.0\nprism\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 12 double\n";
+  std::string text =
+      "# vtk DataFile Version 3.0\nprism\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 12 double\n";
   for (int v = 0; v < 12; ++v) {
     const double z = v == 8 ? 1.00001 : P[v].z();
     text += fmt::format("{:.6g} {:.6g} {:.6g}\n", P[v].x(), P[v].y(), z);
   }
   // 8 outward faces: the bottom (reversed), the top, 6 quads (k, k+1, k+7, k+6): 45 numbers.
-  const std::string stream = "8 6 0 5 4 3 2 1 6 6 7 8 9 10 11 4 0 1 7 6 4 1 2 8 7 4 2 3 9 8 4 3 4 10 9 4 4 5 11 10 4 5 0 6 11";
+  const std::string stream =
+      "8 6 0 5 4 3 2 1 6 6 7 8 9 10 11 4 0 1 7 6 4 1 2 8 7 4 2 3 9 8 4 3 4 10 9 4 4 5 11 10 4 5 0 6 11";
   text += "CELLS 1 46\n45 " + stream + "\nCELL_TYPES 1\n42\n";
   const VolumeMesh m = read_volume_mesh_from_memory(text, "vtk", "prism.vtk");
   REQUIRE(m.n_cells() == 1);

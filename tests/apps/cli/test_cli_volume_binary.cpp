@@ -1,8 +1,9 @@
 // tests/apps/cli/test_cli_volume_binary.cpp — `polydec convert --binary` (VTK legacy BINARY,
 // bit-exact back to the mesh) and `polydec info`'s face planarity following the coordinate
 // precision of a volume file.
-#include <catch2/catch.hpp>
 #include <fmt/format.h>
+
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -54,11 +55,13 @@ TEST_CASE("polydec convert --binary writes VTK legacy BINARY, bit-exact", "[volu
   CHECK(run(s.dir, "convert " + s.path("t.ovm") + " " + s.path("x.ovm") + " --binary").code == 2);
   CHECK(run(s.dir, "convert " + s.path("t.ovm") + " " + s.path("x.mesh") + " --binary").code == 2);
   // The boundary surface in binary PLY reads back with the same positions.
-  REQUIRE(run(s.dir, "convert " + s.path("t.ovm") + " " + s.path("bd.ply") + " --boundary --binary").code == 0);
+  REQUIRE(run(s.dir, "convert " + s.path("t.ovm") + " " + s.path("bd.ply") + " --boundary --binary").code ==
+          0);
   CHECK(read_mesh(s.path("bd.ply")).positions() == m.positions());
 }
 
-TEST_CASE("polydec info: volume face planarity follows the file's coordinate precision", "[volume][cli][io]") {
+TEST_CASE("polydec info: volume face planarity follows the file's coordinate precision",
+          "[volume][cli][io]") {
   // A hexahedral grid turned and moved to 1000: written with 6 significant digits, its planar
   // faces are planar only to the 0.005 the digits resolve.
   Scratch s;
@@ -70,7 +73,8 @@ TEST_CASE("polydec info: volume face planarity follows the file's coordinate pre
   const size_t begin = text.find("Vertices\n") + 9;
   const size_t end = text.find("Edges\n");
   std::string six = fmt::format("{}\n", g.n_vertices());
-  for (int v = 0; v < g.n_vertices(); ++v) six += fmt::format("{:.6g} {:.6g} {:.6g}\n", X(v, 0), X(v, 1), X(v, 2));
+  for (int v = 0; v < g.n_vertices(); ++v)
+    six += fmt::format("{:.6g} {:.6g} {:.6g}\n", X(v, 0), X(v, 1), X(v, 2));
   text.replace(begin, end - begin, six);
   std::ofstream(s.path("six.ovm")) << text;
   // The same numbers as exact doubles (binary VTK carries no digits to count).
