@@ -218,14 +218,19 @@ class BinaryCursor {
   const std::string& name_;
 };
 
+// Appends the bytes of a scalar, big-endian (VTK legacy) or little-endian.
+template <class T>
+void put_bytes(std::string& out, T x, bool big_endian) {
+  unsigned char b[sizeof(T)];
+  std::memcpy(b, &x, sizeof(T));
+  if (big_endian != (std::endian::native == std::endian::big))
+    for (size_t i = 0; i < sizeof(T) / 2; ++i) std::swap(b[i], b[sizeof(T) - 1 - i]);
+  out.append(reinterpret_cast<const char*>(b), sizeof(T));
+}
 // Appends the bytes of a little-endian scalar.
 template <class T>
 void put_le(std::string& out, T x) {
-  unsigned char b[sizeof(T)];
-  std::memcpy(b, &x, sizeof(T));
-  if (std::endian::native == std::endian::big)
-    for (size_t i = 0; i < sizeof(T) / 2; ++i) std::swap(b[i], b[sizeof(T) - 1 - i]);
-  out.append(reinterpret_cast<const char*>(b), sizeof(T));
+  put_bytes(out, x, false);
 }
 
 // 17 significant digits: every double reads back bit-exactly.

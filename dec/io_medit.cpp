@@ -69,15 +69,18 @@ PolyhedronRead read_medit(std::string_view bytes, const std::string& name) {
       nv = in.count("Vertices count", 8);
       r.soup.positions.resize(nv, 3);
       r.vertex_where.resize(nv);
+      DigitCounter digits;
       for (long long v = 0; v < nv; ++v) {
         for (int c = 0; c < 3; ++c) {
           const std::string_view x = in.expect("a vertex coordinate");
           if (c == 0) r.vertex_where[v] = in.line();
           if (!parse_double(x, r.soup.positions(v, c)))
             in.fail(in.line(), "bad vertex coordinate " + quote(x));
+          digits.see(x, r.soup.positions(v, c));
         }
         in.integer("vertex reference");
       }
+      r.soup.precision = digits.precision(r.soup.positions);
     } else if (k == "tetrahedra" || k == "hexahedra") {
       if (!have_vertices) in.fail(kline, fmt::format("{} before Vertices", t));
       const int type = k == "tetrahedra" ? kVtkTetra : kVtkHexahedron;
@@ -111,6 +114,7 @@ PolyhedronRead read_medit(std::string_view bytes, const std::string& name) {
   }
   if (!have_vertices) in.fail(0, "no Vertices section");
 
+  const CoordinatePrecision precision = r.soup.precision;
   PolyhedronSoupBuilder builder(std::move(r.soup.positions));
   for (const auto& b : blocks) {
     const int n = vtk_cell_size(b.type);
@@ -125,6 +129,7 @@ PolyhedronRead read_medit(std::string_view bytes, const std::string& name) {
     }
   }
   r.soup = builder.take();
+  r.soup.precision = precision;
   return r;
 }
 

@@ -108,15 +108,19 @@ PolyhedronRead read_ovm(std::string_view bytes, const std::string& name) {
   const long long nv = p.section("Vertices", 6);
   r.soup.positions.resize(nv, 3);
   r.vertex_where.resize(nv);
+  DigitCounter digits;
   for (long long v = 0; v < nv; ++v) {
     p.record("vertices", v, nv);
     r.vertex_where[v] = p.line();
     if (p.tok().size() != 3)
       p.fail(p.line(), fmt::format("a vertex needs 3 coordinates, the line has {} numbers", p.tok().size()));
-    for (int c = 0; c < 3; ++c)
+    for (int c = 0; c < 3; ++c) {
       if (!parse_double(p.tok()[c], r.soup.positions(v, c)))
         p.fail(p.line(), "bad vertex coordinate " + quote(p.tok()[c]));
+      digits.see(p.tok()[c], r.soup.positions(v, c));
+    }
   }
+  r.soup.precision = digits.precision(r.soup.positions);
 
   const long long ne = p.section("Edges", 4);
   std::vector<std::array<int, 2>> edges(ne);

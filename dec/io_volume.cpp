@@ -58,6 +58,7 @@ VolumeMesh validate(PolyhedronRead r, const std::string& name) {
   const auto vertex_where = std::move(r.vertex_where);
   const auto face_where = std::move(r.face_where);
   const auto cell_where = std::move(r.cell_where);
+  const bool byte_offsets = r.where_is_byte_offset;
   try {
     return VolumeMesh(std::move(r.soup));
   } catch (const InvalidMeshError& e) {
@@ -67,6 +68,7 @@ VolumeMesh validate(PolyhedronRead r, const std::string& name) {
                                                            : nullptr;
     long at = 0;
     if (where && e.index >= 0 && e.index < long(where->size())) at = (*where)[e.index];
+    if (byte_offsets) throw FileError(name, 0, at, e.what());
     throw FileError(name, std::max(at, 0L), -1, e.what());
   }
 }
@@ -98,20 +100,21 @@ VolumeMesh read_volume_mesh_from_memory(std::string_view bytes, std::string_view
   return validate(read_any(bytes, format, name), name);
 }
 
-std::string write_volume_mesh_to_string(const VolumeMesh& mesh, std::string_view format) {
+std::string write_volume_mesh_to_string(const VolumeMesh& mesh, std::string_view format,
+                                        const WriteOptions& options) {
   const std::string f = io_detail::lower(format);
   if (f == "ovm") return io_detail::write_ovm(mesh);
-  if (f == "vtk") return io_detail::write_vtk(mesh);
+  if (f == "vtk") return io_detail::write_vtk(mesh, options.binary);
   if (f == "mesh") return io_detail::write_medit(mesh, "(memory)");
   throw FileError("(memory)", 0, -1, fmt::format("unknown volume mesh format '{}' ({})", f, kFormats));
 }
 
-void write_volume_mesh(const VolumeMesh& mesh, const std::string& path) {
+void write_volume_mesh(const VolumeMesh& mesh, const std::string& path, const WriteOptions& options) {
   const std::string f = extension(path);
   if (!known(f))
     throw FileError(path, 0, -1, fmt::format("unknown volume mesh format '.{}' ({})", f, kFormats));
   const std::string data =
-      f == "mesh" ? io_detail::write_medit(mesh, path) : write_volume_mesh_to_string(mesh, f);
+      f == "mesh" ? io_detail::write_medit(mesh, path) : write_volume_mesh_to_string(mesh, f, options);
   write_bytes(path, data);
 }
 

@@ -1,5 +1,5 @@
 // dec/io_volume.h — reading and writing polyhedral volume meshes: OVM ASCII (OpenVolumeMesh),
-// VTK legacy ASCII unstructured grids and MEDIT .mesh. Formats are chosen by extension; what
+// VTK legacy unstructured grids (ASCII or BINARY) and MEDIT .mesh. Formats are chosen by extension; what
 // each accepts is documented in docs/io.md and docs/volumes.md. Errors are FileErrors (dec/io.h)
 // naming the file and line.
 #pragma once
@@ -32,9 +32,11 @@ VolumeMesh read_volume_mesh_from_memory(std::string_view bytes, std::string_view
 
 // Writes by extension (.ovm, .vtk, .mesh), positions with 17 significant digits. OVM files
 // are written with outward half-faces (polydec's convention; the reader accepts either).
-// MEDIT holds tetrahedra and hexahedra only: another cell throws FileError. Throws FileError
-// when the file cannot be written.
-void write_volume_mesh(const VolumeMesh& mesh, const std::string& path);
+// MEDIT holds tetrahedra and hexahedra only: another cell throws FileError. With
+// options.binary, VTK is written as a legacy BINARY file (version 4.2, big-endian float64
+// points, classic int32 cell list and types: bit-exact like the ASCII file); OVM and MEDIT have
+// no binary form here (ignored). Throws FileError when the file cannot be written.
+void write_volume_mesh(const VolumeMesh& mesh, const std::string& path, const WriteOptions& options = {});
 // A VTK legacy file (extension .vtk required, else FileError) of the mesh followed by a POINT_DATA
 // section with one "SCALARS NAME double 1" array per entry (|V| values each, 17 significant digits;
 // non-finite values written as nan/inf). The reader ignores that section, so the file reads back
@@ -42,6 +44,7 @@ void write_volume_mesh(const VolumeMesh& mesh, const std::string& path);
 void write_volume_vtk_with_point_data(const VolumeMesh& mesh, const std::string& path,
                                       const VertexScalars& scalars);
 // The file's bytes for `format` ("ovm", "vtk" or "mesh").
-std::string write_volume_mesh_to_string(const VolumeMesh& mesh, std::string_view format);
+std::string write_volume_mesh_to_string(const VolumeMesh& mesh, std::string_view format,
+                                        const WriteOptions& options = {});
 
 }  // namespace polydec

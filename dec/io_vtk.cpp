@@ -1,11 +1,18 @@
-// dec/io_vtk.cpp — VTK legacy ASCII unstructured grids: "# vtk DataFile Version N", a title
-// line, ASCII, DATASET UNSTRUCTURED_GRID, POINTS, CELLS (the classic layout "n k i_1 .. i_k",
-// or version 5's OFFSETS/CONNECTIVITY arrays) and CELL_TYPES; cell types 10 tetra,
-// 12 hexahedron, 13 wedge, 14 pyramid (VTK's vertex orders) and 42 polyhedron (classic layout:
-// "n n_faces k_1 face_1 .. "). Faces shared by cells are identified by their vertex sets.
-// Sections after CELL_TYPES (POINT_DATA, CELL_DATA, FIELD) are ignored.
+// dec/io_vtk.cpp — VTK legacy unstructured grids, ASCII or BINARY: "# vtk DataFile Version N", a
+// title line, ASCII|BINARY, DATASET UNSTRUCTURED_GRID, POINTS, CELLS (the classic layout
+// "n k i_1 .. i_k", or version 5's OFFSETS/CONNECTIVITY arrays) and CELL_TYPES, each array
+// optionally followed by a METADATA block (skipped); cell types 10 tetra, 12 hexahedron, 13 wedge,
+// 14 pyramid (VTK's vertex orders) and 42 polyhedron (its numbers are the face stream
+// "n_faces k_1 face_1 .. " in either layout). BINARY payloads are big-endian: points float32 or
+// float64, classic cell lists and cell types int32, version 5 offsets and connectivity
+// vtktypeint32 or vtktypeint64; each payload starts after its header line's '\n'. Faces shared
+// by cells are identified by their vertex sets. Sections after CELL_TYPES (POINT_DATA,
+// CELL_DATA, FIELD) are ignored.
 #include <array>
 #include <climits>
+#include <cmath>
+#include <cstdint>
+#include <optional>
 
 #include "polydec/dec/io_common.h"
 #include "polydec/dec/io_volume_common.h"
@@ -37,14 +44,76 @@ const char* type_name(long long t) {
   }
 }
 
+// The reader's state: the tokens (lines in ASCII files, byte offsets in BINARY ones) and the
+// bytes the binary payloads are read from.
+struct Input {
+  Input(io_detail::VolumeTokens& tokens, std::string_view bytes, const std::string& file)
+      : in(tokens), text(bytes), name(file) {}
+  io_detail::VolumeTokens& in;
+  std::string_view text;
+  const std::string& name;
+  bool binary = false;
+
+  // Skips a METADATA block (VTK 8+ writes one after an array; it ends with an empty line).
+  void skip_metadata() {
+    if (!in.next_is("METADATA")) return;
+    in.keyword("METADATA");
+    in.skip_line();
+    while (in.remaining() > 0 && !in.blank_line()) in.skip_line();
+    in.skip_line();
+  }
+
+  // The byte width of a binary integer array of VTK type `type` (ASCII: unused, 0).
+  int integer_width(std::string_view type, const char* what) {
+    if (!binary) return 0;
+    const std::string t = io_detail::lower(type);
+    if (t == "vtktypeint64") return 8;
+    if (t == "vtktypeint32" || t == "int") return 4;
+    in.fail(in.where(),
+            fmt::format("{} type {} is not supported in binary files (vtktypeint32, vtktypeint64)", what,
+                        io_detail::quote(type)));
+  }
+
+  // An integer array of n entries: ASCII tokens, or big-endian binary of `width` bytes (4 or 8)
+  // starting after the current line, checked against the file's end before anything is read.
+  void begin_array(long long n, int width, const char* what) {
+    if (!binary) return;
+    in.end_line(what);
+    cursor.emplace(text, in.position(), true, name);
+    cursor->need(size_t(n) * size_t(width), what);
+    width_ = width;
+    end_ = in.position() + size_t(n) * size_t(width);
+  }
+  // The array's next entry and where it is (line or byte offset).
+  long long next(const char* what, long& at) {
+    if (!binary) {
+      const long long x = in.integer(what);
+      at = in.where();
+      return x;
+    }
+    at = long(cursor->position());
+    return width_ == 8 ? (long long)cursor->read<std::int64_t>(what) : cursor->read<std::int32_t>(what);
+  }
+  // Moves past the array's payload.
+  void end_array() {
+    if (binary) in.advance(end_ - in.position());
+  }
+
+  std::optional<io_detail::BinaryCursor> cursor;
+  int width_ = 4;
+  size_t end_ = 0;
+};
+
 }  // namespace
 }  // namespace io_vtk_detail
 
 namespace io_detail {
 
 PolyhedronRead read_vtk(std::string_view bytes, const std::string& name) {
-  VolumeTokens in(strip_bom(bytes), name);
-  // Header line, title line, ASCII, DATASET UNSTRUCTURED_GRID.
+  const std::string_view text = strip_bom(bytes);
+  VolumeTokens in(text, name);
+  io_vtk_detail::Input io{in, text, name};
+  // Header line, title line, ASCII|BINARY, DATASET UNSTRUCTURED_GRID.
   std::string_view t;
   if (!in.next(t)) in.fail(0, "empty file (no '# vtk DataFile' header)");
   std::string_view head = in.rest_of_line();
@@ -54,116 +123,159 @@ PolyhedronRead read_vtk(std::string_view bytes, const std::string& name) {
   const bool version5 = header.find("version 5") != std::string::npos;
   in.skip_line();  // end of the header line
   in.skip_line();  // the title line
-  const std::string_view format = in.expect("ASCII");
-  if (lower(format) == "binary") in.fail(in.line(), "binary VTK files are not supported (only ASCII)");
-  if (lower(format) != "ascii") in.fail(in.line(), fmt::format("expected 'ASCII', found {}", quote(format)));
+  const std::string_view format = in.expect("ASCII or BINARY");
+  io.binary = lower(format) == "binary";
+  if (!io.binary && lower(format) != "ascii")
+    in.fail(in.line(), fmt::format("expected 'ASCII' or 'BINARY', found {}", quote(format)));
+  if (io.binary) in.use_byte_offsets();
   in.keyword("DATASET");
   const std::string_view dataset = in.expect("a dataset type");
   if (lower(dataset) != "unstructured_grid")
-    in.fail(in.line(), fmt::format("dataset {} is not supported (only UNSTRUCTURED_GRID)", quote(dataset)));
+    in.fail(in.where(), fmt::format("dataset {} is not supported (only UNSTRUCTURED_GRID)", quote(dataset)));
 
   // Optional FIELD data before POINTS is not supported; POINTS must come next.
   in.keyword("POINTS");
   PolyhedronRead r;
-  const long long nv = in.count("point count", 6);
-  in.expect("the point data type");
+  r.where_is_byte_offset = io.binary;
+  const long long nv = in.count("point count", io.binary ? 12 : 6);
+  const std::string_view point_type = in.expect("the point data type");
+  const std::string pt = lower(point_type);
+  if (io.binary && pt != "float" && pt != "double")
+    in.fail(in.where(), fmt::format("point data type {} is not supported in binary files (float, double)",
+                                    quote(point_type)));
   r.soup.positions.resize(nv, 3);
   r.vertex_where.resize(nv);
-  for (long long v = 0; v < nv; ++v)
-    for (int c = 0; c < 3; ++c) {
-      const std::string_view x = in.expect("a point coordinate");
-      if (c == 0) r.vertex_where[v] = in.line();
-      if (!parse_double(x, r.soup.positions(v, c))) in.fail(in.line(), "bad point coordinate " + quote(x));
+  if (io.binary) {
+    in.end_line("the point coordinates");
+    const size_t width = pt == "float" ? 4 : 8;
+    BinaryCursor cur(text, in.position(), true, name);
+    cur.need(size_t(nv) * 3 * width, "point coordinates");
+    for (long long v = 0; v < nv; ++v) {
+      r.vertex_where[v] = long(cur.position());
+      for (int c = 0; c < 3; ++c) {
+        const long at = long(cur.position());
+        const double x = width == 4 ? double(cur.read<float>("a point coordinate"))
+                                    : cur.read<double>("a point coordinate");
+        if (!std::isfinite(x)) in.fail(at, fmt::format("point {} has a non-finite coordinate ({})", v, x));
+        r.soup.positions(v, c) = x;
+      }
     }
+    in.advance(size_t(nv) * 3 * width);
+    r.soup.precision = width == 4 ? float_precision(r.soup.positions) : CoordinatePrecision{};
+  } else {
+    DigitCounter digits;
+    for (long long v = 0; v < nv; ++v)
+      for (int c = 0; c < 3; ++c) {
+        const std::string_view x = in.expect("a point coordinate");
+        if (c == 0) r.vertex_where[v] = in.line();
+        if (!parse_double(x, r.soup.positions(v, c))) in.fail(in.line(), "bad point coordinate " + quote(x));
+        digits.see(x, r.soup.positions(v, c));
+      }
+    r.soup.precision = digits.precision(r.soup.positions);
+  }
+  io.skip_metadata();
 
   in.keyword("CELLS");
-  const long cells_line = in.line();
-  const long long n_cells_field = in.count("cell count", 2);
-  const long long size = in.count("cell list size", 2);
-  // Cell vertex lists as flat offsets + ids, and each cell's line.
+  const long cells_where = in.where();
+  const long long n_cells_field = in.count("cell count", io.binary ? 4 : 2);
+  const long long size = in.count("cell list size", io.binary ? 4 : 2);
+  // Cell numbers as flat offsets + entries (point ids, or a polyhedron's face stream), and where
+  // each cell starts.
   std::vector<long long> offsets{0};
   std::vector<int> ids;
-  std::vector<long> cell_line;
-  auto vertex_id = [&](const char* what) {
-    const long long i = in.integer(what);
-    if (i < 0 || i >= nv) in.fail(in.line(), fmt::format("point index {} out of range [0, {})", i, nv));
-    return int(i);
-  };
+  std::vector<long> cell_where;
   long long nc = 0;
+  long at = 0;
   if (version5) {
     // n_cells_field offsets (n + 1 of them) and `size` connectivity entries.
-    if (n_cells_field < 1) in.fail(cells_line, "CELLS needs at least one offset in the version 5 layout");
+    if (n_cells_field < 1) in.fail(cells_where, "CELLS needs at least one offset in the version 5 layout");
     nc = n_cells_field - 1;
     in.keyword("OFFSETS");
-    in.expect("the offset data type");
+    const int offset_width = io.integer_width(in.expect("the offset data type"), "offset");
     offsets.clear();
     offsets.reserve(n_cells_field);
+    io.begin_array(n_cells_field, offset_width, "offsets");
     for (long long k = 0; k <= nc; ++k) {
-      const long long o = in.integer("offset");
+      const long long o = io.next("offset", at);
       if ((k == 0 && o != 0) || (k > 0 && o < offsets.back()) || o > size)
-        in.fail(in.line(), fmt::format("offset {} out of order (offsets rise from 0 to {})", o, size));
+        in.fail(at, fmt::format("offset {} out of order (offsets rise from 0 to {})", o, size));
       offsets.push_back(o);
-      cell_line.push_back(in.line());
+      cell_where.push_back(at);
     }
-    cell_line.pop_back();
+    io.end_array();
+    cell_where.pop_back();
     if (offsets.back() != size)
-      in.fail(in.line(), fmt::format("the last offset is {} but CELLS announced {} connectivity entries",
-                                     offsets.back(), size));
+      in.fail(at, fmt::format("the last offset is {} but CELLS announced {} connectivity entries",
+                              offsets.back(), size));
+    io.skip_metadata();
     in.keyword("CONNECTIVITY");
-    in.expect("the connectivity data type");
+    const int width = io.integer_width(in.expect("the connectivity data type"), "connectivity");
     ids.reserve(size);
-    for (long long k = 0; k < size; ++k) ids.push_back(vertex_id("connectivity entry"));
+    io.begin_array(size, width, "connectivity");
+    // Polyhedron face streams hold counts besides point ids: range-checked once the type is known.
+    for (long long k = 0; k < size; ++k) {
+      const long long x = io.next("connectivity entry", at);
+      if (x < 0 || x > INT_MAX) in.fail(at, fmt::format("connectivity entry {} out of range", x));
+      ids.push_back(int(x));
+    }
+    io.end_array();
   } else {
     nc = n_cells_field;
-    if (nc > size) in.fail(cells_line, fmt::format("{} cells cannot fit in a list of {} numbers", nc, size));
+    if (nc > size) in.fail(cells_where, fmt::format("{} cells cannot fit in a list of {} numbers", nc, size));
     ids.reserve(size - nc);
     offsets.reserve(nc + 1);
+    io.begin_array(size, 4, "cell list");
     long long used = 0;
     for (long long c = 0; c < nc; ++c) {
-      const long long k = in.integer("cell size");
-      cell_line.push_back(in.line());
+      if (used >= size)
+        in.fail(cells_where,
+                fmt::format("CELLS announced {} cells but its list of {} numbers ends after cell {}", nc,
+                            size, c - 1));
+      const long long k = io.next("cell size", at);
+      cell_where.push_back(at);
       if (k < 0 || used + 1 + k > size)
-        in.fail(in.line(),
-                fmt::format("cell {} lists {} numbers, beyond the announced list size {}", c, k, size));
+        in.fail(at, fmt::format("cell {} lists {} numbers, beyond the announced list size {}", c, k, size));
       used += 1 + k;
       // Polyhedron face streams hold counts besides point ids: range-checked once the type is known.
       for (long long i = 0; i < k; ++i) {
-        const long long x = in.integer("cell entry");
-        if (x < 0 || x > INT_MAX) in.fail(in.line(), fmt::format("cell entry {} out of range", x));
+        const long long x = io.next("cell entry", at);
+        if (x < 0 || x > INT_MAX) in.fail(at, fmt::format("cell entry {} out of range", x));
         ids.push_back(int(x));
       }
       offsets.push_back((long long)ids.size());
     }
     if (used != size)
-      in.fail(in.line(), fmt::format("the cells hold {} numbers but CELLS announced {}", used, size));
+      in.fail(io.binary ? cells_where : in.where(),
+              fmt::format("the cells hold {} numbers but CELLS announced {}", used, size));
+    io.end_array();
   }
+  io.skip_metadata();
 
   in.keyword("CELL_TYPES");
-  const long long nt = in.count("cell type count", 2);
-  if (nt != nc) in.fail(in.line(), fmt::format("CELL_TYPES lists {} types for {} cells", nt, nc));
+  const long long nt = in.count("cell type count", io.binary ? 4 : 2);
+  if (nt != nc) in.fail(in.where(), fmt::format("CELL_TYPES lists {} types for {} cells", nt, nc));
   std::vector<int> types(nc);
-  std::vector<long> type_line(nc);
+  std::vector<long> type_where(nc);
+  io.begin_array(nc, 4, "cell types");
   for (long long c = 0; c < nc; ++c) {
-    const long long ty = in.integer("cell type");
-    type_line[c] = in.line();
+    const long long ty = io.next("cell type", at);
+    type_where[c] = at;
     if (ty != kVtkTetra && ty != kVtkHexahedron && ty != kVtkWedge && ty != kVtkPyramid &&
         ty != kVtkPolyhedron)
-      in.fail(in.line(),
-              fmt::format("unknown or unsupported cell type {}{} of cell {} (10 tetra, 12 hexahedron, 13 "
-                          "wedge, 14 pyramid, 42 polyhedron are read)",
-                          ty, io_vtk_detail::type_name(ty), c));
+      in.fail(at, fmt::format("unknown or unsupported cell type {}{} of cell {} (10 tetra, 12 hexahedron, 13 "
+                              "wedge, 14 pyramid, 42 polyhedron are read)",
+                              ty, io_vtk_detail::type_name(ty), c));
     types[c] = int(ty);
   }
+  io.end_array();
 
   PolyhedronSoupBuilder builder(std::move(r.soup.positions));
   std::vector<int> poly;
   for (long long c = 0; c < nc; ++c) {
-    const long ln = cell_line[c];
+    const long ln = cell_where[c];
     const std::span<const int> cell(ids.data() + offsets[c], size_t(offsets[c + 1] - offsets[c]));
     const int type = types[c];
     if (type == kVtkPolyhedron) {
-      if (version5)
-        in.fail(type_line[c], "polyhedron cells (type 42) in the version 5 layout are not supported");
       if (cell.empty()) in.fail(ln, fmt::format("polyhedron cell {} is empty", c));
       size_t p = 1;
       for (int f = 0; f < cell[0]; ++f) {
@@ -202,56 +314,80 @@ PolyhedronRead read_vtk(std::string_view bytes, const std::string& name) {
     }
     r.cell_where.push_back(ln);
   }
+  const CoordinatePrecision precision = r.soup.precision;
   r.soup = builder.take();
+  r.soup.precision = precision;
   return r;
 }
 
-std::string write_vtk(const VolumeMesh& mesh) {
-  const auto& X = mesh.positions();
-  fmt::memory_buffer b;
-  auto out = std::back_inserter(b);
-  fmt::format_to(out, "# vtk DataFile Version 4.2\npolydec volume mesh\nASCII\nDATASET UNSTRUCTURED_GRID\n");
-  fmt::format_to(out, "POINTS {} double\n", mesh.n_vertices());
-  for (int v = 0; v < mesh.n_vertices(); ++v)
-    fmt::format_to(out, "{} {} {}\n", num(X(v, 0)), num(X(v, 1)), num(X(v, 2)));
-  std::vector<int> types(mesh.n_cells());
-  std::vector<std::array<int, 8>> orders(mesh.n_cells());
-  long long size = 0;
+// The classic cell list of the mesh (per cell its count, then its point ids or, for a polyhedron,
+// its face stream with outward faces) and the cells' VTK types.
+void vtk_cells(const VolumeMesh& mesh, std::vector<int>& entries, std::vector<int>& types) {
+  types.assign(size_t(mesh.n_cells()), 0);
+  entries.clear();
+  std::array<int, 8> order{};
   for (int c = 0; c < mesh.n_cells(); ++c) {
-    const CellShape s = cell_shape(mesh, c, &orders[c]);
-    types[c] = s == CellShape::tetrahedron  ? kVtkTetra
-               : s == CellShape::pyramid    ? kVtkPyramid
-               : s == CellShape::wedge      ? kVtkWedge
-               : s == CellShape::hexahedron ? kVtkHexahedron
-                                            : kVtkPolyhedron;
-    if (types[c] == kVtkPolyhedron) {
-      size += 2;
-      for (int h : mesh.cell(c)) size += 1 + mesh.face_size(h / 2);
-    } else {
-      size += 1 + vtk_cell_size(types[c]);
-    }
-  }
-  fmt::format_to(out, "CELLS {} {}\n", mesh.n_cells(), size);
-  for (int c = 0; c < mesh.n_cells(); ++c) {
-    if (types[c] == kVtkPolyhedron) {
-      long long n = 1;
-      for (int h : mesh.cell(c)) n += 1 + mesh.face_size(h / 2);
-      fmt::format_to(out, "{} {}", n, mesh.cell_size(c));
+    const CellShape s = cell_shape(mesh, c, &order);
+    const int type = s == CellShape::tetrahedron  ? kVtkTetra
+                     : s == CellShape::pyramid    ? kVtkPyramid
+                     : s == CellShape::wedge      ? kVtkWedge
+                     : s == CellShape::hexahedron ? kVtkHexahedron
+                                                  : kVtkPolyhedron;
+    types[c] = type;
+    if (type == kVtkPolyhedron) {
+      const size_t count_at = entries.size();
+      entries.push_back(0);
+      entries.push_back(mesh.cell_size(c));
       for (int h : mesh.cell(c)) {  // outward faces, as VTK's polyhedra expect
         const auto f = mesh.face(h / 2);
-        fmt::format_to(out, " {} {}", f.size(), f[0]);
-        for (size_t i = 1; i < f.size(); ++i) fmt::format_to(out, " {}", (h & 1) ? f[f.size() - i] : f[i]);
+        entries.push_back(int(f.size()));
+        entries.push_back(f[0]);
+        for (size_t i = 1; i < f.size(); ++i) entries.push_back((h & 1) ? f[f.size() - i] : f[i]);
       }
+      entries[count_at] = int(entries.size() - count_at - 1);
     } else {
-      const int n = vtk_cell_size(types[c]);
-      fmt::format_to(out, "{}", n);
-      for (int i = 0; i < n; ++i) fmt::format_to(out, " {}", orders[c][i]);
+      const int n = vtk_cell_size(type);
+      entries.push_back(n);
+      entries.insert(entries.end(), order.begin(), order.begin() + n);
     }
-    b.push_back('\n');
   }
-  fmt::format_to(out, "CELL_TYPES {}\n", mesh.n_cells());
-  for (int t : types) fmt::format_to(out, "{}\n", t);
-  return fmt::to_string(b);
+}
+
+std::string write_vtk(const VolumeMesh& mesh, bool binary) {
+  const auto& X = mesh.positions();
+  std::vector<int> entries, types;
+  vtk_cells(mesh, entries, types);
+  std::string out =
+      fmt::format("# vtk DataFile Version 4.2\npolydec volume mesh\n{}\nDATASET UNSTRUCTURED_GRID\n",
+                  binary ? "BINARY" : "ASCII");
+  out += fmt::format("POINTS {} double\n", mesh.n_vertices());
+  if (binary) {
+    out.reserve(out.size() + 24 * size_t(mesh.n_vertices()) + 4 * (entries.size() + types.size()) + 64);
+    for (int v = 0; v < mesh.n_vertices(); ++v)
+      for (int d = 0; d < 3; ++d) put_bytes(out, X(v, d), true);
+    out += fmt::format("\nCELLS {} {}\n", mesh.n_cells(), entries.size());
+    for (int e : entries) put_bytes(out, std::int32_t(e), true);
+    out += fmt::format("\nCELL_TYPES {}\n", mesh.n_cells());
+    for (int t : types) put_bytes(out, std::int32_t(t), true);
+    out += '\n';
+    return out;
+  }
+  fmt::memory_buffer b;
+  auto it = std::back_inserter(b);
+  for (int v = 0; v < mesh.n_vertices(); ++v)
+    fmt::format_to(it, "{} {} {}\n", num(X(v, 0)), num(X(v, 1)), num(X(v, 2)));
+  fmt::format_to(it, "CELLS {} {}\n", mesh.n_cells(), entries.size());
+  for (size_t k = 0; k < entries.size();) {
+    const size_t n = size_t(entries[k]);
+    fmt::format_to(it, "{}", n);
+    for (size_t i = 1; i <= n; ++i) fmt::format_to(it, " {}", entries[k + i]);
+    b.push_back('\n');
+    k += n + 1;
+  }
+  fmt::format_to(it, "CELL_TYPES {}\n", mesh.n_cells());
+  for (int t : types) fmt::format_to(it, "{}\n", t);
+  out.append(b.data(), b.size());
+  return out;
 }
 
 }  // namespace io_detail

@@ -25,16 +25,16 @@ void check_position(const Eigen::MatrixX3d& X, long v) {
                                        v, X.row(v).cwiseAbs().maxCoeff(), kMaxCoordinate));
 }
 
+}  // namespace
+
 // Rejects a coordinate precision or planarity tolerance outside [0, 1) (NaN included).
-void check_precision(const CoordinatePrecision& p) {
+void check_coordinate_precision(const CoordinatePrecision& p) {
   for (double x : {p.noise, p.planarity_tolerance})
     if (!(x >= 0 && x < 1))
       throw InvalidMeshError(
           "mesh", 0,
           fmt::format("coordinate precision {:g} outside [0, 1) (relative to the mesh's size)", x));
 }
-
-}  // namespace
 
 void PolygonSoup::add_face(std::span<const int> f) {
   face_indices.insert(face_indices.end(), f.begin(), f.end());
@@ -54,7 +54,7 @@ Mesh::Mesh(PolygonSoup soup) {
   const int nf = int(soup.face_offsets.size()) - 1;
 
   for (long v = 0; v < nv; ++v) check_position(soup.positions, v);
-  check_precision(soup.precision);
+  check_coordinate_precision(soup.precision);
   precision_ = soup.precision;
 
   // Faces: size, index range, repeated vertices.
@@ -215,17 +215,19 @@ Mesh Mesh::with_positions(Eigen::MatrixX3d positions) const {
 }
 
 Mesh Mesh::with_precision(const CoordinatePrecision& precision) const {
-  check_precision(precision);
+  check_coordinate_precision(precision);
   Mesh m = *this;
   m.precision_ = precision;
   return m;
 }
 
-double Mesh::rms_radius() const {
-  if (n_vertices() == 0) return 0.0;
-  const Eigen::RowVector3d c = positions_.colwise().mean();
-  return std::sqrt((positions_.rowwise() - c).rowwise().squaredNorm().mean());
+double rms_radius(const Eigen::MatrixX3d& X) {
+  if (X.rows() == 0) return 0.0;
+  const Eigen::RowVector3d c = X.colwise().mean();
+  return std::sqrt((X.rowwise() - c).rowwise().squaredNorm().mean());
 }
+
+double Mesh::rms_radius() const { return polydec::rms_radius(positions_); }
 
 double Mesh::mean_edge_length() const {
   if (n_edges() == 0) return 0.0;

@@ -47,6 +47,13 @@ class InvalidMeshError : public std::runtime_error {
   long index;
 };
 
+// Root-mean-square distance of the rows of X (|V| x 3) from their mean; 0 for no rows.
+double rms_radius(const Eigen::MatrixX3d& X);
+
+// Throws InvalidMeshError (element "mesh") unless the noise and planarity tolerance of p are in
+// [0, 1) (what Mesh and VolumeMesh accept).
+void check_coordinate_precision(const CoordinatePrecision& p);
+
 // A validated polygon mesh.
 //
 // Halfedges are face corners: halfedge h is position h in face_indices(); it starts at

@@ -25,11 +25,8 @@ namespace {
 // else the mesh's, else the mesh's coordinate noise (`noise`, absolute) or the corners' own
 // double round-off, whichever is larger.
 PlanarityCut face_planarity(const Mesh& mesh, const RefinementOptions& o, double noise, const double* x, int n) {
-  if (o.planarity_tolerance > 0) return {0.0, o.planarity_tolerance};
-  if (mesh.precision().planarity_tolerance > 0) return {0.0, mesh.precision().planarity_tolerance};
-  double m = 0;
-  for (int k = 0; k < 3 * n; ++k) m = std::max(m, std::abs(x[k]));
-  return {std::max(noise, 0x1p-53 * m), 0.0};
+  return planarity_cut(
+      o.planarity_tolerance > 0 ? o.planarity_tolerance : mesh.precision().planarity_tolerance, noise, x, n);
 }
 
 // Virtual vertex and fan classification of face f with N corners (0: any), written into r.

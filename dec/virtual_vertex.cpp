@@ -238,6 +238,11 @@ double scale2(const PolygonPositions& Y) { return Y.rowwise().squaredNorm().maxC
 
 }  // namespace
 
+PlanarityCut planarity_cut(double tolerance, double noise, const double* x, int n) {
+  if (tolerance > 0) return {0.0, tolerance};
+  return {std::max(noise, roundoff_noise(x, n)), 0.0};
+}
+
 VirtualVertexRule parse_virtual_vertex_rule(const std::string& name) {
   if (name == "squared-area" || name == "affine") return VirtualVertexRule::SquaredArea;
   if (name == "centroid") return VirtualVertexRule::Centroid;

@@ -33,6 +33,12 @@ struct PlanarityCut {
   double relative = 0.0;  // > 0: overrides `noise`
 };
 
+// The planarity decision of a mesh's polygon with the n corners x (row by row): `tolerance` when
+// > 0 (a user's or the mesh's planarity tolerance), else the mesh's absolute coordinate noise
+// (CoordinatePrecision::noise times the mesh's rms radius) or the corners' own double round-off,
+// whichever is larger. Shared by the surface and volume refinements.
+PlanarityCut planarity_cut(double tolerance, double noise, const double* x, int n);
+
 // Parses "squared-area" (or "affine"), "centroid", "abs-area", "convex", "trace-min"; throws
 // std::invalid_argument otherwise.
 VirtualVertexRule parse_virtual_vertex_rule(const std::string& name);

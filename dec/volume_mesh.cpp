@@ -85,6 +85,8 @@ VolumeMesh::VolumeMesh(PolyhedronSoup soup) {
   const auto& fi = soup.face_indices;
 
   for (long v = 0; v < nv; ++v) check_position(soup.positions, v);
+  check_coordinate_precision(soup.precision);
+  precision_ = soup.precision;
 
   // Faces: size, index range, repeated vertices, duplicates (same vertex set as another face).
   std::vector<int> sorted(fi);  // each face's vertices ascending, same offsets
@@ -269,13 +271,24 @@ VolumeMesh VolumeMesh::with_positions(Eigen::MatrixX3d positions) const {
   for (long v = 0; v < positions.rows(); ++v) check_position(positions, v);
   VolumeMesh m;
   m.positions_ = std::move(positions);
+  m.precision_ = precision_;
   m.topo_ = topo_;
   return m;
 }
 
+VolumeMesh VolumeMesh::with_precision(const CoordinatePrecision& precision) const {
+  check_coordinate_precision(precision);
+  VolumeMesh m = *this;
+  m.precision_ = precision;
+  return m;
+}
+
+double VolumeMesh::rms_radius() const { return polydec::rms_radius(positions_); }
+
 Mesh VolumeMesh::boundary_surface() const {
   PolygonSoup s;
   s.positions = positions_;
+  s.precision = precision_;
   std::vector<int> poly;
   for (int f = 0; f < n_faces(); ++f) {
     const auto fc = face_cells(f);

@@ -24,6 +24,7 @@ struct PolyhedronSoup {
   std::vector<int> face_indices;
   std::vector<int> cell_offsets{0};  // |C| + 1 entries
   std::vector<int> cell_halffaces;
+  CoordinatePrecision precision;  // what the source's digits resolve (dec/mesh.h)
 
   int n_vertices() const { return int(positions.rows()); }
   int n_faces() const { return int(face_offsets.size()) - 1; }
@@ -49,8 +50,20 @@ class VolumeMesh {
   VolumeMesh() = default;
   explicit VolumeMesh(PolyhedronSoup soup);
 
-  // The same connectivity with new positions (|V| x 3, finite); shares connectivity.
+  // The same connectivity and coordinate precision with new positions (|V| x 3, finite); shares
+  // connectivity.
   VolumeMesh with_positions(Eigen::MatrixX3d positions) const;
+  // The same mesh with another coordinate precision (noise and planarity tolerance in [0, 1)).
+  VolumeMesh with_precision(const CoordinatePrecision& precision) const;
+  // What the coordinates resolve, relative to rms_radius(), as on surfaces (Mesh::precision()):
+  // recorded by the readers from the file's digits (float32: half an ulp), 0 (exact doubles) for
+  // generated meshes. Decides which nearly planar faces count as planar for the face points'
+  // least-norm weights (dec/volume_refinement.h) and in `polydec info`.
+  const CoordinatePrecision& precision() const { return precision_; }
+  // Root-mean-square distance of the vertices from their mean: the size the precision refers to.
+  double rms_radius() const;
+  // The coordinates' absolute uncertainty, precision().noise * rms_radius().
+  double coordinate_noise() const { return precision_.noise * rms_radius(); }
 
   const Eigen::MatrixX3d& positions() const { return positions_; }
   Eigen::Vector3d position(int v) const { return positions_.row(v).transpose(); }
@@ -91,7 +104,8 @@ class VolumeMesh {
   int n_unreferenced_vertices() const { return topo_->n_unreferenced; }
 
   // The boundary surface (boundary faces, oriented outward) as a surface Mesh on all |V|
-  // vertices (interior vertices unreferenced), so every surface tool applies to it.
+  // vertices (interior vertices unreferenced, the same coordinate precision: the same positions,
+  // so the same rms_radius), so every surface tool applies to it.
   Mesh boundary_surface() const;
 
   // Signed volume of cell c (divergence theorem over its half-faces, each split into triangles
@@ -114,6 +128,7 @@ class VolumeMesh {
     int n_unreferenced = 0;
   };
   Eigen::MatrixX3d positions_;
+  CoordinatePrecision precision_;
   std::shared_ptr<const Topology> topo_ = std::make_shared<Topology>();
 };
 

@@ -185,6 +185,9 @@ VolumeRefinement refine_volume(const VolumeMesh& mesh, const VolumeRefinementOpt
 
   R.face_weights.resize(mesh.face_indices().size());
   R.face_points.resize(nF, 3);
+  const double planarity =
+      options.planarity_tolerance > 0 ? options.planarity_tolerance : mesh.precision().planarity_tolerance;
+  const double noise = mesh.coordinate_noise();
   run_on_threads(T, [&](int t) {
     std::vector<double> corners, work;
     for (int f = int(long(nF) * t / T); f < int(long(nF) * (t + 1) / T); ++f) {
@@ -195,7 +198,8 @@ VolumeRefinement refine_volume(const VolumeMesh& mesh, const VolumeRefinementOpt
       for (int k = 0; k < n; ++k)
         for (int d = 0; d < 3; ++d) corners[3 * k + d] = P(face[k], d);
       double* w = R.face_weights.data() + mesh.face_offsets()[f];
-      squared_area_weights(corners.data(), n, w, work.data());
+      squared_area_weights(corners.data(), n, w, work.data(),
+                           planarity_cut(planarity, noise, corners.data(), n));
       Eigen::Vector3d x = Eigen::Vector3d::Zero();
       for (int k = 0; k < n; ++k) x += w[k] * Eigen::Vector3d(corners[3 * k], corners[3 * k + 1], corners[3 * k + 2]);
       R.face_points.row(f) = x.transpose();

@@ -40,6 +40,11 @@ struct VolumeRefinementOptions {
   // longest edge (relative to its own size: independent of the mesh's scale and position).
   // Degenerate sub-tetrahedra add no stiffness and no Whitney 1-, 2-, 3-form mass.
   double degenerate_tolerance = 1e-8;
+  // Planarity of nearly planar faces for the face points' least-norm weights, as on surfaces
+  // (RefinementOptions::planarity_tolerance): 0 decides from the mesh's coordinate precision
+  // (VolumeMesh::precision(): what the file's digits resolve, double round-off for generated
+  // meshes); > 0 overrides it and the mesh's own planarity_tolerance.
+  double planarity_tolerance = 0.0;
   // Threads for the face and cell loops (0: all hardware threads); results do not depend on it.
   int threads = 1;
 };

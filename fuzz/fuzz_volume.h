@@ -1,7 +1,8 @@
 // fuzz/fuzz_volume.h — the contract every fuzzed volume file must satisfy: the reader throws
 // FileError (naming the file, with a reason and a sane line) or returns a soup with consistent
 // offsets and indices in range; VolumeMesh then throws only InvalidMeshError or yields a mesh
-// whose volume is finite and which survives OVM and VTK round trips (same cells, same volume).
+// whose volume is finite and which survives OVM, VTK ASCII and VTK BINARY round trips (same
+// cells, same volume).
 #pragma once
 
 #include <cmath>
@@ -57,8 +58,12 @@ inline void check_volume_reader(const uint8_t* data, size_t size, const char* fo
   } catch (const InvalidMeshError&) {
     // A non-manifold boundary (cells touching along an edge) is not a surface Mesh.
   }
-  for (const char* f : {"ovm", "vtk"}) {
-    const VolumeMesh r = read_volume_mesh_from_memory(write_volume_mesh_to_string(m, f), f, "round trip");
+  for (int k = 0; k < 3; ++k) {
+    const char* f = k == 0 ? "ovm" : "vtk";
+    WriteOptions options;
+    options.binary = k == 2;
+    const VolumeMesh r =
+        read_volume_mesh_from_memory(write_volume_mesh_to_string(m, f, options), f, "round trip");
     require(r.n_cells() == m.n_cells() && r.n_faces() == m.n_faces(), "round trip keeps cells and faces");
     require(r.positions() == m.positions(), "round trip keeps positions");
     // Rounding scale of the volume sum: per cell (diameter)^3 times its corner count (the

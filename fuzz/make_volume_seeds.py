@@ -1,8 +1,11 @@
 #!/usr/bin/env python3
 # fuzz/make_volume_seeds.py — writes the seed corpora fuzz/corpus/{ovm,vtk,medit}/: small
 # generated volume meshes (a tetrahedron, a Kuhn-split cube, two hexahedra, two wedges, a
-# pyramid on a hexahedron, a polyhedron cell) in each format. Rerun only to change them.
+# pyramid on a hexahedron, a polyhedron cell) in each format, and VTK BINARY variants (classic
+# int32 cells with float or double points, the 5.1 int64 layout, polyhedra, a METADATA block).
+# Rerun only to change them.
 import os
+import struct
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -82,16 +85,22 @@ def ovm(points, cells):
     return s
 
 
+def face_streams(cells):
+    # Each cell's polyhedron face stream: n_faces, then per face its size and vertices.
+    out = []
+    for polys in polygons(cells):
+        e = [len(polys)]
+        for p in polys:
+            e += [len(p)] + p
+        out.append(e)
+    return out
+
+
 def vtk(points, cells, version="3.0", polyhedron=False):
     s = "# vtk DataFile Version %s\nseed\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS %d double\n" % (version, len(points))
     s += "".join("%r %r %r\n" % p for p in points)
     if polyhedron:
-        entries = []
-        for polys in polygons(cells):
-            e = [len(polys)]
-            for p in polys:
-                e += [len(p)] + p
-            entries.append([len(e)] + e)
+        entries = [[len(e)] + e for e in face_streams(cells)]
         s += "CELLS %d %d\n" % (len(entries), sum(len(e) for e in entries))
         s += "".join(" ".join(map(str, e)) + "\n" for e in entries)
         s += "CELL_TYPES %d\n" % len(cells) + "42\n" * len(cells)
@@ -109,6 +118,33 @@ def vtk(points, cells, version="3.0", polyhedron=False):
     return s
 
 
+def vtk_binary(points, cells, version="4.2", polyhedron=False, point_type="double", metadata=False):
+    # Big-endian payloads, each after its header line's newline, as VTK's legacy writer does.
+    pack = {"double": ">3d", "float": ">3f"}[point_type]
+    s = b"# vtk DataFile Version %s\nseed\nBINARY\nDATASET UNSTRUCTURED_GRID\nPOINTS %d %s\n" % (
+        version.encode(), len(points), point_type.encode())
+    s += b"".join(struct.pack(pack, *p) for p in points) + b"\n"
+    if metadata:
+        s += b"METADATA\nINFORMATION 1\nNAME L2_NORM_RANGE LOCATION vtkDataArray\nDATA 2 0 1.7 \n\n"
+    if polyhedron:
+        cells_out = [(42, e) for e in face_streams(cells)]
+    else:
+        cells_out = cells
+    if version.startswith("5"):
+        offs = [0]
+        for _, v in cells_out:
+            offs.append(offs[-1] + len(v))
+        s += b"CELLS %d %d\nOFFSETS vtktypeint64\n" % (len(offs), offs[-1])
+        s += struct.pack(">%dq" % len(offs), *offs) + b"\nCONNECTIVITY vtktypeint64\n"
+        flat = [i for _, v in cells_out for i in v]
+        s += struct.pack(">%dq" % len(flat), *flat) + b"\n"
+    else:
+        flat = [i for _, v in cells_out for i in [len(v)] + list(v)]
+        s += b"CELLS %d %d\n" % (len(cells_out), len(flat)) + struct.pack(">%di" % len(flat), *flat) + b"\n"
+    s += b"CELL_TYPES %d\n" % len(cells_out) + struct.pack(">%di" % len(cells_out), *[t for t, _ in cells_out]) + b"\n"
+    return s
+
+
 def medit(points, cells):
     s = "MeshVersionFormatted 2\nDimension 3\nVertices\n%d\n" % len(points)
     s += "".join("%r %r %r 0\n" % p for p in points)
@@ -122,7 +158,7 @@ def medit(points, cells):
 def put(target, name, text):
     d = os.path.join(HERE, "corpus", target)
     os.makedirs(d, exist_ok=True)
-    with open(os.path.join(d, name), "w") as f:
+    with open(os.path.join(d, name), "wb" if isinstance(text, bytes) else "w") as f:
         f.write(text)
 
 
@@ -133,3 +169,9 @@ for name, (points, cells) in MESHES.items():
         put("medit", name + ".mesh", medit(points, cells))
 put("vtk", "kuhn_v5.vtk", vtk(*MESHES["kuhn"], version="5.1"))
 put("vtk", "two_hexes_polyhedra.vtk", vtk(*MESHES["two_hexes"], polyhedron=True))
+put("vtk", "tet_binary.vtk", vtk_binary(*MESHES["tet"]))
+put("vtk", "pyramid_hex_binary_float.vtk", vtk_binary(*MESHES["pyramid_hex"], point_type="float", metadata=True))
+put("vtk", "wedges_binary.vtk", vtk_binary(*MESHES["wedges"]))
+put("vtk", "kuhn_v5_binary.vtk", vtk_binary(*MESHES["kuhn"], version="5.1", metadata=True))
+put("vtk", "two_hexes_polyhedra_binary.vtk", vtk_binary(*MESHES["two_hexes"], polyhedron=True))
+put("vtk", "two_hexes_polyhedra_v5_binary.vtk", vtk_binary(*MESHES["two_hexes"], version="5.1", polyhedron=True))

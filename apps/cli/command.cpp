@@ -17,8 +17,9 @@ GlobalOptions& global_options() {
 
 namespace load_detail {
 
-// The mesh with the user's planarity tolerance, if one was given.
-Mesh with_global_options(Mesh mesh) {
+// The mesh (surface or volume) with the user's planarity tolerance, if one was given.
+template <class AnyMesh>
+AnyMesh with_global_options(AnyMesh mesh) {
   const double t = global_options().planarity_tolerance;
   if (t <= 0) return mesh;
   CoordinatePrecision p = mesh.precision();
@@ -50,7 +51,9 @@ Mesh load_mesh(const std::string& path, bool repair_first, std::vector<int>* ver
   }
 }
 
-VolumeMesh load_volume_mesh(const std::string& path) { return read_volume_mesh(path); }
+VolumeMesh load_volume_mesh(const std::string& path) {
+  return load_detail::with_global_options(read_volume_mesh(path));
+}
 
 void add_repair_flag(CLI::App& app, bool& flag) {
   app.add_flag("--repair", flag,

@@ -42,7 +42,8 @@ void print_json(const nlohmann::json& j);
 // step that changed something; `vertex_map` (if given) receives file vertex -> mesh vertex (-1 when removed).
 Mesh load_mesh(const std::string& path, bool repair_first, std::vector<int>* vertex_map = nullptr);
 
-// Reads the volume mesh at `path` (.ovm, .vtk or .mesh by extension; dec/io_volume.h). Throws
+// Reads the volume mesh at `path` (.ovm, .vtk or .mesh by extension; dec/io_volume.h), with the
+// global --planarity-tolerance as its precision's planarity_tolerance when one is given. Throws
 // FileError (exit code 3) for an unreadable or invalid file.
 VolumeMesh load_volume_mesh(const std::string& path);
 

@@ -4,12 +4,16 @@
 // each of these steps (so `--dual --subdivide 1 --unit-sphere` on unit-sphere.off builds the
 // paper's FINE SPHERE, `--dual --unit-sphere` its HEX SPHERE). Volume meshes (.ovm, .vtk, .mesh
 // or --volume) convert between the volume formats, or with --boundary to their boundary surface.
+// --binary writes OUT in its binary form: VTK legacy BINARY (.vtk), PLY binary_little_endian
+// (.ply), OFF BINARY (.off, float32 positions).
 #include "polydec/apps/cli/command.h"
 #include "polydec/dec/generators.h"
 #include "polydec/dec/io.h"
 #include "polydec/dec/io_volume.h"
 
 #include <fmt/format.h>
+
+#include <cctype>
 
 namespace polydec::cli::convert_command {
 namespace {
@@ -20,7 +24,20 @@ struct Options {
   bool dual = false, unit_sphere = false, json = false;
   int subdivide = 0;
   bool volume = false, boundary = false;  // --volume, --boundary
+  bool binary = false;                    // --binary
 };
+
+// The write options of OUT; --binary for a format without a binary form is a usage error.
+WriteOptions write_options(const Options& o) {
+  WriteOptions w;
+  w.binary = o.binary;
+  const std::string out = o.out.size() >= 4 ? o.out.substr(o.out.size() - 4) : o.out;
+  std::string ext;
+  for (char c : out) ext += char(std::tolower(static_cast<unsigned char>(c)));
+  if (o.binary && ext != ".vtk" && ext != ".ply" && ext != ".off")
+    throw UsageError(fmt::format("--binary: {} has no binary form here (.vtk, .ply, .off have)", o.out));
+  return w;
+}
 
 void run_volume(const Options& o) {
   if (o.dual || o.subdivide != 0 || o.unit_sphere || o.repair)
@@ -30,7 +47,7 @@ void run_volume(const Options& o) {
   if (o.boundary) {
     if (is_volume_mesh_path(o.out)) throw UsageError("--boundary writes a surface mesh (.obj, .off, .ply)");
     const Mesh b = m.boundary_surface();
-    write_mesh(o.out, b);
+    write_mesh(o.out, b, {}, write_options(o));
     j["vertices"] = b.n_vertices();
     j["faces"] = b.n_faces();
     j["boundary"] = true;
@@ -41,7 +58,7 @@ void run_volume(const Options& o) {
     if (!is_volume_mesh_path(o.out))
       throw UsageError(
           fmt::format("{}: a volume mesh is written as .ovm, .vtk or .mesh (or use --boundary)", o.out));
-    write_volume_mesh(m, o.out);
+    write_volume_mesh(m, o.out, write_options(o));
     j["vertices"] = m.n_vertices();
     j["faces"] = m.n_faces();
     j["cells"] = m.n_cells();
@@ -64,7 +81,7 @@ void run(const Options& o) {
   if (o.dual) mesh = project(dual(mesh));
   for (int k = 0; k < o.subdivide; ++k) mesh = project(catmull_clark(mesh));
   if (!o.dual && o.subdivide == 0) mesh = project(mesh);
-  write_mesh(o.out, mesh);
+  write_mesh(o.out, mesh, {}, write_options(o));
   const nlohmann::json j = {{"in", o.in}, {"out", o.out}, {"vertices", mesh.n_vertices()}, {"faces", mesh.n_faces()}};
   if (o.json)
     print_json(j);
@@ -82,6 +99,9 @@ const RegisterCommand reg("convert", "Convert between formats; optionally dual, 
                             app.add_flag("--unit-sphere", o->unit_sphere, "project to the unit sphere (after each step)");
                             app.add_flag("--volume", o->volume, "read IN as a volume mesh (implied by .ovm, .vtk, .mesh)");
                             app.add_flag("--boundary", o->boundary, "volume IN: write its boundary surface to OUT (.obj, .off, .ply)");
+                            app.add_flag("--binary", o->binary,
+                                         "write OUT in binary form: VTK legacy BINARY (.vtk), PLY binary (.ply), "
+                                         "OFF BINARY (.off, float32)");
                             app.add_flag("--json", o->json, "print one JSON object instead of text");
                             add_repair_flag(app, o->repair);
                             app.callback([o] { run(*o); });

@@ -9,6 +9,7 @@
 
 #include <Eigen/SVD>
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 #include <fmt/format.h>
@@ -24,8 +25,9 @@ struct Options {
 };
 
 // Largest distance of a face's vertex to its least-squares plane over the face's diameter (the
-// surface statistic of mesh_statistics, applied to the faces of a volume mesh).
-double face_nonplanarity(const VolumeMesh& m, int f) {
+// surface statistic of mesh_statistics, applied to the faces of a volume mesh); `diameter_out`
+// receives the diameter.
+double face_nonplanarity(const VolumeMesh& m, int f, double& diameter_out) {
   const auto vs = m.face(f);
   const int n = int(vs.size());
   Eigen::MatrixX3d X(n, 3);
@@ -37,6 +39,7 @@ double face_nonplanarity(const VolumeMesh& m, int f) {
   double diameter = 0;
   for (int a = 0; a < n; ++a)
     for (int b = a + 1; b < n; ++b) diameter = std::max(diameter, (X.row(a) - X.row(b)).norm());
+  diameter_out = diameter;
   return diameter > 0 ? (Y * normal).cwiseAbs().maxCoeff() / diameter : 0.0;
 }
 
@@ -71,12 +74,17 @@ void run_volume(const Options& o) {
   double max_np = 0, sum_np = 0;
   int nonplanar = 0;
   const double tolerance = 1e-5;
+  // A face counts as non-planar when it deviates more than the tolerance of its diameter and more
+  // than sqrt(3) times the coordinates' absolute noise (how far moving each coordinate by what the
+  // file's digits resolve can take a vertex off a plane; 0 for exact doubles).
+  const double noise = m.coordinate_noise();
   for (int f = 0; f < m.n_faces(); ++f) {
     ++face_sizes[m.face_size(f)];
-    const double d = face_nonplanarity(m, f);
+    double diameter = 0;
+    const double d = face_nonplanarity(m, f, diameter);
     max_np = std::max(max_np, d);
     sum_np += d;
-    nonplanar += d > tolerance;
+    nonplanar += d > tolerance && d * diameter > std::sqrt(3.0) * noise;
   }
   nlohmann::json fs = nlohmann::json::object();
   for (const auto& [n, c] : face_sizes) fs[std::to_string(n)] = c;
@@ -102,6 +110,8 @@ void run_volume(const Options& o) {
                             {"mean_edge_length", m.mean_edge_length()},
                             {"bounding_box_diagonal", m.bounding_box_diagonal()},
                             {"planarity_tolerance", tolerance},
+                            {"coordinate_precision", m.precision().noise},
+                            {"coordinate_noise", noise},
                             {"nonplanar_faces", nonplanar},
                             {"max_nonplanarity", max_np},
                             {"mean_nonplanarity", m.n_faces() ? sum_np / m.n_faces() : 0.0}};
@@ -125,6 +135,9 @@ void run_volume(const Options& o) {
   fmt::print("  mean edge length {:.6g}, bounding-box diagonal {:.6g}\n", m.mean_edge_length(), m.bounding_box_diagonal());
   fmt::print("  planarity: {} faces deviate more than {:g} of their diameter from their plane (max {:.3g}, mean {:.3g})\n",
              nonplanar, tolerance, max_np, m.n_faces() ? sum_np / m.n_faces() : 0.0);
+  if (noise > 0)
+    fmt::print("  coordinate precision: the file's digits resolve {:.3g} ({:.3g} of the rms radius); faces within it count as planar\n",
+               noise, m.precision().noise);
 }
 
 void run(const Options& o) {

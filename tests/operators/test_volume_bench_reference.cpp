@@ -47,7 +47,9 @@ TEST_CASE("volume S and M equal the plain benchmark reference on the shared cube
                            "volume/cube_tetrahedron_1.ovm", "volume/noisycube.ovm"}) {
     POLYDEC_SHARED_MESH(path, name);
     INFO(path);
-    check_against_reference(read_volume_mesh(path), path.find("noisy") == std::string::npos);
+    // The reference takes the coordinates as exact doubles: so does the mesh here (the noisy
+    // cube's 6 digits would let polydec count some of its nearly planar faces as planar).
+    check_against_reference(read_volume_mesh(path).with_precision({}), path.find("noisy") == std::string::npos);
   }
 }
 
