@@ -4,7 +4,9 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <span>
 #include <stdexcept>
 
 #include "polydec/dec/threads.h"
@@ -22,17 +24,13 @@ void halfface_vertices(const VolumeMesh& mesh, int hf, std::vector<int>& out) {
   if (hf & 1) std::reverse(out.begin(), out.end());
 }
 
-// Quality of the sub-tetrahedron (a, b, f, c) (face triangle (a, b, f) in outward order, cell point
-// c): degenerate when 6 |vol| <= tolerance * longest edge^3, compared squared (tol2 = tolerance^2,
-// no square roots); inverted when c lies on the outer side of the face triangle.
-inline SubTet classify(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& f,
-                       const Eigen::Vector3d& c, double tol2) {
-  const double vol6 = (b - a).dot((f - a).cross(c - a));  // 6 tet_signed_volume(a, b, f, c)
-  const double longest2 = std::max({(b - a).squaredNorm(), (f - a).squaredNorm(), (c - a).squaredNorm(),
-                                    (f - b).squaredNorm(), (c - b).squaredNorm(), (c - f).squaredNorm()});
+// Quality of a sub-tetrahedron (x_i, x_{i+1}, x_f, x_c) (face triangle in outward order, cell
+// point x_c) from vol6 = 6 signed volume = ((x_i - x_f) x (x_{i+1} - x_f)) . (x_c - x_f) and its
+// longest squared edge: degenerate when |vol6| <= tolerance * longest edge^3, compared squared
+// (tol2 = tolerance^2, no square roots); inverted when x_c lies on the outer side of the face
+// triangle: its normal points away from the cell, so a cell point inside gives vol6 < 0.
+inline SubTet classify(double vol6, double longest2, double tol2) {
   if (!(vol6 * vol6 > tol2 * longest2 * longest2 * longest2)) return SubTet::Degenerate;
-  // Outward face triangle (a, b, f): its normal n = (b - a) x (f - a) points away from the cell,
-  // so a cell point inside gives n . (c - a) < 0, i.e. vol6 < 0.
   return vol6 < 0 ? SubTet::Valid : SubTet::Inverted;
 }
 
@@ -52,6 +50,56 @@ std::string to_string(CellPointRule rule) {
 namespace volume_refinement_detail {
 namespace {
 
+// A symmetric 3x3 matrix by its upper triangle (a00, a01, a02, a11, a12, a22).
+using Sym3 = std::array<double, 6>;
+
+Eigen::Matrix3d to_matrix(const Sym3& a) {
+  Eigen::Matrix3d A;
+  A << a[0], a[1], a[2], a[1], a[3], a[4], a[2], a[4], a[5];
+  return A;
+}
+
+// Solves A x = b by Cholesky when det A > tau trace(A)^3 (which implies lambda_min > tau
+// lambda_max for a positive semi-definite A, without the eigenvalues); false (x not written)
+// otherwise.
+bool well_conditioned_solve(const Sym3& a, const double* b, double tau, double* x) {
+  const double tr = a[0] + a[3] + a[5];
+  const double det = a[0] * (a[3] * a[5] - a[4] * a[4]) - a[1] * (a[1] * a[5] - a[4] * a[2]) +
+                     a[2] * (a[1] * a[4] - a[3] * a[2]);
+  if (!(det > tau * tr * tr * tr)) return false;
+  const double l00 = std::sqrt(a[0]), l10 = a[1] / l00, l20 = a[2] / l00;
+  const double l11 = std::sqrt(a[3] - l10 * l10), l21 = (a[4] - l20 * l10) / l11;
+  const double l22 = std::sqrt(a[5] - l20 * l20 - l21 * l21);
+  const double y0 = b[0] / l00, y1 = (b[1] - l10 * y0) / l11, y2 = (b[2] - l20 * y0 - l21 * y1) / l22;
+  x[2] = y2 / l22;
+  x[1] = (y1 - l21 * x[2]) / l11;
+  x[0] = (y0 - l10 * x[1] - l20 * x[2]) / l00;
+  return true;
+}
+
+// The minimizer (offset from the centre) of sum_t (n_t . x - n_t . a_t)^2 from its normal
+// equations N x = r (N = sum n_t n_t^T, r = sum n_t (n_t . a_t), coordinates centred).
+Eigen::Vector3d solve_squared_volume(const Sym3& n, const Eigen::Vector3d& r) {
+  // Well conditioned (the usual case): a Cholesky solve when det N > 1e-6 trace(N)^3; otherwise
+  // the closed-form eigenvalues decide.
+  Eigen::Vector3d x;
+  if (well_conditioned_solve(n, r.data(), 1e-6, x.data())) return x;
+  const Eigen::Matrix3d N = to_matrix(n);
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> direct;
+  direct.computeDirect(N, Eigen::EigenvaluesOnly);
+  if (direct.eigenvalues()(0) > 1e-6 * direct.eigenvalues().cwiseAbs().maxCoeff())
+    return N.llt().solve(r);
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(N);
+  const Eigen::Vector3d lambda = eig.eigenvalues();
+  const double top = lambda.cwiseAbs().maxCoeff();
+  x.setZero();
+  if (top > 0)
+    for (int k = 0; k < 3; ++k)
+      if (lambda(k) > 1e-12 * top)
+        x += eig.eigenvectors().col(k) * (eig.eigenvectors().col(k).dot(r) / lambda(k));
+  return x;
+}
+
 // The squared-volume minimizer (squared_volume_minimizer()) of the triangles that
 // for_each_triangle(visit) passes to visit(a, b, c), in the same order on each call.
 template <class ForEachTriangle>
@@ -64,82 +112,52 @@ Eigen::Vector3d squared_volume_point(ForEachTriangle&& for_each_triangle) {
     ++T;
   });
   centre /= double(3 * std::max<long>(T, 1));
-  Eigen::Matrix3d N = Eigen::Matrix3d::Zero();
+  Sym3 N{};
   Eigen::Vector3d r = Eigen::Vector3d::Zero();
   for_each_triangle([&](const Eigen::Vector3d& at, const Eigen::Vector3d& bt, const Eigen::Vector3d& ct) {
     const Eigen::Vector3d a = at - centre, b = bt - centre, c = ct - centre;
     const Eigen::Vector3d n = (b - a).cross(c - a);
-    N += n * n.transpose();
+    N[0] += n[0] * n[0], N[1] += n[0] * n[1], N[2] += n[0] * n[2];
+    N[3] += n[1] * n[1], N[4] += n[1] * n[2], N[5] += n[2] * n[2];
     r += n * n.dot(a);
   });
-  // Well conditioned (the usual case): a Cholesky solve. det N > 1e-6 trace(N)^3 implies
-  // lambda_min >= det / trace^2 > 1e-6 lambda_max without the eigenvalues; otherwise the
-  // closed-form eigenvalues decide.
-  const double tr = N.trace();
-  if (N.determinant() > 1e-6 * tr * tr * tr) return centre + N.llt().solve(r);
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> direct;
-  direct.computeDirect(N, Eigen::EigenvaluesOnly);
-  if (direct.eigenvalues()(0) > 1e-6 * direct.eigenvalues().cwiseAbs().maxCoeff())
-    return centre + N.llt().solve(r);
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(N);
-  const Eigen::Vector3d lambda = eig.eigenvalues();
-  const double top = lambda.cwiseAbs().maxCoeff();
-  Eigen::Vector3d x = Eigen::Vector3d::Zero();
-  if (top > 0)
-    for (int k = 0; k < 3; ++k)
-      if (lambda(k) > 1e-12 * top)
-        x += eig.eigenvectors().col(k) * (eig.eigenvectors().col(k).dot(r) / lambda(k));
-  return centre + x;
+  return centre + solve_squared_volume(N, r);
 }
 
-// Least-norm affine weights of the points X (m x 3) reproducing x, written to w (m entries);
-// Xc is scratch (least_norm_affine_weights()).
-void affine_weights_into(const Eigen::MatrixX3d& X, const Eigen::Vector3d& x, double* w, Eigen::MatrixX3d& Xc) {
-  const long m = X.rows();
-  const Eigen::RowVector3d mean = X.colwise().mean();
-  Xc = X.rowwise() - mean;
+// Least-norm affine weights of the centred points Xc (m x 3, columns summing to zero) reproducing
+// the offset y from their mean, written to w (m entries): w = 1/m + Xc^+ y.
+void centred_affine_weights(const Eigen::MatrixX3d& Xc, const Eigen::Vector3d& y, double* w) {
+  const long m = Xc.rows();
   // Full column rank (every 3D cell): Xc^+ = Xc (Xc^T Xc)^-1, through the 3x3 Gram matrix when it
   // is well conditioned (lambda_min > 1e-10 lambda_max: singular values within 1e-5 of each
   // other's scale, so the Gram's round-off stays near 1e-6 of the COD's threshold; det G > 1e-10
   // trace(G)^3 implies it without the eigenvalues); otherwise the decomposition below.
-  Eigen::Matrix3d G;
-  for (int i = 0; i < 3; ++i)
-    for (int j = i; j < 3; ++j) G(i, j) = G(j, i) = Xc.col(i).dot(Xc.col(j));
-  const double tr = G.trace();
-  bool gram = G.determinant() > 1e-10 * tr * tr * tr;
+  Sym3 g{};
+  const double *x0 = Xc.col(0).data(), *x1 = Xc.col(1).data(), *x2 = Xc.col(2).data();
+  for (long k = 0; k < m; ++k) {
+    g[0] += x0[k] * x0[k], g[1] += x0[k] * x1[k], g[2] += x0[k] * x2[k];
+    g[3] += x1[k] * x1[k], g[4] += x1[k] * x2[k], g[5] += x2[k] * x2[k];
+  }
+  double z[3];
+  bool gram = well_conditioned_solve(g, y.data(), 1e-10, z);
   if (!gram) {
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
-    eig.computeDirect(G, Eigen::EigenvaluesOnly);
-    gram = eig.eigenvalues()(0) > 1e-10 * eig.eigenvalues()(2);
+    eig.computeDirect(to_matrix(g), Eigen::EigenvaluesOnly);
+    if (eig.eigenvalues()(0) > 1e-10 * eig.eigenvalues()(2)) {
+      const Eigen::Vector3d zz = to_matrix(g).llt().solve(y);
+      z[0] = zz[0], z[1] = zz[1], z[2] = zz[2];
+      gram = true;
+    }
   }
   if (gram) {
-    const Eigen::Vector3d y = G.llt().solve((x - mean.transpose()).eval());
-    for (long k = 0; k < m; ++k) w[k] = 1.0 / double(m) + Xc.row(k).dot(y);
+    for (long k = 0; k < m; ++k) w[k] = 1.0 / double(m) + x0[k] * z[0] + x1[k] * z[1] + x2[k] * z[2];
     return;
   }
   const Eigen::MatrixXd XcT = Xc.transpose();  // 3 x m
   Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(XcT);
   cod.setThreshold(1e-12);
-  const Eigen::VectorXd v = cod.solve((x - mean.transpose()).eval());
+  const Eigen::VectorXd v = cod.solve(y);
   for (long k = 0; k < m; ++k) w[k] = 1.0 / double(m) + v[k];
-}
-
-// Calls visit(x_f, x_i, x_{i+1}) for the sub-tetrahedra of cell c in VolumeRefinement::tets
-// order: over the cell's half-faces and, within one, over its edges (i, i + 1) in outward order.
-template <class Visit>
-void for_each_cell_triangle(const VolumeMesh& mesh, const Eigen::MatrixX3d& face_points, int c, Visit&& visit) {
-  const auto& P = mesh.positions();
-  for (int hf : mesh.cell(c)) {
-    const auto face = mesh.face(hf / 2);
-    const int n = int(face.size());
-    const Eigen::Vector3d xf = face_points.row(hf / 2).transpose();
-    for (int i = 0; i < n; ++i) {
-      // Half-face 2f + 1 runs against the face: its i-th vertex is face[n - 1 - i].
-      const int j = i + 1 == n ? 0 : i + 1;
-      const int u = hf & 1 ? face[n - 1 - i] : face[i], v = hf & 1 ? face[n - 1 - j] : face[j];
-      visit(xf, Eigen::Vector3d(P(u, 0), P(u, 1), P(u, 2)), Eigen::Vector3d(P(v, 0), P(v, 1), P(v, 2)));
-    }
-  }
 }
 
 }  // namespace
@@ -155,8 +173,9 @@ Eigen::Vector3d squared_volume_minimizer(const Eigen::MatrixX3d& A, const Eigen:
 
 Eigen::VectorXd least_norm_affine_weights(const Eigen::MatrixX3d& X, const Eigen::Vector3d& x) {
   Eigen::VectorXd w(X.rows());
-  Eigen::MatrixX3d Xc;
-  volume_refinement_detail::affine_weights_into(X, x, w.data(), Xc);
+  const Eigen::RowVector3d mean = X.colwise().mean();
+  const Eigen::MatrixX3d Xc = X.rowwise() - mean;
+  volume_refinement_detail::centred_affine_weights(Xc, (x - mean.transpose()).eval(), w.data());
   return w;
 }
 
@@ -218,29 +237,63 @@ VolumeRefinement refine_volume(const VolumeMesh& mesh, const VolumeRefinementOpt
   R.cell_weights.resize(size_t(R.cell_weight_offsets[nC]));
   R.tets.resize(size_t(R.tet_offsets[nC]));
   std::vector<SubTetQuality> quality(T);
+  // One cell in two passes over its sub-tetrahedra, in coordinates relative to the mean o of its
+  // vertices: the first builds the squared-volume normal equations from the face triangles'
+  // normals n_t = (x_i - x_f) x (x_{i+1} - x_f) and keeps them with the triangles' longest squared
+  // edge; the second classifies with 6 vol = n_t . (x_c - x_f) (classify()'s determinant) and the
+  // squared distances of x_c from the corners and the face point.
   run_on_threads(T, [&](int thread) {
-    Eigen::MatrixX3d X, Xc;  // reused: no allocation per cell of the same size
+    Eigen::MatrixX3d X, Xc;     // reused: no allocation per cell of the same size
+    std::vector<double> tri;    // per sub-tetrahedron: n_t and the face triangle's longest squared edge
     SubTetQuality& Q = quality[thread];
     const double tol2 = options.degenerate_tolerance * options.degenerate_tolerance;
     for (int c = int(long(nC) * thread / T); c < int(long(nC) * (thread + 1) / T); ++c) {
       const auto cell = mesh.cell(c);
       const auto verts = mesh.cell_vertices(c);
       const int m = int(verts.size());
-      const Eigen::Vector3d xc = squared_volume_point(
-          [&](auto&& visit) { for_each_cell_triangle(mesh, R.face_points, c, visit); });
-      R.cell_points.row(c) = xc.transpose();
+      Eigen::Vector3d o = Eigen::Vector3d::Zero();
+      for (int v : verts) o += P.row(v).transpose();
+      o /= double(m);
+      Xc.resize(m, 3);
+      for (int k = 0; k < m; ++k) Xc.row(k) = P.row(verts[k]) - o.transpose();
+      // Corner i of half-face hf in outward order, relative to o (2f + 1 runs against the face).
+      auto corner = [&](std::span<const int> face, int hf, int i) {
+        const int v = hf & 1 ? face[face.size() - 1 - i] : face[i];
+        return Eigen::Vector3d(P(v, 0) - o[0], P(v, 1) - o[1], P(v, 2) - o[2]);
+      };
+      tri.resize(4 * size_t(R.tet_offsets[c + 1] - R.tet_offsets[c]));
+      Sym3 N{};
+      Eigen::Vector3d r = Eigen::Vector3d::Zero();
+      double* t = tri.data();
+      for (int hf : cell) {
+        const auto face = mesh.face(hf / 2);
+        const int n = int(face.size());
+        const Eigen::Vector3d q = R.face_points.row(hf / 2).transpose() - o;
+        Eigen::Vector3d a = corner(face, hf, 0), ua = a - q;
+        for (int i = 0; i < n; ++i, t += 4) {
+          const Eigen::Vector3d b = corner(face, hf, i + 1 == n ? 0 : i + 1), ub = b - q;
+          const Eigen::Vector3d nt = ua.cross(ub);
+          N[0] += nt[0] * nt[0], N[1] += nt[0] * nt[1], N[2] += nt[0] * nt[2];
+          N[3] += nt[1] * nt[1], N[4] += nt[1] * nt[2], N[5] += nt[2] * nt[2];
+          r += nt * nt.dot(q);
+          t[0] = nt[0], t[1] = nt[1], t[2] = nt[2];
+          t[3] = std::max({(b - a).squaredNorm(), ua.squaredNorm(), ub.squaredNorm()});
+          a = b, ua = ub;
+        }
+      }
+      const Eigen::Vector3d xc = solve_squared_volume(N, r);  // relative to o
+      R.cell_points.row(c) = (o + xc).transpose();
 
-      X.resize(m, 3);
-      for (int k = 0; k < m; ++k) X.row(k) = P.row(verts[k]);
       double* w = R.cell_weights.data() + R.cell_weight_offsets[c];
       if (options.cell_rule == CellPointRule::SquaredVolume) {
-        affine_weights_into(X, xc, w, Xc);
+        centred_affine_weights(Xc, xc, w);
       } else {
+        X = Xc.rowwise() + o.transpose();
         const int nf = int(cell.size());
         Eigen::MatrixX3d Qp(nf + m, 3);
         for (int k = 0; k < nf; ++k) Qp.row(k) = R.face_points.row(cell[k] / 2);
         Qp.bottomRows(m) = X;
-        const Eigen::VectorXd lambda = last_pinned_affine_weights(Qp, xc);
+        const Eigen::VectorXd lambda = last_pinned_affine_weights(Qp, o + xc);
         for (int k = 0; k < m; ++k) w[k] = lambda(nf + k);
         for (int k = 0; k < nf; ++k) {
           const int f = cell[k] / 2;
@@ -254,15 +307,24 @@ VolumeRefinement refine_volume(const VolumeMesh& mesh, const VolumeRefinementOpt
       }
 
       bool affected = false;
-      SubTet* q = R.tets.data() + R.tet_offsets[c];
-      for_each_cell_triangle(mesh, R.face_points, c,
-                             [&](const Eigen::Vector3d& f, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-                               *q = classify(a, b, f, xc, tol2);
-                               if (*q == SubTet::Degenerate) ++Q.n_degenerate;
-                               if (*q == SubTet::Inverted) ++Q.n_inverted;
-                               affected = affected || *q != SubTet::Valid;
-                               ++q;
-                             });
+      SubTet* flag = R.tets.data() + R.tet_offsets[c];
+      t = tri.data();
+      for (int hf : cell) {
+        const auto face = mesh.face(hf / 2);
+        const int n = int(face.size());
+        const Eigen::Vector3d h = xc - (R.face_points.row(hf / 2).transpose() - o);
+        const double hh = h.squaredNorm();
+        const double d0 = (xc - corner(face, hf, 0)).squaredNorm();
+        double da = d0;
+        for (int i = 0; i < n; ++i, t += 4, ++flag) {
+          const double db = i + 1 == n ? d0 : (xc - corner(face, hf, i + 1)).squaredNorm();
+          *flag = classify(t[0] * h[0] + t[1] * h[1] + t[2] * h[2], std::max({t[3], da, db, hh}), tol2);
+          if (*flag == SubTet::Degenerate) ++Q.n_degenerate;
+          if (*flag == SubTet::Inverted) ++Q.n_inverted;
+          affected = affected || *flag != SubTet::Valid;
+          da = db;
+        }
+      }
       if (affected) ++Q.n_cells_affected;
     }
   });

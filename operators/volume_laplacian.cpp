@@ -2,6 +2,8 @@
 #include "polydec/operators/volume_laplacian.h"
 
 #include <algorithm>
+#include <cmath>
+#include <span>
 #include <vector>
 
 #include "polydec/dec/threads.h"
@@ -73,165 +75,174 @@ SparseMatrix cell_pattern(const VolumeMesh& mesh) {
 namespace volume_laplacian_detail {
 namespace {
 
-// One face's fine matrix over [corners, face point, cell point] (symmetric): its sub-tetrahedra
-// (a, b, face point, cell point) couple only a corner with itself, with its next corner, with the
-// face point and with the cell point, and the two points with each other.
-struct FaceMatrix {
-  double *diag, *next, *face, *cell;  // n entries each: (i, i), (i, i + 1 mod n), (i, face point), (i, cell point)
-  double ff = 0, fc = 0, cc = 0;      // (face, face), (face, cell), (cell, cell)
-  // The four arrays in the 4n entries at p.
-  FaceMatrix(double* p, int n) : diag(p), next(p + n), face(p + 2 * n), cell(p + 3 * n) {}
-};
-
 // Reused buffers of the cell kernel (no allocation per cell once they have grown).
 struct CellWorkspace {
-  Eigen::Matrix3Xd X;                // the cell's vertex positions (columns), gathered once
-  std::vector<int> face_local;       // a face's corners as indices into cell_vertices(c)
-  std::vector<double> face_buffer;   // fine stiffness and mass of a face with more corners than the fixed sizes
-  std::vector<double> hs, hm;        // per cell: couplings of the vertices with the cell point
+  std::vector<double> p;       // 3m: the cell's vertices relative to its cell point
+  std::vector<int> corner;     // a face's corners in outward order, as indices into cell_vertices(c)
+  std::vector<double> weight;  // the face weights in the same order
+  std::vector<double> fine;    // a face's fine stiffness when it has more corners than the fixed sizes
+  std::vector<double> hs, hm;  // couplings of the cell's vertices with the cell point
 };
 
-// The fine mass of one face from its sub-tetrahedra's volumes, F.next[i] = vol_i / 20 on entry:
-// the linear tetrahedron's mass is vol/20 (I + 1 1^T), and the tetrahedron of face edge i couples
-// corners i and i + 1. N > 0: the corner count n at compile time.
+inline void cross(const double* a, const double* b, double* out) {
+  out[0] = a[1] * b[2] - a[2] * b[1];
+  out[1] = a[2] * b[0] - a[0] * b[2];
+  out[2] = a[0] * b[1] - a[1] * b[0];
+}
+inline double dot(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+// Adds the symmetric fine matrix of one face over [corners, face point, cell point], given by its
+// corner diagonal `diag`, the couplings `next` (corner i with i + 1), `fq` (corner, face point),
+// `fc` (corner, cell point) and the scalars qq, qc, cc, to the coarse cell matrix C (upper
+// triangle, m x m column-major) and the cell-point couplings h, alpha: the face point (row w of
+// P) folds into the corners as F + w t^T + t w^T with t = fq + qq w / 2 (n entries of scratch at
+// tp). N > 0: n at compile time.
 template <int N>
-void face_mass(int n_dyn, FaceMatrix& F) {
+inline void fold_face(int n_dyn, const int* o, const double* w, const double* diag, const double* next,
+                      const double* fq, const double* fc, double qq, double qc, double cc, long m, double* C,
+                      double* h, double& alpha, double* tp) {
   const int n = N > 0 ? N : n_dyn;
-  const double* d = F.next;
-  double total = 0;
+  for (int i = 0; i < n; ++i) tp[i] = fq[i] + 0.5 * qq * w[i];
   for (int i = 0; i < n; ++i) {
-    const double s = d[i == 0 ? n - 1 : i - 1] + d[i];  // the corner's two sub-tetrahedra
-    F.diag[i] = 2 * s, F.face[i] = s, F.cell[i] = s;
-    total += d[i];
-  }
-  F.ff = 2 * total, F.fc = total, F.cc = 2 * total;
-}
-
-// Folds the face point (weights w over the corners) into the corners of the fine stiffness Fs and
-// mass Fm and adds the corner blocks to the coarse m x m matrices S and M (column-major); the cell
-// point's couplings go to hs, hm (per cell vertex) and as, am. N > 0: n at compile time.
-template <int N>
-void fold_face(const FaceMatrix& Fs, const FaceMatrix& Fm, const double* w, const int* local, int n_dyn, long m,
-               double* S, double* M, double* hs, double* hm, double& as, double& am) {
-  const int n = N > 0 ? N : n_dyn;
-  for (int b = 0; b < n; ++b) {
-    const double wb = w[b];
-    const double ts = Fs.face[b] + wb * Fs.ff, tm = Fm.face[b] + wb * Fm.ff;  // (F P)(face point, b)
-    const long col = long(local[b]) * m;
-    double *os = S + col, *om = M + col;
-    for (int a = 0; a < n; ++a) {
-      const int la = local[a];
-      os[la] += w[a] * ts + Fs.face[a] * wb;
-      om[la] += w[a] * tm + Fm.face[a] * wb;
+    const long oi = o[i];
+    C[oi + oi * m] += diag[i] + 2 * w[i] * tp[i];
+    for (int j = i + 1; j < n; ++j) {
+      double v = w[i] * tp[j] + w[j] * tp[i];
+      if (j == i + 1) v += next[i];
+      if (i == 0 && j == n - 1) v += next[n - 1];
+      const long oj = o[j];
+      C[oi < oj ? oi + oj * m : oj + oi * m] += v;
     }
-    os[local[b]] += Fs.diag[b];
-    om[local[b]] += Fm.diag[b];
-    const int b1 = b + 1 == n ? 0 : b + 1;
-    os[local[b1]] += Fs.next[b];
-    om[local[b1]] += Fm.next[b];
-    S[local[b] + long(local[b1]) * m] += Fs.next[b];
-    M[local[b] + long(local[b1]) * m] += Fm.next[b];
-    hs[local[b]] += Fs.cell[b] + wb * Fs.fc;
-    hm[local[b]] += Fm.cell[b] + wb * Fm.fc;
+    h[oi] += fc[i] + w[i] * qc;
   }
-  as += Fs.cc;
-  am += Fm.cc;
+  alpha += cc;
 }
 
-// C += h w^T + w h^T + alpha w w^T for C = S and C = M: the cell point's row of P_c is w, so the
-// fine couplings h (vertex, cell point) and alpha (cell point, cell point) become coarse ones.
-void add_cell_point(const double* hs, double as, const double* hm, double am, std::span<const double> w,
-                    long m, double* S, double* M) {
-  for (long j = 0; j < m; ++j) {
-    double *cs = S + j * m, *cm = M + j * m;
-    const double wj = w[j], hsj = hs[j], hmj = hm[j], asj = as * wj, amj = am * wj;
-    for (long i = 0; i < m; ++i) {
-      cs[i] += hs[i] * wj + w[i] * hsj + w[i] * asj;
-      cm[i] += hm[i] * wj + w[i] * hmj + w[i] * amj;
-    }
-  }
-}
-
-// One face of the cell, half-face hf with corners `local` (indices into the cell's vertices X)
-// and face point xf, its sub-tetrahedra from t on: their 4 x 4 stiffness and mass accumulated into
-// the face's fine matrices, which are folded into S, M (m x m) and the cell-point couplings hs, hm,
-// as, am. Per sub-tetrahedron the six gradient products (scaled hat gradients by cross products)
-// give the off-diagonal stiffness and the zero row sums its diagonal; the mass needs only the
-// volume. N > 0: n at compile time, the fine matrices on the stack.
+// One face of the cell: corners o (outward order, indices into the cell's vertices p, which are
+// relative to the cell point) with weights w, face point q (relative to the cell point), its
+// sub-tetrahedra's flags from `flags` on (tetrahedron i: corners i, i + 1, face point, cell point,
+// the order of VolumeRefinement::tets). With the cell point at the origin the hat gradients of
+// tetrahedron i are D_{i+1}, -D_i, E_i and minus their sum, over det = p_i . D_{i+1}, with
+// D_i = p_i x q and E_i = p_i x p_{i+1}: two cross products per tetrahedron (D_{i+1} is the next
+// one's D_i) and five dot products give its six couplings, the zero row sums the rest; its mass is
+// vol / 20 (I + 1 1^T). Both fine face matrices are folded into S, M (upper triangles) and the
+// cell-point couplings.
 template <int N>
-void add_face(const VolumeRefinement& refinement, int hf, int n_dyn, const int* local, const Eigen::Matrix3Xd& X,
-              const Eigen::Vector3d& xf, const Eigen::Vector3d& xc, int t, const double* w, long m, double* S,
-              double* M, CellWorkspace& ws, double& as, double& am) {
+void add_face(const SubTet* flags, int n_dyn, const int* o, const double* w, const double* p, const double* q,
+              long m, double* S, double* M, CellWorkspace& ws, double& as, double& am) {
   const int n = N > 0 ? N : n_dyn;
-  double stack[N > 0 ? 8 * N : 1];
+  double stack[N > 0 ? 6 * N : 1];
   double* buffer = stack;
   if constexpr (N == 0) {
-    if (ws.face_buffer.size() < 8 * size_t(n)) ws.face_buffer.resize(8 * size_t(n));
-    buffer = ws.face_buffer.data();
+    if (ws.fine.size() < 6 * size_t(n)) ws.fine.resize(6 * size_t(n));
+    buffer = ws.fine.data();
   }
-  FaceMatrix Fs(buffer, n), Fm(buffer + 4 * n, n);
-  std::fill(buffer, buffer + 4 * n, 0.0);  // Fs accumulates; face_mass() writes every entry of Fm
-  double *diag = Fs.diag, *next = Fs.next, *fp = Fs.face, *cp = Fs.cell;
-  double ff = 0, fc = 0, cc = 0;
-  for (int i = 0; i < n; ++i, ++t) {
-    // Outward order: half-face 2f runs along the face, 2f+1 against it.
-    int ia = i, ib = i + 1 == n ? 0 : i + 1;
-    if (hf & 1) std::swap(ia, ib);
-    const Eigen::Vector3d pa = X.col(local[ia]);
-    const Eigen::Vector3d e1 = X.col(local[ib]) - pa, e2 = xf - pa, e3 = xc - pa;
-    const Eigen::Vector3d c23 = e2.cross(e3), c31 = e3.cross(e1), c12 = e1.cross(e2);
-    const double det = e1.dot(c23), vol = std::abs(det) / 6.0;
-    Fm.next[i] = vol / 20.0;
-    if (refinement.tets[t] == SubTet::Degenerate) continue;
-    // Hat gradients: rows of [e1 e2 e3]^-1 (tet_hat_gradients), scaled by det; K = s G G^T.
-    const Eigen::Vector3d g0 = -(c23 + c31 + c12);
-    const double s = -vol / (det * det);
-    const double k01 = s * g0.dot(c23), k02 = s * g0.dot(c31), k03 = s * g0.dot(c12);
-    const double k12 = s * c23.dot(c31), k13 = s * c23.dot(c12), k23 = s * c31.dot(c12);
-    diag[ia] -= k01 + k02 + k03, diag[ib] -= k01 + k12 + k13, next[i] += k01;
-    fp[ia] += k02, fp[ib] += k12, cp[ia] += k03, cp[ib] += k13;
-    ff -= k02 + k12 + k23, fc += k23, cc -= k03 + k13 + k23;
+  double *diag = buffer, *next = buffer + n, *fq = buffer + 2 * n, *fc = buffer + 3 * n, *mv = buffer + 4 * n, *t = buffer + 5 * n;
+  std::fill(buffer, buffer + 4 * n, 0.0);
+  double qq = 0, qc = 0, cc = 0;
+  const double* pa = p + 3 * o[0];
+  double D0[3], Dp[3], Dn[3], E[3];
+  cross(pa, q, D0);
+  const double D02 = dot(D0, D0);
+  std::copy(D0, D0 + 3, Dp);
+  double Dp2 = D02;
+  for (int i = 0; i < n; ++i) {
+    const int b = i + 1 == n ? 0 : i + 1;
+    const double* pb = p + 3 * o[b];
+    double Dn2;
+    if (b == 0) {
+      std::copy(D0, D0 + 3, Dn);
+      Dn2 = D02;
+    } else {
+      cross(pb, q, Dn);
+      Dn2 = dot(Dn, Dn);
+    }
+    const double vol6 = std::abs(dot(pa, Dn));
+    mv[i] = vol6 / 120.0;
+    if (flags[i] != SubTet::Degenerate && vol6 > 0) {
+      cross(pa, pb, E);
+      const double s = -1.0 / (6.0 * vol6);
+      const double kab = -s * dot(Dn, Dp), kaq = s * dot(Dn, E), kbq = -s * dot(Dp, E);
+      const double kaa = s * Dn2, kbb = s * Dp2, kqq = s * dot(E, E);
+      const double kac = -(kaa + kab + kaq), kbc = -(kab + kbb + kbq), kqc = -(kaq + kbq + kqq);
+      diag[i] += kaa, diag[b] += kbb, next[i] += kab;
+      fq[i] += kaq, fq[b] += kbq, fc[i] += kac, fc[b] += kbc;
+      qq += kqq, qc += kqc, cc -= kac + kbc + kqc;
+    }
+    std::copy(Dn, Dn + 3, Dp);
+    Dp2 = Dn2;
+    pa = pb;
   }
-  Fs.ff = ff, Fs.fc = fc, Fs.cc = cc;
-  face_mass<N>(n, Fm);
-  fold_face<N>(Fs, Fm, w, local, n, m, S, M, ws.hs.data(), ws.hm.data(), as, am);
+  fold_face<N>(n, o, w, diag, next, fq, fc, qq, qc, cc, m, S, ws.hs.data(), as, t);
+  // The mass: corner i lies in tetrahedra i - 1 and i.
+  double total = 0;
+  for (int i = 0; i < n; ++i) {
+    const double s = mv[i == 0 ? n - 1 : i - 1] + mv[i];
+    diag[i] = 2 * s, fq[i] = s, fc[i] = s;
+    total += mv[i];
+  }
+  fold_face<N>(n, o, w, diag, mv, fq, fc, 2 * total, total, 2 * total, m, M, ws.hm.data(), am, t);
+}
+
+// C += h w^T + w h^T + alpha w w^T on the upper triangle, then mirrored: the cell point's row of
+// P_c is w, so the fine couplings h (vertex, cell point) and alpha (cell point, cell point) become
+// coarse ones.
+void add_cell_point(const double* h, double alpha, std::span<const double> w, long m, double* C) {
+  for (long j = 0; j < m; ++j) {
+    double* c = C + j * m;
+    const double wj = w[j], hj = h[j], aj = alpha * wj;
+    for (long i = 0; i <= j; ++i) c[i] += h[i] * wj + w[i] * (hj + aj);
+  }
+  for (long j = 0; j < m; ++j)
+    for (long i = j + 1; i < m; ++i) C[i + j * m] = C[j + i * m];
 }
 
 // P_c^T S^tet P_c and P_c^T M^tet P_c without the cell's fine matrices: per face, the
-// sub-tetrahedra's 4 x 4 stiffness and mass over [face corners, face point, cell point]
-// (add_face()); the face point is folded into the corners by its weights once per face and the
-// corner block added to the m x m result, the cell point's couplings (row w of P_c) once per cell.
+// sub-tetrahedra's stiffness and mass over [face corners, face point, cell point] (add_face()),
+// the face point folded into the corners by its weights once per face, the cell point's
+// couplings (row w of P_c) once per cell; coordinates relative to the cell point.
 void cell_kernel(const VolumeMesh& mesh, const VolumeRefinement& refinement, int c, Eigen::MatrixXd& S,
                  Eigen::MatrixXd& M, CellWorkspace& ws) {
   const auto verts = mesh.cell_vertices(c);
   const auto cell = mesh.cell(c);
-  const int m = int(verts.size()), nf = int(cell.size());
-  ws.X.resize(3, m);
-  for (int i = 0; i < m; ++i) ws.X.col(i) = mesh.positions().row(verts[i]).transpose();
+  const int m = int(verts.size());
+  const auto& X = mesh.positions();
+  const double xc[3] = {refinement.cell_points(c, 0), refinement.cell_points(c, 1), refinement.cell_points(c, 2)};
+  ws.p.resize(3 * size_t(m));
+  for (int k = 0; k < m; ++k)
+    for (int d = 0; d < 3; ++d) ws.p[3 * k + d] = X(verts[k], d) - xc[d];
   S.setZero(m, m);
   M.setZero(m, m);
   ws.hs.assign(m, 0.0);
   ws.hm.assign(m, 0.0);
-  double alpha_s = 0, alpha_m = 0;
-  const Eigen::Vector3d xc = refinement.cell_points.row(c).transpose();
-  int t = refinement.tet_offsets[c];
-  for (int k = 0; k < nf; ++k) {
-    const int hf = cell[k], f = hf / 2;
+  double as = 0, am = 0;
+  const SubTet* flags = refinement.tets.data() + refinement.tet_offsets[c];
+  for (const int hf : cell) {
+    const int f = hf / 2;
     const auto face = mesh.face(f);
     const int n = int(face.size());
-    ws.face_local.resize(n);
-    for (int i = 0; i < n; ++i) ws.face_local[i] = local_index(verts, face[i]);
-    const Eigen::Vector3d xf = refinement.face_points.row(f).transpose();
-    const double* w = refinement.weights_of_face(mesh, f).data();
+    const double* wf = refinement.weights_of_face(mesh, f).data();
+    ws.corner.resize(n);
+    ws.weight.resize(n);
+    // Half-face 2f + 1 runs against the face: its i-th corner is face[n - 1 - i].
+    for (int i = 0; i < n; ++i) {
+      const int k = hf & 1 ? n - 1 - i : i;
+      ws.corner[i] = local_index(verts, face[k]);
+      ws.weight[i] = wf[k];
+    }
+    const double q[3] = {refinement.face_points(f, 0) - xc[0], refinement.face_points(f, 1) - xc[1],
+                         refinement.face_points(f, 2) - xc[2]};
     if (n == 4)
-      add_face<4>(refinement, hf, n, ws.face_local.data(), ws.X, xf, xc, t, w, m, S.data(), M.data(), ws, alpha_s, alpha_m);
+      add_face<4>(flags, n, ws.corner.data(), ws.weight.data(), ws.p.data(), q, m, S.data(), M.data(), ws, as, am);
     else if (n == 3)
-      add_face<3>(refinement, hf, n, ws.face_local.data(), ws.X, xf, xc, t, w, m, S.data(), M.data(), ws, alpha_s, alpha_m);
+      add_face<3>(flags, n, ws.corner.data(), ws.weight.data(), ws.p.data(), q, m, S.data(), M.data(), ws, as, am);
     else
-      add_face<0>(refinement, hf, n, ws.face_local.data(), ws.X, xf, xc, t, w, m, S.data(), M.data(), ws, alpha_s, alpha_m);
-    t += n;
+      add_face<0>(flags, n, ws.corner.data(), ws.weight.data(), ws.p.data(), q, m, S.data(), M.data(), ws, as, am);
+    flags += n;
   }
-  add_cell_point(ws.hs.data(), alpha_s, ws.hm.data(), alpha_m, refinement.weights_of_cell(c), m, S.data(), M.data());
+  const auto w = refinement.weights_of_cell(c);
+  add_cell_point(ws.hs.data(), as, w, m, S.data());
+  add_cell_point(ws.hm.data(), am, w, m, M.data());
 }
 
 }  // namespace
