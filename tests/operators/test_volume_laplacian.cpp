@@ -300,6 +300,53 @@ TEST_CASE("volume refinement: degenerate sub-tetrahedra are reported and add no 
   CHECK(refine_volume(test::hex_grid_mesh(1, 1, 1)).quality.ok());
 }
 
+TEST_CASE("volume assembly skips exactly the flagged sub-tetrahedra: equal to the explicit refined mesh",
+          "[volume][volume-operators]") {
+  // A loose degeneracy tolerance flags the flatter sub-tetrahedra of a jittered grid, on half-faces
+  // of both parities; the cell kernel must skip the same tetrahedra as refined_tets() lists (the
+  // order of VolumeRefinement::tets): S and M against P^T S^tet P from those tetrahedra alone.
+  const VolumeMesh mesh = hex_grid_volume(3, 3, 2, VolumeJitter{0.3, 5});
+  VolumeRefinementOptions options;
+  options.degenerate_tolerance = 0.25;
+  const VolumeRefinement R = refine_volume(mesh, options);
+  const std::vector<RefinedTet> tets = refined_tets(mesh, R);
+  REQUIRE(R.quality.n_degenerate > 0);
+  REQUIRE(R.quality.n_degenerate < int(tets.size()) / 2);
+  // Flagged tetrahedra on odd half-faces whose mirrored position in the half-face is not flagged:
+  // reading the flags in the face's order instead of the half-face's would skip other tetrahedra.
+  int odd_flagged = 0;
+  for (int c = 0, t = 0; c < mesh.n_cells(); ++c)
+    for (int hf : mesh.cell(c)) {
+      const int n = mesh.face_size(hf / 2);
+      for (int i = 0; i < n; ++i)
+        if ((hf & 1) && R.tets[t + i] == SubTet::Degenerate && R.tets[t + n - 2 - i + (i + 2 > n ? n : 0)] != SubTet::Degenerate)
+          ++odd_flagged;
+      t += n;
+    }
+  CHECK(odd_flagged > 0);
+
+  const int nR = mesh.n_vertices() + mesh.n_faces() + mesh.n_cells();
+  std::vector<Eigen::Triplet<double>> ts, tm;
+  for (const RefinedTet& t : tets) {
+    Eigen::Vector3d p[4];
+    for (int a = 0; a < 4; ++a) p[a] = refined_position(mesh, R, t.v[a]);
+    Eigen::Matrix4d Sl, Ml;
+    reference_tet(p, Sl, Ml);
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b) {
+        if (t.quality != SubTet::Degenerate) ts.emplace_back(t.v[a], t.v[b], Sl(a, b));
+        tm.emplace_back(t.v[a], t.v[b], Ml(a, b));
+      }
+  }
+  SparseMatrix St(nR, nR), Mt(nR, nR);
+  St.setFromTriplets(ts.begin(), ts.end());
+  Mt.setFromTriplets(tm.begin(), tm.end());
+  const SparseMatrix P = volume_prolongation(mesh, R);
+  const VolumeLaplacian L = assemble_volume_laplacian(mesh, R);
+  CHECK(relative_difference(L.S, SparseMatrix(P.transpose() * St * P)) <= 1e-12);
+  CHECK(relative_difference(L.M, SparseMatrix(P.transpose() * Mt * P)) <= 1e-12);
+}
+
 TEST_CASE("polyLaplace weight rule equals an independent reference of that construction",
           "[volume][volume-operators]") {
   Eigen::MatrixX3d Z = test::grid_positions(2, 2, 2);
