@@ -50,25 +50,28 @@ SparseMatrix cell_pattern(const VolumeMesh& mesh) {
   std::vector<int> cells(count[nV]), fill(count.begin(), count.end() - 1);
   for (int c = 0; c < nC; ++c)
     for (int v : mesh.cell_vertices(c)) cells[fill[v]++] = c;
-  // Column v: the vertices of v's cells, each once (marked with v), sorted.
-  std::vector<int> outer(nV + 1, 0), inner, mark(nV, -1);
-  inner.reserve(size_t(count[nV]) * 4);
+  // Column v, unsorted: the vertices of v's cells, each once (marked with v).
+  std::vector<int> outer(nV + 1, 0), unsorted, mark(nV, -1);
+  unsorted.reserve(size_t(count[nV]) * 4);
   for (int v = 0; v < nV; ++v) {
-    const size_t begin = inner.size();
     for (int k = count[v]; k < count[v + 1]; ++k)
       for (int u : mesh.cell_vertices(cells[k]))
         if (mark[u] != v) {
           mark[u] = v;
-          inner.push_back(u);
+          unsorted.push_back(u);
         }
-    std::sort(inner.begin() + long(begin), inner.end());
-    outer[v + 1] = int(inner.size());
+    outer[v + 1] = int(unsorted.size());
   }
+  // Sorted by transposition (the pattern is symmetric): visiting the columns v in order and
+  // appending v to column u for each row u of column v leaves every column's rows ascending.
   SparseMatrix pattern(nV, nV);
-  pattern.resizeNonZeros(long(inner.size()));
+  pattern.resizeNonZeros(long(unsorted.size()));
   std::copy(outer.begin(), outer.end(), pattern.outerIndexPtr());
-  std::copy(inner.begin(), inner.end(), pattern.innerIndexPtr());
-  std::fill(pattern.valuePtr(), pattern.valuePtr() + inner.size(), 0.0);
+  int* inner = pattern.innerIndexPtr();
+  std::copy(outer.begin(), outer.end() - 1, fill.begin());
+  for (int v = 0; v < nV; ++v)
+    for (int k = outer[v]; k < outer[v + 1]; ++k) inner[fill[unsorted[k]]++] = v;
+  std::fill(pattern.valuePtr(), pattern.valuePtr() + unsorted.size(), 0.0);
   return pattern;
 }
 
