@@ -94,31 +94,48 @@ inline void cross(const double* a, const double* b, double* out) {
 }
 inline double dot(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
-// Adds the symmetric fine matrix of one face over [corners, face point, cell point], given by its
-// corner diagonal `diag`, the couplings `next` (corner i with i + 1), `fq` (corner, face point),
-// `fc` (corner, cell point) and the scalars qq, qc, cc, to the coarse cell matrix C (upper
-// triangle, m x m column-major) and the cell-point couplings h, alpha: the face point (row w of
-// P) folds into the corners as F + w t^T + t w^T with t = fq + qq w / 2 (n entries of scratch at
-// tp). N > 0: n at compile time.
+// One face's fine stiffness over [corners, face point, cell point]: the corner diagonal `diag`, the
+// couplings `next` (corner i with i + 1), `fq` (corner, face point), `fc` (corner, cell point), and
+// qq, qc, cc. The fine mass needs only the sub-tetrahedra's volumes / 20, `mv`.
+struct FaceFine {
+  double *diag, *next, *fq, *fc, *mv;
+  double qq = 0, qc = 0, cc = 0;
+};
+
+// Folds the face point (row w of P) of both fine face matrices into the corners and adds them to
+// the coarse cell matrices S, M (upper triangles, m x m column-major) and the cell-point
+// couplings: F + w t^T + t w^T with t = fq + qq w / 2. The mass comes from the volumes: the linear
+// tetrahedron's is vol/20 (I + 1 1^T), and corner i lies in sub-tetrahedra i - 1 and i. ts, tm:
+// n entries of scratch each. N > 0: n at compile time.
 template <int N>
-inline void fold_face(int n_dyn, const int* o, const double* w, const double* diag, const double* next,
-                      const double* fq, const double* fc, double qq, double qc, double cc, long m, double* C,
-                      double* h, double& alpha, double* tp) {
+inline void fold_face(int n_dyn, const int* o, const double* w, const FaceFine& F, long m, double* S, double* M,
+                      double* hs, double* hm, double& as, double& am, double* ts, double* tm) {
   const int n = N > 0 ? N : n_dyn;
-  for (int i = 0; i < n; ++i) tp[i] = fq[i] + 0.5 * qq * w[i];
+  double total = 0;
+  for (int i = 0; i < n; ++i) total += F.mv[i];
+  for (int i = 0; i < n; ++i) {
+    const double si = F.mv[i == 0 ? n - 1 : i - 1] + F.mv[i];  // mass couplings of corner i: diag 2 si
+    ts[i] = F.fq[i] + 0.5 * F.qq * w[i];
+    tm[i] = si + total * w[i];
+    const long oi = o[i];
+    S[oi + oi * m] += F.diag[i] + 2 * w[i] * ts[i];
+    M[oi + oi * m] += 2 * si + 2 * w[i] * tm[i];
+    hs[oi] += F.fc[i] + w[i] * F.qc;
+    hm[oi] += si + w[i] * total;
+  }
   for (int i = 0; i < n; ++i) {
     const long oi = o[i];
-    C[oi + oi * m] += diag[i] + 2 * w[i] * tp[i];
     for (int j = i + 1; j < n; ++j) {
-      double v = w[i] * tp[j] + w[j] * tp[i];
-      if (j == i + 1) v += next[i];
-      if (i == 0 && j == n - 1) v += next[n - 1];
-      const long oj = o[j];
-      C[oi < oj ? oi + oj * m : oj + oi * m] += v;
+      double vs = w[i] * ts[j] + w[j] * ts[i], vm = w[i] * tm[j] + w[j] * tm[i];
+      if (j == i + 1) vs += F.next[i], vm += F.mv[i];
+      if (i == 0 && j == n - 1) vs += F.next[n - 1], vm += F.mv[n - 1];
+      const long oj = o[j], k = oi < oj ? oi + oj * m : oj + oi * m;
+      S[k] += vs;
+      M[k] += vm;
     }
-    h[oi] += fc[i] + w[i] * qc;
   }
-  alpha += cc;
+  as += F.cc;
+  am += 2 * total;
 }
 
 // One face of the cell: corners o (outward order, indices into the cell's vertices p, which are
@@ -127,20 +144,19 @@ inline void fold_face(int n_dyn, const int* o, const double* w, const double* di
 // the order of VolumeRefinement::tets). With the cell point at the origin the hat gradients of
 // tetrahedron i are D_{i+1}, -D_i, E_i and minus their sum, over det = p_i . D_{i+1}, with
 // D_i = p_i x q and E_i = p_i x p_{i+1}: two cross products per tetrahedron (D_{i+1} is the next
-// one's D_i) and five dot products give its six couplings, the zero row sums the rest; its mass is
-// vol / 20 (I + 1 1^T). Both fine face matrices are folded into S, M (upper triangles) and the
-// cell-point couplings.
+// one's D_i) and five dot products give its six couplings, the zero row sums the rest. Both fine
+// face matrices are folded into S, M (upper triangles) and the cell-point couplings.
 template <int N>
 void add_face(const SubTet* flags, int n_dyn, const int* o, const double* w, const double* p, const double* q,
               long m, double* S, double* M, CellWorkspace& ws, double& as, double& am) {
   const int n = N > 0 ? N : n_dyn;
-  double stack[N > 0 ? 6 * N : 1];
+  double stack[N > 0 ? 7 * N : 1];
   double* buffer = stack;
   if constexpr (N == 0) {
-    if (ws.fine.size() < 6 * size_t(n)) ws.fine.resize(6 * size_t(n));
+    if (ws.fine.size() < 7 * size_t(n)) ws.fine.resize(7 * size_t(n));
     buffer = ws.fine.data();
   }
-  double *diag = buffer, *next = buffer + n, *fq = buffer + 2 * n, *fc = buffer + 3 * n, *mv = buffer + 4 * n, *t = buffer + 5 * n;
+  FaceFine F{buffer, buffer + n, buffer + 2 * n, buffer + 3 * n, buffer + 4 * n};
   std::fill(buffer, buffer + 4 * n, 0.0);
   double qq = 0, qc = 0, cc = 0;
   const double* pa = p + 3 * o[0];
@@ -161,41 +177,42 @@ void add_face(const SubTet* flags, int n_dyn, const int* o, const double* w, con
       Dn2 = dot(Dn, Dn);
     }
     const double vol6 = std::abs(dot(pa, Dn));
-    mv[i] = vol6 / 120.0;
+    F.mv[i] = vol6 / 120.0;
     if (flags[i] != SubTet::Degenerate && vol6 > 0) {
       cross(pa, pb, E);
       const double s = -1.0 / (6.0 * vol6);
       const double kab = -s * dot(Dn, Dp), kaq = s * dot(Dn, E), kbq = -s * dot(Dp, E);
       const double kaa = s * Dn2, kbb = s * Dp2, kqq = s * dot(E, E);
       const double kac = -(kaa + kab + kaq), kbc = -(kab + kbb + kbq), kqc = -(kaq + kbq + kqq);
-      diag[i] += kaa, diag[b] += kbb, next[i] += kab;
-      fq[i] += kaq, fq[b] += kbq, fc[i] += kac, fc[b] += kbc;
+      F.diag[i] += kaa, F.diag[b] += kbb, F.next[i] += kab;
+      F.fq[i] += kaq, F.fq[b] += kbq, F.fc[i] += kac, F.fc[b] += kbc;
       qq += kqq, qc += kqc, cc -= kac + kbc + kqc;
     }
     std::copy(Dn, Dn + 3, Dp);
     Dp2 = Dn2;
     pa = pb;
   }
-  fold_face<N>(n, o, w, diag, next, fq, fc, qq, qc, cc, m, S, ws.hs.data(), as, t);
-  // The mass: corner i lies in tetrahedra i - 1 and i.
-  double total = 0;
-  for (int i = 0; i < n; ++i) {
-    const double s = mv[i == 0 ? n - 1 : i - 1] + mv[i];
-    diag[i] = 2 * s, fq[i] = s, fc[i] = s;
-    total += mv[i];
-  }
-  fold_face<N>(n, o, w, diag, mv, fq, fc, 2 * total, total, 2 * total, m, M, ws.hm.data(), am, t);
+  F.qq = qq, F.qc = qc, F.cc = cc;
+  fold_face<N>(n, o, w, F, m, S, M, ws.hs.data(), ws.hm.data(), as, am, buffer + 5 * n, buffer + 6 * n);
 }
 
-// C += h w^T + w h^T + alpha w w^T on the upper triangle, then mirrored: the cell point's row of
-// P_c is w, so the fine couplings h (vertex, cell point) and alpha (cell point, cell point) become
-// coarse ones.
-void add_cell_point(const double* h, double alpha, std::span<const double> w, long m, double* C) {
+// C += h w^T + w h^T + alpha w w^T on the upper triangle of C = S and C = M: the cell point's row
+// of P_c is w, so the fine couplings h (vertex, cell point) and alpha (cell point, cell point)
+// become coarse ones.
+void add_cell_point(const double* hs, double as, const double* hm, double am, std::span<const double> w, long m,
+                    double* S, double* M) {
   for (long j = 0; j < m; ++j) {
-    double* c = C + j * m;
-    const double wj = w[j], hj = h[j], aj = alpha * wj;
-    for (long i = 0; i <= j; ++i) c[i] += h[i] * wj + w[i] * (hj + aj);
+    double *cs = S + j * m, *cm = M + j * m;
+    const double wj = w[j], sj = hs[j] + as * wj, mj = hm[j] + am * wj;
+    for (long i = 0; i <= j; ++i) {
+      cs[i] += hs[i] * wj + w[i] * sj;
+      cm[i] += hm[i] * wj + w[i] * mj;
+    }
   }
+}
+
+// The lower triangle of the m x m column-major C from its upper one.
+void mirror_upper(long m, double* C) {
   for (long j = 0; j < m; ++j)
     for (long i = j + 1; i < m; ++i) C[i + j * m] = C[j + i * m];
 }
@@ -203,7 +220,8 @@ void add_cell_point(const double* h, double alpha, std::span<const double> w, lo
 // P_c^T S^tet P_c and P_c^T M^tet P_c without the cell's fine matrices: per face, the
 // sub-tetrahedra's stiffness and mass over [face corners, face point, cell point] (add_face()),
 // the face point folded into the corners by its weights once per face, the cell point's
-// couplings (row w of P_c) once per cell; coordinates relative to the cell point.
+// couplings (row w of P_c) once per cell; coordinates relative to the cell point. Only the upper
+// triangles of S and M are written.
 void cell_kernel(const VolumeMesh& mesh, const VolumeRefinement& refinement, int c, Eigen::MatrixXd& S,
                  Eigen::MatrixXd& M, CellWorkspace& ws) {
   const auto verts = mesh.cell_vertices(c);
@@ -244,8 +262,7 @@ void cell_kernel(const VolumeMesh& mesh, const VolumeRefinement& refinement, int
     flags += n;
   }
   const auto w = refinement.weights_of_cell(c);
-  add_cell_point(ws.hs.data(), as, w, m, S.data());
-  add_cell_point(ws.hm.data(), am, w, m, M.data());
+  add_cell_point(ws.hs.data(), as, ws.hm.data(), am, w, m, S.data(), M.data());
 }
 
 }  // namespace
@@ -256,6 +273,8 @@ void cell_matrices(const VolumeMesh& mesh, const VolumeRefinement& refinement, i
   volume_laplacian_detail::CellWorkspace ws;
   Eigen::MatrixXd Sc, Mc;
   volume_laplacian_detail::cell_kernel(mesh, refinement, c, Sc, Mc, ws);
+  volume_laplacian_detail::mirror_upper(Sc.rows(), Sc.data());
+  volume_laplacian_detail::mirror_upper(Mc.rows(), Mc.data());
   if (S) *S = std::move(Sc);
   if (M) *M = std::move(Mc);
 }
@@ -277,8 +296,8 @@ VolumeLaplacian assemble_volume_laplacian(const VolumeMesh& mesh, const VolumeRe
   const int* inner = L.S.innerIndexPtr();
   double* sv = L.S.valuePtr();
   double* mv = L.M.valuePtr();
-  // Adds cell c's local matrices (column-major m x m) to the columns v0 <= v < v1. The cell's
-  // vertices are ascending, as are a column's rows: one forward walk per column.
+  // Adds cell c's local matrices (column-major m x m, upper triangles) to the columns v0 <= v < v1.
+  // The cell's vertices are ascending, as are a column's rows: one forward walk per column.
   auto scatter = [&](int c, const double* Sc, const double* Mc, int v0, int v1) {
     const auto verts = mesh.cell_vertices(c);
     const int m = int(verts.size());
@@ -287,8 +306,9 @@ VolumeLaplacian assemble_volume_laplacian(const VolumeMesh& mesh, const VolumeRe
       int pos = outer[verts[b]];
       for (int a = 0; a < m; ++a) {
         while (inner[pos] != verts[a]) ++pos;
-        sv[pos] += Sc[a + b * m];
-        mv[pos] += Mc[a + b * m];
+        const long k = a <= b ? a + long(b) * m : b + long(a) * m;
+        sv[pos] += Sc[k];
+        mv[pos] += Mc[k];
       }
     }
   };
