@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -41,18 +42,38 @@ SparseMatrix volume_prolongation(const VolumeMesh& mesh, const VolumeRefinement&
   return P;
 }
 
-SparseMatrix cell_pattern(const VolumeMesh& mesh) {
+namespace volume_laplacian_detail {
+namespace {
+
+// Where each cell's local entries go: entry (a, b) of cell c (rows and columns in the order of
+// cell_vertices(c)) is row verts[a] of column verts[b], at slot[offset[c] + a + b m] past the
+// column's start, so the assembly adds without searching the column.
+struct CellSlots {
+  std::vector<long> offset;          // |C| + 1: prefix sums of m_c^2
+  std::vector<std::uint16_t> slot;  // empty when a column has more than 65535 entries
+};
+
+// cell_pattern(), and the cells' slots when `slots` is given.
+SparseMatrix pattern_and_slots(const VolumeMesh& mesh, CellSlots* slots) {
   const int nV = mesh.n_vertices(), nC = mesh.n_cells();
   std::vector<int> count(nV + 1, 0);
   for (int c = 0; c < nC; ++c)
     for (int v : mesh.cell_vertices(c)) ++count[v + 1];
   for (int v = 0; v < nV; ++v) count[v + 1] += count[v];
-  std::vector<int> cells(count[nV]), fill(count.begin(), count.end() - 1);
-  for (int c = 0; c < nC; ++c)
-    for (int v : mesh.cell_vertices(c)) cells[fill[v]++] = c;
+  // The cells of each vertex, with the vertex's local index in the cell.
+  std::vector<int> cells(count[nV]), fill(count.begin(), count.end() - 1), local(slots ? count[nV] : 0);
+  for (int c = 0; c < nC; ++c) {
+    const auto verts = mesh.cell_vertices(c);
+    for (size_t b = 0; b < verts.size(); ++b) {
+      const int k = fill[verts[b]]++;
+      cells[k] = c;
+      if (slots) local[k] = int(b);
+    }
+  }
   // Column v, unsorted: the vertices of v's cells, each once (marked with v).
   std::vector<int> outer(nV + 1, 0), unsorted, mark(nV, -1);
   unsorted.reserve(size_t(count[nV]) * 4);
+  int longest = 0;
   for (int v = 0; v < nV; ++v) {
     for (int k = count[v]; k < count[v + 1]; ++k)
       for (int u : mesh.cell_vertices(cells[k]))
@@ -61,6 +82,7 @@ SparseMatrix cell_pattern(const VolumeMesh& mesh) {
           unsorted.push_back(u);
         }
     outer[v + 1] = int(unsorted.size());
+    longest = std::max(longest, outer[v + 1] - outer[v]);
   }
   // Sorted by transposition (the pattern is symmetric): visiting the columns v in order and
   // appending v to column u for each row u of column v leaves every column's rows ascending.
@@ -72,8 +94,32 @@ SparseMatrix cell_pattern(const VolumeMesh& mesh) {
   for (int v = 0; v < nV; ++v)
     for (int k = outer[v]; k < outer[v + 1]; ++k) inner[fill[unsorted[k]]++] = v;
   std::fill(pattern.valuePtr(), pattern.valuePtr() + unsorted.size(), 0.0);
+  if (!slots || longest > 65535) return pattern;
+  unsorted = {};
+  slots->offset.assign(size_t(nC) + 1, 0);
+  for (int c = 0; c < nC; ++c) {
+    const long m = long(mesh.cell_vertices(c).size());
+    slots->offset[c + 1] = slots->offset[c] + m * m;
+  }
+  slots->slot.resize(size_t(slots->offset[nC]));
+  std::vector<int>& where = mark;  // row -> slot in the current column
+  for (int v = 0; v < nV; ++v) {
+    for (int k = outer[v]; k < outer[v + 1]; ++k) where[inner[k]] = k - outer[v];
+    for (int k = count[v]; k < count[v + 1]; ++k) {
+      const int c = cells[k];
+      const auto verts = mesh.cell_vertices(c);
+      const long m = long(verts.size());
+      std::uint16_t* out = slots->slot.data() + slots->offset[c] + local[k] * m;
+      for (long a = 0; a < m; ++a) out[a] = std::uint16_t(where[verts[a]]);
+    }
+  }
   return pattern;
 }
+
+}  // namespace
+}  // namespace volume_laplacian_detail
+
+SparseMatrix cell_pattern(const VolumeMesh& mesh) { return volume_laplacian_detail::pattern_and_slots(mesh, nullptr); }
 
 namespace volume_laplacian_detail {
 namespace {
@@ -284,11 +330,12 @@ VolumeLaplacian assemble_volume_laplacian(const VolumeMesh& mesh, const VolumeRe
   using namespace volume_laplacian_detail;
   VolumeLaplacian L;
   L.quality = refinement.quality;
+  CellSlots slots;
   if (pattern) {
     L.S = *pattern;
     L.S.coeffs().setZero();
   } else {
-    L.S = cell_pattern(mesh);  // values already zero
+    L.S = pattern_and_slots(mesh, &slots);  // values already zero
   }
   L.M = L.S;
   const int nC = mesh.n_cells(), nV = mesh.n_vertices();
@@ -296,11 +343,23 @@ VolumeLaplacian assemble_volume_laplacian(const VolumeMesh& mesh, const VolumeRe
   const int* inner = L.S.innerIndexPtr();
   double* sv = L.S.valuePtr();
   double* mv = L.M.valuePtr();
-  // Adds cell c's local matrices (column-major m x m, upper triangles) to the columns v0 <= v < v1.
-  // The cell's vertices are ascending, as are a column's rows: one forward walk per column.
+  // Adds cell c's local matrices (column-major m x m, upper triangles) to the columns v0 <= v < v1:
+  // by the cells' slots, or (a pattern given by the caller) by one forward walk per column, the
+  // cell's vertices being ascending, as are a column's rows.
+  const bool by_slots = !slots.slot.empty();
   auto scatter = [&](int c, const double* Sc, const double* Mc, int v0, int v1) {
     const auto verts = mesh.cell_vertices(c);
     const int m = int(verts.size());
+    if (by_slots) {
+      const std::uint16_t* slot = slots.slot.data() + slots.offset[c];
+      for (int b = 0; b < m; ++b, slot += m) {
+        if (verts[b] < v0 || verts[b] >= v1) continue;
+        double *cs = sv + outer[verts[b]], *cm = mv + outer[verts[b]];
+        for (int a = 0; a <= b; ++a) cs[slot[a]] += Sc[a + long(b) * m], cm[slot[a]] += Mc[a + long(b) * m];
+        for (int a = b + 1; a < m; ++a) cs[slot[a]] += Sc[b + long(a) * m], cm[slot[a]] += Mc[b + long(a) * m];
+      }
+      return;
+    }
     for (int b = 0; b < m; ++b) {
       if (verts[b] < v0 || verts[b] >= v1) continue;
       int pos = outer[verts[b]];
