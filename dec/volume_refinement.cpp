@@ -239,61 +239,72 @@ VolumeRefinement refine_volume(const VolumeMesh& mesh, const VolumeRefinementOpt
   std::vector<SubTetQuality> quality(T);
   // One cell in two passes over its sub-tetrahedra, in coordinates relative to the mean o of its
   // vertices: the first builds the squared-volume normal equations from the face triangles'
-  // normals n_t = (x_i - x_f) x (x_{i+1} - x_f) and keeps them with the triangles' longest squared
-  // edge; the second classifies with 6 vol = n_t . (x_c - x_f) (classify()'s determinant) and the
-  // squared distances of x_c from the corners and the face point.
+  // normals n_t = (x_i - x_f) x (x_{i+1} - x_f) and keeps them with the triangle's longest squared
+  // edge and its corner x_i; the second classifies with 6 vol = n_t . (x_c - x_f) (classify()'s
+  // determinant) and the squared distances of x_c from the corners and the face point.
+  const double *P0 = P.col(0).data(), *P1 = P.col(1).data(), *P2 = P.col(2).data();
+  const double *F0 = R.face_points.col(0).data(), *F1 = R.face_points.col(1).data(),
+               *F2 = R.face_points.col(2).data();
+  constexpr int kStride = 7;  // per sub-tetrahedron: n_t (3), longest squared edge, x_i (3)
   run_on_threads(T, [&](int thread) {
-    Eigen::MatrixX3d X, Xc;     // reused: no allocation per cell of the same size
-    std::vector<double> tri;    // per sub-tetrahedron: n_t and the face triangle's longest squared edge
+    Eigen::MatrixX3d X, Xc;  // reused: no allocation per cell of the same size
+    std::vector<double> tri;
     SubTetQuality& Q = quality[thread];
     const double tol2 = options.degenerate_tolerance * options.degenerate_tolerance;
     for (int c = int(long(nC) * thread / T); c < int(long(nC) * (thread + 1) / T); ++c) {
       const auto cell = mesh.cell(c);
       const auto verts = mesh.cell_vertices(c);
       const int m = int(verts.size());
-      Eigen::Vector3d o = Eigen::Vector3d::Zero();
-      for (int v : verts) o += P.row(v).transpose();
-      o /= double(m);
+      double o[3] = {0, 0, 0};
+      for (int v : verts) o[0] += P0[v], o[1] += P1[v], o[2] += P2[v];
+      for (double& x : o) x /= double(m);
       Xc.resize(m, 3);
-      for (int k = 0; k < m; ++k) Xc.row(k) = P.row(verts[k]) - o.transpose();
-      // Corner i of half-face hf in outward order, relative to o (2f + 1 runs against the face).
-      auto corner = [&](std::span<const int> face, int hf, int i) {
-        const int v = hf & 1 ? face[face.size() - 1 - i] : face[i];
-        return Eigen::Vector3d(P(v, 0) - o[0], P(v, 1) - o[1], P(v, 2) - o[2]);
-      };
-      tri.resize(4 * size_t(R.tet_offsets[c + 1] - R.tet_offsets[c]));
-      Sym3 N{};
-      Eigen::Vector3d r = Eigen::Vector3d::Zero();
+      for (int k = 0; k < m; ++k) Xc(k, 0) = P0[verts[k]] - o[0], Xc(k, 1) = P1[verts[k]] - o[1], Xc(k, 2) = P2[verts[k]] - o[2];
+      tri.resize(kStride * size_t(R.tet_offsets[c + 1] - R.tet_offsets[c]));
+      double n00 = 0, n01 = 0, n02 = 0, n11 = 0, n12 = 0, n22 = 0, r0 = 0, r1 = 0, r2 = 0;
       double* t = tri.data();
       for (int hf : cell) {
-        const auto face = mesh.face(hf / 2);
+        const int f = hf / 2;
+        const auto face = mesh.face(f);
         const int n = int(face.size());
-        const Eigen::Vector3d q = R.face_points.row(hf / 2).transpose() - o;
-        Eigen::Vector3d a = corner(face, hf, 0), ua = a - q;
-        for (int i = 0; i < n; ++i, t += 4) {
-          const Eigen::Vector3d b = corner(face, hf, i + 1 == n ? 0 : i + 1), ub = b - q;
-          const Eigen::Vector3d nt = ua.cross(ub);
-          N[0] += nt[0] * nt[0], N[1] += nt[0] * nt[1], N[2] += nt[0] * nt[2];
-          N[3] += nt[1] * nt[1], N[4] += nt[1] * nt[2], N[5] += nt[2] * nt[2];
-          r += nt * nt.dot(q);
-          t[0] = nt[0], t[1] = nt[1], t[2] = nt[2];
-          t[3] = std::max({(b - a).squaredNorm(), ua.squaredNorm(), ub.squaredNorm()});
-          a = b, ua = ub;
+        const double q0 = F0[f] - o[0], q1 = F1[f] - o[1], q2 = F2[f] - o[2];
+        // Corner i in outward order, relative to o (half-face 2f + 1 runs against the face).
+        auto corner = [&](int i, double* x) {
+          const int v = hf & 1 ? face[n - 1 - i] : face[i];
+          x[0] = P0[v] - o[0], x[1] = P1[v] - o[1], x[2] = P2[v] - o[2];
+        };
+        double a[3], b[3];
+        corner(0, a);
+        double ua0 = a[0] - q0, ua1 = a[1] - q1, ua2 = a[2] - q2, uaa = ua0 * ua0 + ua1 * ua1 + ua2 * ua2;
+        for (int i = 0; i < n; ++i, t += kStride) {
+          corner(i + 1 == n ? 0 : i + 1, b);
+          const double ub0 = b[0] - q0, ub1 = b[1] - q1, ub2 = b[2] - q2, ubb = ub0 * ub0 + ub1 * ub1 + ub2 * ub2;
+          const double m0 = ua1 * ub2 - ua2 * ub1, m1 = ua2 * ub0 - ua0 * ub2, m2 = ua0 * ub1 - ua1 * ub0;
+          n00 += m0 * m0, n01 += m0 * m1, n02 += m0 * m2, n11 += m1 * m1, n12 += m1 * m2, n22 += m2 * m2;
+          const double mq = m0 * q0 + m1 * q1 + m2 * q2;
+          r0 += m0 * mq, r1 += m1 * mq, r2 += m2 * mq;
+          const double e0 = b[0] - a[0], e1 = b[1] - a[1], e2 = b[2] - a[2];
+          t[0] = m0, t[1] = m1, t[2] = m2;
+          t[3] = std::max({e0 * e0 + e1 * e1 + e2 * e2, uaa, ubb});
+          t[4] = a[0], t[5] = a[1], t[6] = a[2];
+          a[0] = b[0], a[1] = b[1], a[2] = b[2];
+          ua0 = ub0, ua1 = ub1, ua2 = ub2, uaa = ubb;
         }
       }
-      const Eigen::Vector3d xc = solve_squared_volume(N, r);  // relative to o
-      R.cell_points.row(c) = (o + xc).transpose();
+      const Eigen::Vector3d xc = solve_squared_volume({n00, n01, n02, n11, n12, n22}, Eigen::Vector3d(r0, r1, r2));
+      R.cell_points(c, 0) = o[0] + xc[0], R.cell_points(c, 1) = o[1] + xc[1], R.cell_points(c, 2) = o[2] + xc[2];
 
       double* w = R.cell_weights.data() + R.cell_weight_offsets[c];
       if (options.cell_rule == CellPointRule::SquaredVolume) {
         centred_affine_weights(Xc, xc, w);
       } else {
-        X = Xc.rowwise() + o.transpose();
+        const Eigen::RowVector3d origin(o[0], o[1], o[2]);
+        X = Xc.rowwise() + origin;
         const int nf = int(cell.size());
         Eigen::MatrixX3d Qp(nf + m, 3);
         for (int k = 0; k < nf; ++k) Qp.row(k) = R.face_points.row(cell[k] / 2);
         Qp.bottomRows(m) = X;
-        const Eigen::VectorXd lambda = last_pinned_affine_weights(Qp, o + xc);
+        const Eigen::VectorXd lambda = last_pinned_affine_weights(Qp, origin.transpose() + xc);
         for (int k = 0; k < m; ++k) w[k] = lambda(nf + k);
         for (int k = 0; k < nf; ++k) {
           const int f = cell[k] / 2;
@@ -309,16 +320,20 @@ VolumeRefinement refine_volume(const VolumeMesh& mesh, const VolumeRefinementOpt
       bool affected = false;
       SubTet* flag = R.tets.data() + R.tet_offsets[c];
       t = tri.data();
+      const double x0 = xc[0], x1 = xc[1], x2 = xc[2];
+      auto distance2 = [&](const double* y) {
+        const double d0 = x0 - y[0], d1 = x1 - y[1], d2 = x2 - y[2];
+        return d0 * d0 + d1 * d1 + d2 * d2;
+      };
       for (int hf : cell) {
-        const auto face = mesh.face(hf / 2);
-        const int n = int(face.size());
-        const Eigen::Vector3d h = xc - (R.face_points.row(hf / 2).transpose() - o);
-        const double hh = h.squaredNorm();
-        const double d0 = (xc - corner(face, hf, 0)).squaredNorm();
-        double da = d0;
-        for (int i = 0; i < n; ++i, t += 4, ++flag) {
-          const double db = i + 1 == n ? d0 : (xc - corner(face, hf, i + 1)).squaredNorm();
-          *flag = classify(t[0] * h[0] + t[1] * h[1] + t[2] * h[2], std::max({t[3], da, db, hh}), tol2);
+        const int f = hf / 2, n = mesh.face_size(f);
+        const double h0 = x0 - (F0[f] - o[0]), h1 = x1 - (F1[f] - o[1]), h2 = x2 - (F2[f] - o[2]);
+        const double hh = h0 * h0 + h1 * h1 + h2 * h2;
+        const double d_first = distance2(t + 4);
+        double da = d_first;
+        for (int i = 0; i < n; ++i, t += kStride, ++flag) {
+          const double db = i + 1 == n ? d_first : distance2(t + kStride + 4);
+          *flag = classify(t[0] * h0 + t[1] * h1 + t[2] * h2, std::max({t[3], da, db, hh}), tol2);
           if (*flag == SubTet::Degenerate) ++Q.n_degenerate;
           if (*flag == SubTet::Inverted) ++Q.n_inverted;
           affected = affected || *flag != SubTet::Valid;
