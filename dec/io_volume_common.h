@@ -96,6 +96,8 @@ class VolumeTokens {
     pos_ = e == std::string_view::npos ? text_.size() : e + 1;
     if (e != std::string_view::npos) ++line_;
   }
+  // The current position: its line, or its byte offset after use_byte_offsets().
+  long here() const { return byte_offsets_ ? long(pos_) : line_; }
   long line() const { return token_line_; }
   long current_line() const { return line_; }
   size_t remaining() const { return text_.size() - pos_; }
@@ -138,8 +140,6 @@ class VolumeTokens {
   std::string_view text_;
   const std::string& name_;
   bool hash_comments_;
-  // The current line, or the current byte offset after use_byte_offsets().
-  long here() const { return byte_offsets_ ? long(pos_) : line_; }
 
   size_t pos_ = 0, token_pos_ = 0;
   long line_ = 1, token_line_ = 0;

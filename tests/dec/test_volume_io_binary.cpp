@@ -1,7 +1,8 @@
 // tests/dec/test_volume_io_binary.cpp — VTK legacy BINARY unstructured grids (hand-built bytes in
-// both cell layouts, float and double points, METADATA blocks, polyhedra), bit-exact ASCII <->
-// binary round trips, hostile binary files (truncations, lying counts, non-finite points) named
-// by byte offset, and the coordinate precision volume readers record and the refinement uses.
+// both cell layouts, float and double points, METADATA blocks, polyhedra), dataset FIELD data
+// before POINTS as ParaView writes it (ASCII and BINARY), bit-exact ASCII <-> binary round trips,
+// hostile binary files (truncations, lying counts, non-finite points) named by byte offset, and
+// the coordinate precision volume readers record and the refinement uses.
 #include <fmt/format.h>
 
 #include <bit>
@@ -117,7 +118,133 @@ double six_digit_noise(const Eigen::MatrixX3d& X) {
   return absolute / std::sqrt((X.rowwise() - c).rowwise().squaredNorm().mean());
 }
 
+// `file` with `block` inserted before its POINTS line.
+std::string before_points(const std::string& file, const std::string& block) {
+  std::string s = file;
+  const auto p = s.find("POINTS ");
+  REQUIRE(p != std::string::npos);
+  return s.insert(p, block);
+}
+
+// A binary string with VTK's length header: 1 byte (top bits 11) below 64 bytes, else 2 bytes
+// (top bits 10), big-endian.
+std::string binary_string(const std::string& x) {
+  REQUIRE(x.size() < (1u << 14));
+  if (x.size() < 64) return std::string(1, char(0xC0 | x.size())) + x;
+  return be<std::uint16_t>(std::uint16_t(0x8000 | x.size())) + x;
+}
+
+// A binary FIELD block shaped like ParaView's (TimeValue first), with the other kinds of
+// arrays VTK writes: vtkIdType values whose bytes are newlines and spaces, bits, strings with
+// both length headers (one holding the text "POINTS 9 double\n"), a NULL_ARRAY and a METADATA
+// block.
+std::string binary_field_block() {
+  std::string f = "FIELD FieldData 5\nTimeValue 1 1 double\n" + be(0.25) + "\n";
+  f += "Ids 2 3 vtkIdType\n";
+  for (std::int32_t x : {0x0a0a0a0a, 0x20202020, 0x0a200a20, 7, -1, 0}) f += be(x);
+  f += "\nMETADATA\nINFORMATION 1\nNAME L2_NORM_RANGE LOCATION vtkDataArray\nDATA 2 0 1 \n\n";
+  f += "Flags 1 11 bit\n" + std::string("\x0a\xff", 2) + "\n";
+  f += "Names 1 2 string\n" + binary_string("POINTS 9 double\n") + binary_string(std::string(70, '\n')) + "\n";
+  f += "NULL_ARRAY\n";
+  return f;
+}
+
 }  // namespace
+
+TEST_CASE("VTK: dataset FIELD data before POINTS (ParaView exports), ASCII and BINARY", "[volume][io]") {
+  // ASCII: the same cells with and without the FIELD block read to identical meshes.
+  const std::string ascii =
+      "# vtk DataFile Version 5.1\nvtk output\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 5 float\n"
+      "0 0 0 1 0 0 0 1 0 0 0 1 1 1 1\nCELLS 3 8\nOFFSETS vtktypeint64\n0 4 8\n"
+      "CONNECTIVITY vtktypeint64\n0 1 2 3\n1 2 3 4\nCELL_TYPES 2\n10\n10\n";
+  const std::string ascii_field =
+      "FIELD FieldData 5\nTimeValue 1 1 double\n0.25\nCYCLE 1 1 int\n7\n"
+      "METADATA\nINFORMATION 1\nNAME L2_NORM_RANGE LOCATION vtkDataArray\nDATA 2 7 7 \n\n"
+      "Flags 2 3 bit\n0 1 1\n1 0 0\nNULL_ARRAY\nNames 1 2 string\nhex%20and%20pyramid\nPOINTS 5 float 1 2 3\n";
+  const VolumeMesh plain = read_volume_mesh_from_memory(ascii, "vtk", "plain.vtk");
+  REQUIRE(plain.n_cells() == 2);
+  const std::string with_field = before_points(ascii, ascii_field);
+  check_identical(read_volume_mesh_from_memory(with_field, "vtk", "field.vtk"), plain);
+  // Two FIELD blocks, and an empty one.
+  check_identical(
+      read_volume_mesh_from_memory(before_points(ascii, ascii_field + "FIELD FieldData 0\n"), "vtk", "f2.vtk"),
+      plain);
+
+  // BINARY, both cell layouts: the FIELD block changes nothing.
+  for (bool v51 : {false, true}) {
+    INFO("version 5.1 " << v51);
+    const std::string bin = hex_pyramid_file(false, v51);
+    const VolumeMesh m = read_volume_mesh_from_memory(bin, "vtk", "hp.vtk");
+    check_identical(read_volume_mesh_from_memory(before_points(bin, binary_field_block()), "vtk", "hpf.vtk"), m);
+  }
+
+  // Every truncation of the binary file with FIELD data is a FileError naming a byte offset
+  // within the bytes it was given; every truncation of the ASCII one names a line.
+  const std::string good = before_points(hex_pyramid_file(false, false, false), binary_field_block());
+  const size_t types_end = good.find("\nCELL_DATA");
+  for (size_t n = good.find("BINARY") + 7; n < types_end; ++n) {
+    INFO("truncated to " << n << " bytes");
+    const FileError e = read_error(good.substr(0, n));
+    CHECK(e.line == 0);
+    CHECK(e.byte_offset >= 0);
+    CHECK(e.byte_offset <= long(n));
+  }
+  for (size_t n = with_field.find("ASCII") + 6; n < with_field.find("CELL_TYPES 2\n10\n") + 16; ++n) {
+    INFO("truncated to " << n << " bytes");
+    try {
+      read_volume_mesh_from_memory(with_field.substr(0, n), "vtk", "t.vtk");
+      FAIL("accepted a truncated file");
+    } catch (const FileError& e) {
+      CHECK(e.line >= 1);
+      CHECK(e.byte_offset == -1);
+    }
+  }
+
+  // Lying counts and unreadable types, named by byte offset.
+  const size_t time_at = good.find("TimeValue 1 1 double\n") + 21;
+  expect_error(replace(good, "TimeValue 1 1 double", "TimeValue 1 100000 double"), long(time_at + 5),
+               "truncated field array 'TimeValue': needs 100000 values of 8 bytes");
+  expect_error(replace(good, "TimeValue 1 1 double", "TimeValue 1 1 long"), long(time_at - 7),
+               "field array 'TimeValue' has type 'long', whose size in binary files depends on the writing platform");
+  expect_error(replace(good, "TimeValue 1 1 double", "TimeValue 1 1 quaternion"), long(time_at - 7),
+               "field array 'TimeValue' has the unsupported data type 'quaternion'");
+  expect_error(replace(good, "FieldData 5", "FieldData -5"), long(good.find("FieldData 5") + 10),
+               "negative field array count -5");
+  expect_error(replace(good, "Flags 1 11 bit", "Flags 1 2000000000 bit"), long(good.find("Flags") + 8),
+               "field array 'Flags' tuple count 2000000000 is too large");
+  // A string whose length header claims more bytes than the file has.
+  std::string lying = good;
+  const size_t names_at = good.find("Names 1 2 string\n") + 17;
+  lying.replace(names_at, 1, std::string(1, char(0x80)));  // a 2-byte header: 0x80 'P' = 80 bytes
+  lying = lying.substr(0, names_at + 40);
+  expect_error(lying, long(names_at + 2), "truncated field array 'Names': needs 80 bytes, the file ends after 38");
+  expect_error(replace(good, "Names 1 2 string", "Names 1 200000 string"), long(names_at + 5),
+               "truncated field array 'Names': 200000 strings need at least 200000 bytes");
+  // The field arrays end where their payloads say: a count one tuple short leaves the reader in
+  // the middle of the payload, which it reports as an error instead of reading on.
+  CHECK_THROWS_AS(read_volume_mesh_from_memory(replace(good, "Ids 2 3", "Ids 2 2"), "vtk", "x"), FileError);
+
+  // ASCII errors name the line.
+  const auto ascii_error = [&](const std::string& text, long line, const std::string& reason) {
+    try {
+      read_volume_mesh_from_memory(text, "vtk", "a.vtk");
+      FAIL("accepted a bad file (" << reason << ")");
+    } catch (const FileError& e) {
+      INFO(e.what());
+      CHECK(e.line == line);
+      CHECK(e.reason.find(reason) != std::string::npos);
+      CHECK(std::string(e.what()).find(fmt::format("a.vtk:{}: ", line)) == 0);
+    }
+  };
+  // TimeValue announces 3 values: the second is the next array's name.
+  ascii_error(replace(with_field, "TimeValue 1 1", "TimeValue 1 3"), 8, "bad value 'CYCLE' in field array 'TimeValue'");
+  ascii_error(replace(with_field, "Names 1 2 string", "Names 1 99 string"), 33,
+              "field array 'Names' announces 99 strings, the file ends after 13");
+  ascii_error(replace(with_field, "CYCLE 1 1 int", "CYCLE 1 1 variant"), 8,
+              "field array 'CYCLE' has the unsupported data type 'variant'");
+  ascii_error(replace(with_field, "TimeValue 1 1", "TimeValue 1 100000"), 6,
+              "field array 'TimeValue' announces 100000 values but only");
+}
 
 TEST_CASE("VTK BINARY: a hand-built hexahedron and pyramid, both layouts, float and double", "[volume][io]") {
   for (bool float_points : {false, true})
