@@ -446,9 +446,19 @@ PolyhedronRead read_vtk(std::string_view bytes, const std::string& name) {
   return r;
 }
 
+void check_vtk_int32(const std::string& file, const std::string& what, std::uint64_t value) {
+  if (value > std::uint64_t(INT32_MAX))
+    throw FileError(file, 0, -1,
+                    fmt::format("{} is {}, beyond the 32-bit signed integers of a VTK legacy file (at most {}): "
+                                "the mesh is too large for this format",
+                                what, value, INT32_MAX));
+}
+
 // The classic cell list of the mesh (per cell its count, then its point ids or, for a polyhedron,
-// its face stream with outward faces) and the cells' VTK types.
-void vtk_cells(const VolumeMesh& mesh, std::vector<int>& entries, std::vector<int>& types) {
+// its face stream with outward faces) and the cells' VTK types; a FileError naming `file` as soon
+// as the list or a face stream outgrows the file's int32 counts.
+void vtk_cells(const VolumeMesh& mesh, const std::string& file, std::vector<int>& entries,
+               std::vector<int>& types) {
   types.assign(size_t(mesh.n_cells()), 0);
   entries.clear();
   std::array<int, 8> order{};
@@ -470,19 +480,21 @@ void vtk_cells(const VolumeMesh& mesh, std::vector<int>& entries, std::vector<in
         entries.push_back(f[0]);
         for (size_t i = 1; i < f.size(); ++i) entries.push_back((h & 1) ? f[f.size() - i] : f[i]);
       }
+      check_vtk_int32(file, fmt::format("the face stream of polyhedron cell {}", c), entries.size() - count_at - 1);
       entries[count_at] = int(entries.size() - count_at - 1);
     } else {
       const int n = vtk_cell_size(type);
       entries.push_back(n);
       entries.insert(entries.end(), order.begin(), order.begin() + n);
     }
+    check_vtk_int32(file, "the CELLS list size (per cell its count and numbers)", entries.size());
   }
 }
 
-std::string write_vtk(const VolumeMesh& mesh, bool binary) {
+std::string write_vtk(const VolumeMesh& mesh, const std::string& name, bool binary) {
   const auto& X = mesh.positions();
   std::vector<int> entries, types;
-  vtk_cells(mesh, entries, types);
+  vtk_cells(mesh, name, entries, types);
   std::string out =
       fmt::format("# vtk DataFile Version 4.2\npolydec volume mesh\n{}\nDATASET UNSTRUCTURED_GRID\n",
                   binary ? "BINARY" : "ASCII");

@@ -1,8 +1,9 @@
 // tests/dec/test_volume_io_binary.cpp — VTK legacy BINARY unstructured grids (hand-built bytes in
 // both cell layouts, float and double points, METADATA blocks, polyhedra), dataset FIELD data
 // before POINTS as ParaView writes it (ASCII and BINARY), bit-exact ASCII <-> binary round trips,
-// hostile binary files (truncations, lying counts, non-finite points) named by byte offset, and
-// the coordinate precision volume readers record and the refinement uses.
+// hostile binary files (truncations, lying counts, non-finite points) named by byte offset, the
+// writers' int32 count limit, and the coordinate precision volume readers record and the
+// refinement uses.
 #include <fmt/format.h>
 
 #include <bit>
@@ -11,6 +12,7 @@
 #include <cstring>
 
 #include "polydec/dec/io_volume.h"
+#include "polydec/dec/io_volume_common.h"
 #include "polydec/dec/virtual_vertex.h"
 #include "polydec/dec/volume_generators.h"
 #include "polydec/dec/volume_refinement.h"
@@ -244,6 +246,24 @@ TEST_CASE("VTK: dataset FIELD data before POINTS (ParaView exports), ASCII and B
               "field array 'CYCLE' has the unsupported data type 'variant'");
   ascii_error(replace(with_field, "TimeValue 1 1", "TimeValue 1 100000"), 6,
               "field array 'TimeValue' announces 100000 values but only");
+}
+
+TEST_CASE("VTK writers refuse counts beyond the format's int32 instead of writing corrupt files", "[volume][io]") {
+  // The check the ASCII and BINARY writers apply to the CELLS list size and to each polyhedron's
+  // face stream, with plain numbers: the largest int32 passes, one more and beyond throw.
+  CHECK_NOTHROW(io_detail::check_vtk_int32("big.vtk", "the CELLS list size", 2147483647u));
+  CHECK_NOTHROW(io_detail::check_vtk_int32("big.vtk", "the CELLS list size", 0));
+  for (std::uint64_t value : {std::uint64_t(2147483648u), std::uint64_t(4294967296u), std::uint64_t(1) << 40}) {
+    try {
+      io_detail::check_vtk_int32("big.vtk", "the CELLS list size", value);
+      FAIL("accepted " << value);
+    } catch (const FileError& e) {
+      INFO(e.what());
+      CHECK(e.file == "big.vtk");
+      CHECK(e.reason.find(fmt::format("the CELLS list size is {}", value)) == 0);
+      CHECK(e.reason.find("(at most 2147483647)") != std::string::npos);
+    }
+  }
 }
 
 TEST_CASE("VTK BINARY: a hand-built hexahedron and pyramid, both layouts, float and double", "[volume][io]") {
