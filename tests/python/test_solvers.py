@@ -68,7 +68,10 @@ def test_heat_diagnostics_on_a_long_strip():
     assert 0.4 * length < diag1["resolved_radius"] < 0.9 * length
     assert d1.max() < 0.9 * length
     factor = polydec.suggested_time_factor(1.0, diag1, extent)
-    assert factor == pytest.approx((1.25 * extent / diag1["resolved_radius"]) ** 2, rel=1e-14)
+    # The documented model: per mean edge length the heat step decays by kappa(f) = 2 asinh(1 / (2 sqrt f));
+    # the suggestion f' solves kappa(f') = kappa(1) resolved_radius / (1.25 extent).
+    kappa = 2 * np.arcsinh(0.5) * diag1["resolved_radius"] / (1.25 * extent)
+    assert factor == pytest.approx(0.25 / np.sinh(kappa / 2) ** 2, rel=1e-12)
     assert factor > 1.0
     d2, diag2 = polydec.HeatGeodesics(V, F, time_step_factor=factor).distance(0, return_diagnostics=True)
     assert diag2["unresolved_vertices"] == 0
