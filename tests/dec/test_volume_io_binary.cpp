@@ -69,6 +69,13 @@ std::string hex_pyramid_file(bool float_points, bool v51, bool metadata = true) 
   return s;
 }
 
+// The ASCII file of the same hexahedron and pyramid (classic CELLS).
+std::string hex_pyramid_ascii() {
+  std::string s = "# vtk DataFile Version 3.0\nhp\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 9 double\n";
+  for (const auto& p : kPoints) s += fmt::format("{} {} {}\n", p[0], p[1], p[2]);
+  return s + "CELLS 2 15\n8 0 1 2 3 4 5 6 7\n5 4 5 6 7 8\nCELL_TYPES 2\n12\n14\n";
+}
+
 // Same positions (bit-exact), same cells with the same faces in the same order.
 void check_identical(const VolumeMesh& a, const VolumeMesh& b) {
   CHECK(a.positions() == b.positions());
@@ -93,6 +100,19 @@ FileError read_error(const std::string& bytes) {
   }
   FAIL("accepted a bad file");
   return FileError("", 0, -1, "");
+}
+
+// Every truncation of the binary file `good` from after its BINARY line to the end of its cell
+// types is a FileError naming a byte offset within the bytes it was given, never a crash.
+void check_every_truncation(const std::string& good) {
+  const size_t types_end = good.find("\nCELL_DATA");
+  for (size_t n = good.find("BINARY") + 7; n < types_end; ++n) {
+    INFO("truncated to " << n << " bytes");
+    const FileError e = read_error(good.substr(0, n));
+    CHECK(e.line == 0);
+    CHECK(e.byte_offset >= 0);
+    CHECK(e.byte_offset <= long(n));
+  }
 }
 
 void expect_error(const std::string& bytes, long byte_offset, const std::string& reason) {
@@ -155,10 +175,7 @@ std::string binary_field_block() {
 
 TEST_CASE("VTK: dataset FIELD data before POINTS (ParaView exports), ASCII and BINARY", "[volume][io]") {
   // ASCII: the same cells with and without the FIELD block read to identical meshes.
-  const std::string ascii =
-      "# vtk DataFile Version 5.1\nvtk output\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 5 float\n"
-      "0 0 0 1 0 0 0 1 0 0 0 1 1 1 1\nCELLS 3 8\nOFFSETS vtktypeint64\n0 4 8\n"
-      "CONNECTIVITY vtktypeint64\n0 1 2 3\n1 2 3 4\nCELL_TYPES 2\n10\n10\n";
+  const std::string ascii = hex_pyramid_ascii();
   const std::string ascii_field =
       "FIELD FieldData 5\nTimeValue 1 1 double\n0.25\nCYCLE 1 1 int\n7\n"
       "METADATA\nINFORMATION 1\nNAME L2_NORM_RANGE LOCATION vtkDataArray\nDATA 2 7 7 \n\n"
@@ -183,15 +200,8 @@ TEST_CASE("VTK: dataset FIELD data before POINTS (ParaView exports), ASCII and B
   // Every truncation of the binary file with FIELD data is a FileError naming a byte offset
   // within the bytes it was given; every truncation of the ASCII one names a line.
   const std::string good = before_points(hex_pyramid_file(false, false, false), binary_field_block());
-  const size_t types_end = good.find("\nCELL_DATA");
-  for (size_t n = good.find("BINARY") + 7; n < types_end; ++n) {
-    INFO("truncated to " << n << " bytes");
-    const FileError e = read_error(good.substr(0, n));
-    CHECK(e.line == 0);
-    CHECK(e.byte_offset >= 0);
-    CHECK(e.byte_offset <= long(n));
-  }
-  for (size_t n = with_field.find("ASCII") + 6; n < with_field.find("CELL_TYPES 2\n10\n") + 16; ++n) {
+  check_every_truncation(good);
+  for (size_t n = with_field.find("ASCII") + 6; n < with_field.find("CELL_TYPES 2\n12\n") + 16; ++n) {
     INFO("truncated to " << n << " bytes");
     try {
       read_volume_mesh_from_memory(with_field.substr(0, n), "vtk", "t.vtk");
@@ -240,8 +250,8 @@ TEST_CASE("VTK: dataset FIELD data before POINTS (ParaView exports), ASCII and B
   };
   // TimeValue announces 3 values: the second is the next array's name.
   ascii_error(replace(with_field, "TimeValue 1 1", "TimeValue 1 3"), 8, "bad value 'CYCLE' in field array 'TimeValue'");
-  ascii_error(replace(with_field, "Names 1 2 string", "Names 1 99 string"), 33,
-              "field array 'Names' announces 99 strings, the file ends after 13");
+  ascii_error(replace(with_field, "Names 1 2 string", "Names 1 99 string"), 38,
+              "field array 'Names' announces 99 strings, the file ends after 18");
   ascii_error(replace(with_field, "CYCLE 1 1 int", "CYCLE 1 1 variant"), 8,
               "field array 'CYCLE' has the unsupported data type 'variant'");
   ascii_error(replace(with_field, "TimeValue 1 1", "TimeValue 1 100000"), 6,
@@ -283,11 +293,7 @@ TEST_CASE("VTK BINARY: a hand-built hexahedron and pyramid, both layouts, float 
       const double expected = float_points ? 0x1p-24 * 2.0 / m.rms_radius() : 0.0;
       CHECK(m.precision().noise == Approx(expected).epsilon(1e-12));
       // The same mesh as the ASCII file of the same numbers.
-      std::string ascii =
-          "# vtk DataFile Version 3.0\nhp\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 9 double\n";
-      for (const auto& p : kPoints) ascii += fmt::format("{} {} {}\n", p[0], p[1], p[2]);
-      ascii += "CELLS 2 15\n8 0 1 2 3 4 5 6 7\n5 4 5 6 7 8\nCELL_TYPES 2\n12\n14\n";
-      check_identical(read_volume_mesh_from_memory(ascii, "vtk", "hp_ascii.vtk"), m);
+      check_identical(read_volume_mesh_from_memory(hex_pyramid_ascii(), "vtk", "hp_ascii.vtk"), m);
     }
   // Without the METADATA block, and through the file-name route (format by the first word).
   CHECK(read_volume_mesh_from_memory(hex_pyramid_file(false, false, false), "vtk", "x").volume() ==
@@ -356,14 +362,7 @@ TEST_CASE("VTK BINARY: truncated files and lying counts name the byte offset", "
   const size_t points_at = good.find("POINTS 9 double\n") + 16;
   const size_t cells_at = good.find("CELLS 2 15\n");
   // Every truncation inside the header, the payloads or CELL_TYPES is a FileError, never a crash.
-  const size_t types_end = good.find("\nCELL_DATA");
-  for (size_t n = good.find("BINARY") + 7; n < types_end; ++n) {
-    INFO("truncated to " << n << " bytes");
-    const FileError e = read_error(good.substr(0, n));
-    CHECK(e.line == 0);
-    CHECK(e.byte_offset >= 0);
-    CHECK(e.byte_offset <= long(n));
-  }
+  check_every_truncation(good);
   expect_error(good.substr(0, points_at + 100), long(points_at),
                "truncated point coordinates: needs 216 bytes, the file ends after 100");
   // Counts larger than the file can hold are refused before anything is allocated.
