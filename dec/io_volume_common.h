@@ -155,11 +155,10 @@ std::string write_ovm(const VolumeMesh& mesh);
 // VTK legacy: ASCII, or BINARY (big-endian payloads) with `binary`; `name` (the file) is named
 // in the FileError of a mesh too large for the format (check_vtk_int32).
 std::string write_vtk(const VolumeMesh& mesh, const std::string& name, bool binary = false);
-// A count a VTK legacy file stores as a 32-bit signed integer (the classic CELLS list size, a
-// polyhedron's face-stream length; both ASCII and BINARY readers take them as int32): a FileError
-// naming `file`, `what`, the value and the limit INT32_MAX when it does not fit, instead of a
-// corrupt file.
-void check_vtk_int32(const std::string& file, const std::string& what, std::uint64_t value);
+// A count a VTK legacy file stores as a 32-bit signed integer (the classic CELLS list size, which
+// bounds every number in the list; ASCII and BINARY readers take it as int32): a FileError naming
+// `file`, `what`, the value and the limit INT32_MAX when it does not fit, instead of a corrupt file.
+void check_vtk_int32(const std::string& file, std::string_view what, std::uint64_t value);
 std::string write_medit(const VolumeMesh& mesh, const std::string& name);
 
 }  // namespace polydec::io_detail

@@ -446,7 +446,7 @@ PolyhedronRead read_vtk(std::string_view bytes, const std::string& name) {
   return r;
 }
 
-void check_vtk_int32(const std::string& file, const std::string& what, std::uint64_t value) {
+void check_vtk_int32(const std::string& file, std::string_view what, std::uint64_t value) {
   if (value > std::uint64_t(INT32_MAX))
     throw FileError(file, 0, -1,
                     fmt::format("{} is {}, beyond the 32-bit signed integers of a VTK legacy file (at most {}): "
@@ -456,7 +456,8 @@ void check_vtk_int32(const std::string& file, const std::string& what, std::uint
 
 // The classic cell list of the mesh (per cell its count, then its point ids or, for a polyhedron,
 // its face stream with outward faces) and the cells' VTK types; a FileError naming `file` as soon
-// as the list or a face stream outgrows the file's int32 counts.
+// as the list outgrows the file's int32 counts (which bounds every number in it, a face stream's
+// length included).
 void vtk_cells(const VolumeMesh& mesh, const std::string& file, std::vector<int>& entries,
                std::vector<int>& types) {
   types.assign(size_t(mesh.n_cells()), 0);
@@ -480,7 +481,6 @@ void vtk_cells(const VolumeMesh& mesh, const std::string& file, std::vector<int>
         entries.push_back(f[0]);
         for (size_t i = 1; i < f.size(); ++i) entries.push_back((h & 1) ? f[f.size() - i] : f[i]);
       }
-      check_vtk_int32(file, fmt::format("the face stream of polyhedron cell {}", c), entries.size() - count_at - 1);
       entries[count_at] = int(entries.size() - count_at - 1);
     } else {
       const int n = vtk_cell_size(type);

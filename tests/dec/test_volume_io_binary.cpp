@@ -259,8 +259,8 @@ TEST_CASE("VTK: dataset FIELD data before POINTS (ParaView exports), ASCII and B
 }
 
 TEST_CASE("VTK writers refuse counts beyond the format's int32 instead of writing corrupt files", "[volume][io]") {
-  // The check the ASCII and BINARY writers apply to the CELLS list size and to each polyhedron's
-  // face stream, with plain numbers: the largest int32 passes, one more and beyond throw.
+  // The check the ASCII and BINARY writers apply to the CELLS list size after each cell, with plain
+  // numbers: the largest int32 passes, one more and beyond throw.
   CHECK_NOTHROW(io_detail::check_vtk_int32("big.vtk", "the CELLS list size", 2147483647u));
   CHECK_NOTHROW(io_detail::check_vtk_int32("big.vtk", "the CELLS list size", 0));
   for (std::uint64_t value : {std::uint64_t(2147483648u), std::uint64_t(4294967296u), std::uint64_t(1) << 40}) {
