@@ -143,11 +143,12 @@ std::string write_medit(const VolumeMesh& mesh, const std::string& name) {
     else if (s == CellShape::hexahedron)
       hexes.push_back(o);
     else
-      throw FileError(
-          name, 0, -1,
-          fmt::format("cell {} is a {} with {} faces: MEDIT holds tetrahedra and hexahedra only (use .vtk "
-                      "or .ovm)",
-                      c, cell_shape_name(s), mesh.cell_size(c)));
+      throw FileError(name, 0, -1,
+                      fmt::format("cell {} is {} with {} faces: MEDIT holds tetrahedra and hexahedra only (use "
+                                  ".vtk or .ovm)",
+                                  c, s == CellShape::other ? std::string("a general polyhedron")
+                                                           : std::string("a ") + cell_shape_name(s),
+                                  mesh.cell_size(c)));
   }
   const auto& X = mesh.positions();
   fmt::memory_buffer b;

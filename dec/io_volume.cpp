@@ -104,7 +104,7 @@ std::string write_volume_mesh_to_string(const VolumeMesh& mesh, std::string_view
                                         const WriteOptions& options) {
   const std::string f = io_detail::lower(format);
   if (f == "ovm") return io_detail::write_ovm(mesh);
-  if (f == "vtk") return io_detail::write_vtk(mesh, options.binary);
+  if (f == "vtk") return io_detail::write_vtk(mesh, "(memory)", options.binary);
   if (f == "mesh") return io_detail::write_medit(mesh, "(memory)");
   throw FileError("(memory)", 0, -1, fmt::format("unknown volume mesh format '{}' ({})", f, kFormats));
 }
@@ -113,15 +113,16 @@ void write_volume_mesh(const VolumeMesh& mesh, const std::string& path, const Wr
   const std::string f = extension(path);
   if (!known(f))
     throw FileError(path, 0, -1, fmt::format("unknown volume mesh format '.{}' ({})", f, kFormats));
-  const std::string data =
-      f == "mesh" ? io_detail::write_medit(mesh, path) : write_volume_mesh_to_string(mesh, f, options);
+  const std::string data = f == "mesh" ? io_detail::write_medit(mesh, path)
+                           : f == "vtk" ? io_detail::write_vtk(mesh, path, options.binary)
+                                        : write_volume_mesh_to_string(mesh, f, options);
   write_bytes(path, data);
 }
 
 void write_volume_vtk_with_point_data(const VolumeMesh& mesh, const std::string& path,
                                       const VertexScalars& scalars) {
   if (extension(path) != "vtk") throw FileError(path, 0, -1, "point data needs a VTK file (.vtk)");
-  std::string data = io_detail::write_vtk(mesh);
+  std::string data = io_detail::write_vtk(mesh, path);
   if (!scalars.empty()) data += fmt::format("POINT_DATA {}\n", mesh.n_vertices());
   for (const auto& [name, values] : scalars) {
     if (values.size() != mesh.n_vertices())

@@ -35,7 +35,8 @@ VolumeMesh read_volume_mesh_from_memory(std::string_view bytes, std::string_view
 // MEDIT holds tetrahedra and hexahedra only: another cell throws FileError. With
 // options.binary, VTK is written as a legacy BINARY file (version 4.2, big-endian float64
 // points, classic int32 cell list and types: bit-exact like the ASCII file); OVM and MEDIT have
-// no binary form here (ignored). Throws FileError when the file cannot be written.
+// no binary form here (ignored). Throws FileError when the file cannot be written, or when a
+// VTK cell list would exceed the format's int32 counts.
 void write_volume_mesh(const VolumeMesh& mesh, const std::string& path, const WriteOptions& options = {});
 // A VTK legacy file (extension .vtk required, else FileError) of the mesh followed by a POINT_DATA
 // section with one "SCALARS NAME double 1" array per entry (|V| values each, 17 significant digits;

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <climits>
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -96,6 +97,8 @@ class VolumeTokens {
     pos_ = e == std::string_view::npos ? text_.size() : e + 1;
     if (e != std::string_view::npos) ++line_;
   }
+  // The current position: its line, or its byte offset after use_byte_offsets().
+  long here() const { return byte_offsets_ ? long(pos_) : line_; }
   long line() const { return token_line_; }
   long current_line() const { return line_; }
   size_t remaining() const { return text_.size() - pos_; }
@@ -138,8 +141,6 @@ class VolumeTokens {
   std::string_view text_;
   const std::string& name_;
   bool hash_comments_;
-  // The current line, or the current byte offset after use_byte_offsets().
-  long here() const { return byte_offsets_ ? long(pos_) : line_; }
 
   size_t pos_ = 0, token_pos_ = 0;
   long line_ = 1, token_line_ = 0;
@@ -151,8 +152,13 @@ PolyhedronRead read_vtk(std::string_view bytes, const std::string& name);
 PolyhedronRead read_medit(std::string_view bytes, const std::string& name);
 
 std::string write_ovm(const VolumeMesh& mesh);
-// VTK legacy: ASCII, or BINARY (big-endian payloads) with `binary`.
-std::string write_vtk(const VolumeMesh& mesh, bool binary = false);
+// VTK legacy: ASCII, or BINARY (big-endian payloads) with `binary`; `name` (the file) is named
+// in the FileError of a mesh too large for the format (check_vtk_int32).
+std::string write_vtk(const VolumeMesh& mesh, const std::string& name, bool binary = false);
+// A count a VTK legacy file stores as a 32-bit signed integer (the classic CELLS list size, which
+// bounds every number in the list; ASCII and BINARY readers take it as int32): a FileError naming
+// `file`, `what`, the value and the limit INT32_MAX when it does not fit, instead of a corrupt file.
+void check_vtk_int32(const std::string& file, std::string_view what, std::uint64_t value);
 std::string write_medit(const VolumeMesh& mesh, const std::string& name);
 
 }  // namespace polydec::io_detail

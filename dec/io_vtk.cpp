@@ -6,9 +6,11 @@
 // "n_faces k_1 face_1 .. " in either layout). BINARY payloads are big-endian: points float32 or
 // float64, classic cell lists and cell types int32, version 5 offsets and connectivity
 // vtktypeint32 or vtktypeint64; each payload starts after its header line's '\n'. Faces shared
-// by cells are identified by their vertex sets. Sections after CELL_TYPES (POINT_DATA,
+// by cells are identified by their vertex sets. Dataset-level FIELD data before POINTS (its
+// arrays of any VTK type, strings included) is skipped; sections after CELL_TYPES (POINT_DATA,
 // CELL_DATA, FIELD) are ignored.
 #include <array>
+#include <charconv>
 #include <climits>
 #include <cmath>
 #include <cstdint>
@@ -44,6 +46,37 @@ const char* type_name(long long t) {
   }
 }
 
+// How the values of a field array of VTK data type `type` are stored: numbers of `width` bytes
+// in BINARY files (1, 2, 4, 8), bits packed 8 to a byte, strings (ASCII one line each; BINARY
+// each behind a length header), `long`/`unsigned_long` (their binary width is the writing
+// platform's), or a type VTK's legacy reader does not know.
+enum class FieldKind { number, bit, string, platform_long, unknown };
+struct FieldType {
+  FieldKind kind;
+  int width;
+};
+FieldType field_type(std::string_view type) {
+  const std::string t = io_detail::lower(type);
+  if (t == "bit") return {FieldKind::bit, 0};
+  if (t == "char" || t == "signed_char" || t == "unsigned_char") return {FieldKind::number, 1};
+  if (t == "short" || t == "unsigned_short") return {FieldKind::number, 2};
+  if (t == "int" || t == "unsigned_int" || t == "float" || t == "vtkidtype") return {FieldKind::number, 4};
+  if (t == "double" || t == "vtktypeint64" || t == "vtktypeuint64") return {FieldKind::number, 8};
+  if (t == "long" || t == "unsigned_long") return {FieldKind::platform_long, 0};
+  if (t == "string" || t == "utf8_string") return {FieldKind::string, 0};
+  return {FieldKind::unknown, 0};
+}
+
+// True when the whole token is a number (values beyond the double range included: field values
+// are skipped, not used).
+bool is_number(std::string_view t) {
+  if (!t.empty() && t[0] == '+') t.remove_prefix(1);
+  double x;
+  const auto r = std::from_chars(t.data(), t.data() + t.size(), x);
+  return !t.empty() && (r.ec == std::errc() || r.ec == std::errc::result_out_of_range) &&
+         r.ptr == t.data() + t.size();
+}
+
 // The reader's state: the tokens (lines in ASCII files, byte offsets in BINARY ones) and the
 // bytes the binary payloads are read from.
 struct Input {
@@ -61,6 +94,98 @@ struct Input {
     in.skip_line();
     while (in.remaining() > 0 && !in.blank_line()) in.skip_line();
     in.skip_line();
+  }
+
+  // Skips dataset-level field data (ParaView writes e.g. the time value there, before POINTS):
+  // "FIELD name n_arrays", then per array "name n_components n_tuples type" and its values, or
+  // the word NULL_ARRAY; each array optionally followed by a METADATA block. ASCII values are
+  // tokens that must be numbers, strings one line each; BINARY values are the big-endian payload
+  // after the header line (strings each behind VTK's 1-, 2-, 4- or 8-byte length header).
+  void skip_field_data() {
+    in.keyword("FIELD");
+    in.expect("the field data name");
+    const long long n_arrays = in.count("field array count", 2);
+    for (long long a = 0; a < n_arrays; ++a) {
+      const std::string_view array_name = in.expect("a field array name");
+      if (array_name == "NULL_ARRAY") continue;
+      const std::string what = "field array " + io_detail::quote(array_name);
+      const long long components = in.count(what + " component count", 0);
+      const long long tuples = in.count(what + " tuple count", 0);
+      const std::string_view type = in.expect("the field array data type");
+      const FieldType ft = field_type(type);
+      if (ft.kind == FieldKind::unknown)
+        in.fail(in.where(), fmt::format("{} has the unsupported data type {} (numeric types, bit, string are read)",
+                                        what, io_detail::quote(type)));
+      if (binary && ft.kind == FieldKind::platform_long)
+        in.fail(in.where(), fmt::format("{} has type {}, whose size in binary files depends on the writing "
+                                        "platform (vtktypeint64 is read)",
+                                        what, io_detail::quote(type)));
+      const long long n = components * tuples;  // both at most INT_MAX / 2: no overflow
+      if (ft.kind == FieldKind::string)
+        binary ? skip_binary_strings(n, what) : skip_text_lines(n, what);
+      else if (binary)
+        skip_binary_values(n, ft, what);
+      else
+        skip_text_values(n, what);
+      skip_metadata();
+    }
+  }
+
+  // n number tokens of a field array.
+  void skip_text_values(long long n, const std::string& what) {
+    if (n > ((long long)in.remaining() + 1) / 2)
+      in.fail(in.where(), fmt::format("{} announces {} values but only {} bytes follow", what, n, in.remaining()));
+    for (long long k = 0; k < n; ++k) {
+      const std::string_view t = in.expect("a field value");
+      if (!is_number(t)) in.fail(in.where(), fmt::format("bad value {} in {}", io_detail::quote(t), what));
+    }
+  }
+
+  // n lines of an ASCII string array, after the rest of its header line.
+  void skip_text_lines(long long n, const std::string& what) {
+    in.skip_line();
+    for (long long k = 0; k < n; ++k) {
+      if (in.remaining() == 0)
+        in.fail(in.here(), fmt::format("unexpected end of file: {} announces {} strings, the file ends after {}",
+                                       what, n, k));
+      in.skip_line();
+    }
+  }
+
+  // The binary payload of n numbers (or bits) after the header line.
+  void skip_binary_values(long long n, FieldType ft, const std::string& what) {
+    in.end_line(what.c_str());
+    const size_t left = in.remaining();
+    size_t bytes = 0;
+    if (ft.kind == FieldKind::bit) {
+      bytes = size_t(n + 7) / 8;
+    } else {
+      if (size_t(n) > left / size_t(ft.width))
+        in.fail(in.here(), fmt::format("truncated {}: needs {} values of {} bytes, the file ends after {}", what,
+                                       n, ft.width, left));
+      bytes = size_t(n) * size_t(ft.width);
+    }
+    io_detail::BinaryCursor(text, in.position(), true, name).need(bytes, what.c_str());
+    in.advance(bytes);
+  }
+
+  // n binary strings after the header line, each a big-endian length header whose first byte's
+  // top two bits give its size (3: 1 byte, 2: 2, 1: 4, 0: 8; the other bits hold the length)
+  // and then the string's bytes.
+  void skip_binary_strings(long long n, const std::string& what) {
+    in.end_line(what.c_str());
+    io_detail::BinaryCursor cur(text, in.position(), true, name);
+    if (size_t(n) > cur.remaining())
+      in.fail(in.here(), fmt::format("truncated {}: {} strings need at least {} bytes, the file ends after {}",
+                                     what, n, n, cur.remaining()));
+    for (long long k = 0; k < n; ++k) {
+      const std::uint8_t first = cur.read<std::uint8_t>(what.c_str());
+      const int header = (first >> 6) == 3 ? 1 : (first >> 6) == 2 ? 2 : (first >> 6) == 1 ? 4 : 8;
+      std::uint64_t length = first & 0x3f;
+      for (int b = 1; b < header; ++b) length = (length << 8) | cur.read<std::uint8_t>(what.c_str());
+      cur.skip(size_t(length), what.c_str());
+    }
+    in.advance(cur.position() - in.position());
   }
 
   // The byte width of a binary integer array of VTK type `type` (ASCII: unused, 0).
@@ -133,7 +258,8 @@ PolyhedronRead read_vtk(std::string_view bytes, const std::string& name) {
   if (lower(dataset) != "unstructured_grid")
     in.fail(in.where(), fmt::format("dataset {} is not supported (only UNSTRUCTURED_GRID)", quote(dataset)));
 
-  // Optional FIELD data before POINTS is not supported; POINTS must come next.
+  // Dataset-level FIELD data (skipped), then POINTS.
+  while (in.next_is("FIELD")) io.skip_field_data();
   in.keyword("POINTS");
   PolyhedronRead r;
   r.where_is_byte_offset = io.binary;
@@ -320,9 +446,20 @@ PolyhedronRead read_vtk(std::string_view bytes, const std::string& name) {
   return r;
 }
 
+void check_vtk_int32(const std::string& file, std::string_view what, std::uint64_t value) {
+  if (value > std::uint64_t(INT32_MAX))
+    throw FileError(file, 0, -1,
+                    fmt::format("{} is {}, beyond the 32-bit signed integers of a VTK legacy file (at most {}): "
+                                "the mesh is too large for this format",
+                                what, value, INT32_MAX));
+}
+
 // The classic cell list of the mesh (per cell its count, then its point ids or, for a polyhedron,
-// its face stream with outward faces) and the cells' VTK types.
-void vtk_cells(const VolumeMesh& mesh, std::vector<int>& entries, std::vector<int>& types) {
+// its face stream with outward faces) and the cells' VTK types; a FileError naming `file` as soon
+// as the list outgrows the file's int32 counts (which bounds every number in it, a face stream's
+// length included).
+void vtk_cells(const VolumeMesh& mesh, const std::string& file, std::vector<int>& entries,
+               std::vector<int>& types) {
   types.assign(size_t(mesh.n_cells()), 0);
   entries.clear();
   std::array<int, 8> order{};
@@ -350,13 +487,14 @@ void vtk_cells(const VolumeMesh& mesh, std::vector<int>& entries, std::vector<in
       entries.push_back(n);
       entries.insert(entries.end(), order.begin(), order.begin() + n);
     }
+    check_vtk_int32(file, "the CELLS list size (per cell its count and numbers)", entries.size());
   }
 }
 
-std::string write_vtk(const VolumeMesh& mesh, bool binary) {
+std::string write_vtk(const VolumeMesh& mesh, const std::string& name, bool binary) {
   const auto& X = mesh.positions();
   std::vector<int> entries, types;
-  vtk_cells(mesh, entries, types);
+  vtk_cells(mesh, name, entries, types);
   std::string out =
       fmt::format("# vtk DataFile Version 4.2\npolydec volume mesh\n{}\nDATASET UNSTRUCTURED_GRID\n",
                   binary ? "BINARY" : "ASCII");

@@ -2,7 +2,8 @@
 # fuzz/make_volume_seeds.py — writes the seed corpora fuzz/corpus/{ovm,vtk,medit}/: small
 # generated volume meshes (a tetrahedron, a Kuhn-split cube, two hexahedra, two wedges, a
 # pyramid on a hexahedron, a polyhedron cell) in each format, and VTK BINARY variants (classic
-# int32 cells with float or double points, the 5.1 int64 layout, polyhedra, a METADATA block).
+# int32 cells with float or double points, the 5.1 int64 layout, polyhedra, a METADATA block),
+# and ParaView-style dataset FIELD data before POINTS (ASCII and BINARY).
 # Rerun only to change them.
 import os
 import struct
@@ -96,8 +97,20 @@ def face_streams(cells):
     return out
 
 
-def vtk(points, cells, version="3.0", polyhedron=False):
-    s = "# vtk DataFile Version %s\nseed\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS %d double\n" % (version, len(points))
+def field_block(binary):
+    # Dataset FIELD data as ParaView writes it before POINTS (TimeValue), with an int array, a
+    # string array and a NULL_ARRAY; binary payloads big-endian, strings behind their length byte.
+    if not binary:
+        return ("FIELD FieldData 4\nTimeValue 1 1 double\n0.5\nCYCLE 1 2 int\n3 4\nNULL_ARRAY\n"
+                "Names 1 1 string\nseed%20mesh\n")
+    s = b"FIELD FieldData 4\nTimeValue 1 1 double\n" + struct.pack(">d", 0.5) + b"\n"
+    s += b"CYCLE 1 2 int\n" + struct.pack(">2i", 3, 4) + b"\nNULL_ARRAY\n"
+    return s + b"Names 1 1 string\n" + bytes([0xC0 | 9]) + b"seed mesh\n"
+
+
+def vtk(points, cells, version="3.0", polyhedron=False, field=False):
+    s = "# vtk DataFile Version %s\nseed\nASCII\nDATASET UNSTRUCTURED_GRID\n" % version
+    s += (field_block(False) if field else "") + "POINTS %d double\n" % len(points)
     s += "".join("%r %r %r\n" % p for p in points)
     if polyhedron:
         entries = [[len(e)] + e for e in face_streams(cells)]
@@ -118,11 +131,11 @@ def vtk(points, cells, version="3.0", polyhedron=False):
     return s
 
 
-def vtk_binary(points, cells, version="4.2", polyhedron=False, point_type="double", metadata=False):
+def vtk_binary(points, cells, version="4.2", polyhedron=False, point_type="double", metadata=False, field=False):
     # Big-endian payloads, each after its header line's newline, as VTK's legacy writer does.
     pack = {"double": ">3d", "float": ">3f"}[point_type]
-    s = b"# vtk DataFile Version %s\nseed\nBINARY\nDATASET UNSTRUCTURED_GRID\nPOINTS %d %s\n" % (
-        version.encode(), len(points), point_type.encode())
+    s = b"# vtk DataFile Version %s\nseed\nBINARY\nDATASET UNSTRUCTURED_GRID\n" % version.encode()
+    s += (field_block(True) if field else b"") + b"POINTS %d %s\n" % (len(points), point_type.encode())
     s += b"".join(struct.pack(pack, *p) for p in points) + b"\n"
     if metadata:
         s += b"METADATA\nINFORMATION 1\nNAME L2_NORM_RANGE LOCATION vtkDataArray\nDATA 2 0 1.7 \n\n"
@@ -175,3 +188,5 @@ put("vtk", "wedges_binary.vtk", vtk_binary(*MESHES["wedges"]))
 put("vtk", "kuhn_v5_binary.vtk", vtk_binary(*MESHES["kuhn"], version="5.1", metadata=True))
 put("vtk", "two_hexes_polyhedra_binary.vtk", vtk_binary(*MESHES["two_hexes"], polyhedron=True))
 put("vtk", "two_hexes_polyhedra_v5_binary.vtk", vtk_binary(*MESHES["two_hexes"], version="5.1", polyhedron=True))
+put("vtk", "kuhn_v5_field.vtk", vtk(*MESHES["kuhn"], version="5.1", field=True))
+put("vtk", "pyramid_hex_field_binary.vtk", vtk_binary(*MESHES["pyramid_hex"], version="5.1", field=True))

@@ -111,10 +111,20 @@ HeatGeodesics::HeatGeodesics(OperatorSet operators, double mean_edge_length, con
   poisson_ = std::make_unique<SparseCholesky>(pin_to_identity(-ops_.S, pinned_), "Poisson operator -S", copt);
 }
 
+// The reach follows the implicit heat step, not the continuous exp(-d / sqrt(t)): on a chain of
+// edges of length h with lumped mass, (M - t S) u = 0 away from the sources gives u_k ~ exp(-kappa k)
+// with 2 sinh(kappa / 2) = h / sqrt(t), i.e. kappa(f) = 2 asinh(1 / (2 sqrt(f))) per edge at
+// t = f h^2 (0.96 at f = 1). For f >> 1 that is 1 / sqrt(f) (reach ~ sqrt(t)); for f << 1 it is
+// ln(1 / f), so the reach grows only logarithmically there and scaling the resolved radius as
+// sqrt(t) undershoots (from f = 1e-4 it suggested 0.13 where 15 was needed). The resolution level
+// and the edge length cancel: the resolved radius times kappa(factor) is what the solve resolves,
+// and the suggestion is the factor whose kappa carries that to 1.25 extent.
 double suggested_time_factor(double factor, const HeatDiagnostics& diagnostics, double extent) {
   if (diagnostics.unresolved_vertices == 0) return factor;
   const double r = diagnostics.resolved_radius > 0 ? diagnostics.resolved_radius : extent / 1e3;
-  return factor * std::max(1.0, (1.25 * extent / r) * (1.25 * extent / r));
+  const double half_kappa = std::asinh(0.5 / std::sqrt(factor)) * r / (1.25 * extent);
+  const double s = std::sinh(half_kappa);
+  return std::max(factor, 0.25 / (s * s));
 }
 
 Eigen::VectorXd HeatGeodesics::distance(std::span<const int> sources, HeatDiagnostics* diagnostics) const {

@@ -40,9 +40,13 @@ struct HeatDiagnostics {
   double resolved_radius = 0;   // the largest distance among the reached vertices that are resolved
 };
 
-// The time step factor that makes the heat step reach `extent` (e.g. the bounding-box diagonal), the
-// reach growing as sqrt(t): factor * (1.25 extent / resolved_radius)^2; `factor` itself when nothing
-// was unresolved.
+// The time step factor that makes the heat step reach 1.25 `extent` (`extent` e.g. the bounding-box
+// diagonal), from a run at `factor`: the implicit step decays per mean edge length by
+// kappa(f) = 2 asinh(1 / (2 sqrt(f))) (1 / sqrt(f) for large f: reach ~ sqrt(t); ln(1 / f) for
+// small f), so the result f' solves kappa(f') = kappa(factor) resolved_radius / (1.25 extent);
+// for large factors that is factor * (1.25 extent / resolved_radius)^2. `factor` itself when
+// nothing was unresolved (never less than `factor`). One suggestion from any factor in [1e-4, 1]
+// resolves the [geodesics] strip.
 double suggested_time_factor(double factor, const HeatDiagnostics& diagnostics, double extent);
 
 class HeatGeodesics {

@@ -35,7 +35,7 @@ __all__ = [
     "catmull_clark", "dual", "project_to_unit_sphere", "add_noise",
     "laplacian_names", "stiffness", "mass", "lumped_mass", "laplacian", "gradient", "divergence",
     "prolongation", "d0", "d1", "star0", "star1", "star2", "P0", "P1", "P2", "cells", "dec_operators",
-    "HeatGeodesics", "spectrum", "HodgeDecomposer", "HodgeParts", "hodge_decomposition",
+    "HeatGeodesics", "suggested_time_factor", "spectrum", "HodgeDecomposer", "HodgeParts", "hodge_decomposition",
     "mean_curvature", "vertex_normals", "CurvatureFlow", "curvature_flow",
     "conformal_parametrization", "conformal_distortion",
     "form_spectrum", "hks_times", "heat_kernel_signature", "wave_kernel_signature", "biharmonic_distance",
@@ -311,15 +311,38 @@ class HeatGeodesics:
         self._solver = _polydec.HeatGeodesics(X, idx, off, str(laplacian), float(time_step_factor),
                                               _convert.lumped_flag(mass), bool(mass_weighted_source))
 
-    def distance(self, sources):
+    def distance(self, sources, return_diagnostics=False):
         """Distances from a vertex index or a sequence of them -> (|V|,) float64.
-        ValueError for a source outside [0, |V|)."""
-        return self._solver.distance(_convert.sources(sources, self._n))
+        ValueError for a source outside [0, |V|).
+
+        return_diagnostics=True returns (distances, diagnostics), diagnostics a dict saying how far
+        the heat step (eq. 31) carried: "unresolved_vertices" (int), the reached vertices whose
+        heat value fell below what the solve resolves (1e-280 of its maximum, about 650 sqrt(t)
+        from the sources: meshes more than ~650 edges across at the default factor), where the
+        distance is wrong (too small, flat); "resolved_radius" (float), the largest distance
+        among the resolved vertices. When vertices are unresolved, rebuild with
+        time_step_factor=suggested_time_factor(time_step_factor, diagnostics, extent).
+        """
+        return _convert.heat_distance(self._solver, self._n, sources, return_diagnostics)
 
     @property
     def time_step(self):
         """The heat time step t."""
         return self._solver.time_step
+
+
+def suggested_time_factor(time_step_factor, diagnostics, extent):
+    """The heat time step factor whose heat step reaches `extent` (e.g. the bounding-box diagonal,
+    np.linalg.norm(V.max(0) - V.min(0))), from a run at `time_step_factor` and its diagnostics
+    (the dict of HeatGeodesics/VolumeHeatGeodesics .distance(..., return_diagnostics=True)):
+    time_step_factor * (1.25 extent / resolved_radius)^2, the reach growing as sqrt(t);
+    time_step_factor itself when no vertex was unresolved. ValueError unless time_step_factor
+    and extent are positive and finite."""
+    factor, extent = float(time_step_factor), float(extent)
+    if not (np.isfinite(factor) and factor > 0 and np.isfinite(extent) and extent > 0):
+        raise ValueError(f"time_step_factor and extent must be positive and finite, got {factor} and {extent}")
+    return _polydec.suggested_time_factor(factor, int(diagnostics["unresolved_vertices"]),
+                                          float(diagnostics["resolved_radius"]), extent)
 
 
 def spectrum(V, F, k, laplacian="ours", mass="lumped", tolerance=1e-10, max_iterations=1000, return_info=False):

@@ -158,6 +158,13 @@ def lumped_flag(mass):
     raise ValueError(f"mass must be 'lumped' or 'galerkin', got {mass!r}")
 
 
+def heat_distance(solver, n_vertices, s, return_diagnostics):
+    """A heat-geodesics solver's distances from the sources s, and its diagnostics dict with
+    return_diagnostics (HeatGeodesics and VolumeHeatGeodesics)."""
+    s = sources(s, n_vertices)
+    return solver.distance_with_diagnostics(s) if return_diagnostics else solver.distance(s)
+
+
 def sources(s, n_vertices):
     """A non-empty list of vertex indices in [0, n_vertices)."""
     a = np.atleast_1d(np.asarray(s))

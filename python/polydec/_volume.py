@@ -295,9 +295,11 @@ class VolumeHeatGeodesics:
         self._solver = _polydec.volume_heat_geodesics(m, str(laplacian), float(time_step_factor),
                                                       _convert.lumped_flag(mass), bool(mass_weighted_source))
 
-    def distance(self, sources):
-        """Distances from a vertex index or a sequence of them -> (|V|,) float64."""
-        return self._solver.distance(_convert.sources(sources, self._n))
+    def distance(self, sources, return_diagnostics=False):
+        """Distances from a vertex index or a sequence of them -> (|V|,) float64; with
+        return_diagnostics=True (distances, diagnostics) as HeatGeodesics.distance (the heat
+        step's unresolved vertices and resolved radius; see suggested_time_factor)."""
+        return _convert.heat_distance(self._solver, self._n, sources, return_diagnostics)
 
     @property
     def time_step(self):

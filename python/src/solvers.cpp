@@ -39,8 +39,26 @@ void register_solvers(py::module_& m) {
              py::gil_scoped_release release;
              return h.distance(sources);
            })
+      // (distances, {"unresolved_vertices", "resolved_radius"}): HeatDiagnostics as a dict.
+      .def("distance_with_diagnostics",
+           [](const HeatGeodesics& h, const std::vector<int>& sources) {
+             HeatDiagnostics diagnostics;
+             Eigen::VectorXd d;
+             {
+               py::gil_scoped_release release;
+               d = h.distance(sources, &diagnostics);
+             }
+             py::dict info;
+             info["unresolved_vertices"] = diagnostics.unresolved_vertices;
+             info["resolved_radius"] = diagnostics.resolved_radius;
+             return py::make_tuple(d, info);
+           })
       .def_property_readonly("time_step", &HeatGeodesics::time_step)
       .def_property_readonly("laplacian", [](const HeatGeodesics& h) { return h.operators().name; });
+
+  m.def("suggested_time_factor", [](double factor, int unresolved_vertices, double resolved_radius, double extent) {
+    return suggested_time_factor(factor, HeatDiagnostics{unresolved_vertices, resolved_radius}, extent);
+  });
 
   m.def("spectrum", [](const PositionArray& V, const IndexArray& I, const IndexArray& O, int k,
                        const std::string& spec, bool lumped_mass, double tolerance, int max_iterations) {

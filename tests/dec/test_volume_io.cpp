@@ -92,12 +92,20 @@ TEST_CASE("VTK and MEDIT round trips of generated meshes", "[volume]") {
   const std::string v = write_volume_mesh_to_string(pyr, "vtk");
   CHECK(v.find("CELL_TYPES 48\n14\n") != std::string::npos);
   CHECK(write_volume_mesh_to_string(tro, "vtk").find("\n42\n") != std::string::npos);
-  // MEDIT holds tetrahedra and hexahedra only.
+  // MEDIT holds tetrahedra and hexahedra only: the error names the cell and its shape.
   try {
     write_volume_mesh_to_string(pyr, "mesh");
     FAIL("wrote pyramids to MEDIT");
   } catch (const FileError& e) {
-    CHECK(std::string(e.what()).find("cell 0 is a pyramid") != std::string::npos);
+    CHECK(std::string(e.what()).find("cell 0 is a pyramid with 5 faces") != std::string::npos);
+  }
+  try {
+    write_volume_mesh_to_string(tro, "mesh");
+    FAIL("wrote truncated octahedra to MEDIT");
+  } catch (const FileError& e) {
+    INFO(e.what());
+    CHECK(std::string(e.what()).find(fmt::format("cell 0 is a general polyhedron with {} faces",
+                                                 tro.cell_size(0))) != std::string::npos);
   }
 }
 

@@ -1,7 +1,9 @@
 // tests/dec/test_volume_io_binary.cpp — VTK legacy BINARY unstructured grids (hand-built bytes in
-// both cell layouts, float and double points, METADATA blocks, polyhedra), bit-exact ASCII <->
-// binary round trips, hostile binary files (truncations, lying counts, non-finite points) named
-// by byte offset, and the coordinate precision volume readers record and the refinement uses.
+// both cell layouts, float and double points, METADATA blocks, polyhedra), dataset FIELD data
+// before POINTS as ParaView writes it (ASCII and BINARY), bit-exact ASCII <-> binary round trips,
+// hostile binary files (truncations, lying counts, non-finite points) named by byte offset, the
+// writers' int32 count limit, and the coordinate precision volume readers record and the
+// refinement uses.
 #include <fmt/format.h>
 
 #include <bit>
@@ -10,6 +12,7 @@
 #include <cstring>
 
 #include "polydec/dec/io_volume.h"
+#include "polydec/dec/io_volume_common.h"
 #include "polydec/dec/virtual_vertex.h"
 #include "polydec/dec/volume_generators.h"
 #include "polydec/dec/volume_refinement.h"
@@ -66,6 +69,13 @@ std::string hex_pyramid_file(bool float_points, bool v51, bool metadata = true) 
   return s;
 }
 
+// The ASCII file of the same hexahedron and pyramid (classic CELLS).
+std::string hex_pyramid_ascii() {
+  std::string s = "# vtk DataFile Version 3.0\nhp\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 9 double\n";
+  for (const auto& p : kPoints) s += fmt::format("{} {} {}\n", p[0], p[1], p[2]);
+  return s + "CELLS 2 15\n8 0 1 2 3 4 5 6 7\n5 4 5 6 7 8\nCELL_TYPES 2\n12\n14\n";
+}
+
 // Same positions (bit-exact), same cells with the same faces in the same order.
 void check_identical(const VolumeMesh& a, const VolumeMesh& b) {
   CHECK(a.positions() == b.positions());
@@ -90,6 +100,19 @@ FileError read_error(const std::string& bytes) {
   }
   FAIL("accepted a bad file");
   return FileError("", 0, -1, "");
+}
+
+// Every truncation of the binary file `good` from after its BINARY line to the end of its cell
+// types is a FileError naming a byte offset within the bytes it was given, never a crash.
+void check_every_truncation(const std::string& good) {
+  const size_t types_end = good.find("\nCELL_DATA");
+  for (size_t n = good.find("BINARY") + 7; n < types_end; ++n) {
+    INFO("truncated to " << n << " bytes");
+    const FileError e = read_error(good.substr(0, n));
+    CHECK(e.line == 0);
+    CHECK(e.byte_offset >= 0);
+    CHECK(e.byte_offset <= long(n));
+  }
 }
 
 void expect_error(const std::string& bytes, long byte_offset, const std::string& reason) {
@@ -117,7 +140,141 @@ double six_digit_noise(const Eigen::MatrixX3d& X) {
   return absolute / std::sqrt((X.rowwise() - c).rowwise().squaredNorm().mean());
 }
 
+// `file` with `block` inserted before its POINTS line.
+std::string before_points(const std::string& file, const std::string& block) {
+  std::string s = file;
+  const auto p = s.find("POINTS ");
+  REQUIRE(p != std::string::npos);
+  return s.insert(p, block);
+}
+
+// A binary string with VTK's length header: 1 byte (top bits 11) below 64 bytes, else 2 bytes
+// (top bits 10), big-endian.
+std::string binary_string(const std::string& x) {
+  REQUIRE(x.size() < (1u << 14));
+  if (x.size() < 64) return std::string(1, char(0xC0 | x.size())) + x;
+  return be<std::uint16_t>(std::uint16_t(0x8000 | x.size())) + x;
+}
+
+// A binary FIELD block shaped like ParaView's (TimeValue first), with the other kinds of
+// arrays VTK writes: vtkIdType values whose bytes are newlines and spaces, bits, strings with
+// both length headers (one holding the text "POINTS 9 double\n"), a NULL_ARRAY and a METADATA
+// block.
+std::string binary_field_block() {
+  std::string f = "FIELD FieldData 5\nTimeValue 1 1 double\n" + be(0.25) + "\n";
+  f += "Ids 2 3 vtkIdType\n";
+  for (std::int32_t x : {0x0a0a0a0a, 0x20202020, 0x0a200a20, 7, -1, 0}) f += be(x);
+  f += "\nMETADATA\nINFORMATION 1\nNAME L2_NORM_RANGE LOCATION vtkDataArray\nDATA 2 0 1 \n\n";
+  f += "Flags 1 11 bit\n" + std::string("\x0a\xff", 2) + "\n";
+  f += "Names 1 2 string\n" + binary_string("POINTS 9 double\n") + binary_string(std::string(70, '\n')) + "\n";
+  f += "NULL_ARRAY\n";
+  return f;
+}
+
 }  // namespace
+
+TEST_CASE("VTK: dataset FIELD data before POINTS (ParaView exports), ASCII and BINARY", "[volume][io]") {
+  // ASCII: the same cells with and without the FIELD block read to identical meshes.
+  const std::string ascii = hex_pyramid_ascii();
+  const std::string ascii_field =
+      "FIELD FieldData 5\nTimeValue 1 1 double\n0.25\nCYCLE 1 1 int\n7\n"
+      "METADATA\nINFORMATION 1\nNAME L2_NORM_RANGE LOCATION vtkDataArray\nDATA 2 7 7 \n\n"
+      "Flags 2 3 bit\n0 1 1\n1 0 0\nNULL_ARRAY\nNames 1 2 string\nhex%20and%20pyramid\nPOINTS 5 float 1 2 3\n";
+  const VolumeMesh plain = read_volume_mesh_from_memory(ascii, "vtk", "plain.vtk");
+  REQUIRE(plain.n_cells() == 2);
+  const std::string with_field = before_points(ascii, ascii_field);
+  check_identical(read_volume_mesh_from_memory(with_field, "vtk", "field.vtk"), plain);
+  // Two FIELD blocks, and an empty one.
+  check_identical(
+      read_volume_mesh_from_memory(before_points(ascii, ascii_field + "FIELD FieldData 0\n"), "vtk", "f2.vtk"),
+      plain);
+
+  // BINARY, both cell layouts: the FIELD block changes nothing.
+  for (bool v51 : {false, true}) {
+    INFO("version 5.1 " << v51);
+    const std::string bin = hex_pyramid_file(false, v51);
+    const VolumeMesh m = read_volume_mesh_from_memory(bin, "vtk", "hp.vtk");
+    check_identical(read_volume_mesh_from_memory(before_points(bin, binary_field_block()), "vtk", "hpf.vtk"), m);
+  }
+
+  // Every truncation of the binary file with FIELD data is a FileError naming a byte offset
+  // within the bytes it was given; every truncation of the ASCII one names a line.
+  const std::string good = before_points(hex_pyramid_file(false, false, false), binary_field_block());
+  check_every_truncation(good);
+  for (size_t n = with_field.find("ASCII") + 6; n < with_field.find("CELL_TYPES 2\n12\n") + 16; ++n) {
+    INFO("truncated to " << n << " bytes");
+    try {
+      read_volume_mesh_from_memory(with_field.substr(0, n), "vtk", "t.vtk");
+      FAIL("accepted a truncated file");
+    } catch (const FileError& e) {
+      CHECK(e.line >= 1);
+      CHECK(e.byte_offset == -1);
+    }
+  }
+
+  // Lying counts and unreadable types, named by byte offset.
+  const size_t time_at = good.find("TimeValue 1 1 double\n") + 21;
+  expect_error(replace(good, "TimeValue 1 1 double", "TimeValue 1 100000 double"), long(time_at + 5),
+               "truncated field array 'TimeValue': needs 100000 values of 8 bytes");
+  expect_error(replace(good, "TimeValue 1 1 double", "TimeValue 1 1 long"), long(time_at - 7),
+               "field array 'TimeValue' has type 'long', whose size in binary files depends on the writing platform");
+  expect_error(replace(good, "TimeValue 1 1 double", "TimeValue 1 1 quaternion"), long(time_at - 7),
+               "field array 'TimeValue' has the unsupported data type 'quaternion'");
+  expect_error(replace(good, "FieldData 5", "FieldData -5"), long(good.find("FieldData 5") + 10),
+               "negative field array count -5");
+  expect_error(replace(good, "Flags 1 11 bit", "Flags 1 2000000000 bit"), long(good.find("Flags") + 8),
+               "field array 'Flags' tuple count 2000000000 is too large");
+  // A string whose length header claims more bytes than the file has.
+  std::string lying = good;
+  const size_t names_at = good.find("Names 1 2 string\n") + 17;
+  lying.replace(names_at, 1, std::string(1, char(0x80)));  // a 2-byte header: 0x80 'P' = 80 bytes
+  lying = lying.substr(0, names_at + 40);
+  expect_error(lying, long(names_at + 2), "truncated field array 'Names': needs 80 bytes, the file ends after 38");
+  expect_error(replace(good, "Names 1 2 string", "Names 1 200000 string"), long(names_at + 5),
+               "truncated field array 'Names': 200000 strings need at least 200000 bytes");
+  // The field arrays end where their payloads say: a count one tuple short leaves the reader in
+  // the middle of the payload, which it reports as an error instead of reading on.
+  CHECK_THROWS_AS(read_volume_mesh_from_memory(replace(good, "Ids 2 3", "Ids 2 2"), "vtk", "x"), FileError);
+
+  // ASCII errors name the line.
+  const auto ascii_error = [&](const std::string& text, long line, const std::string& reason) {
+    try {
+      read_volume_mesh_from_memory(text, "vtk", "a.vtk");
+      FAIL("accepted a bad file (" << reason << ")");
+    } catch (const FileError& e) {
+      INFO(e.what());
+      CHECK(e.line == line);
+      CHECK(e.reason.find(reason) != std::string::npos);
+      CHECK(std::string(e.what()).find(fmt::format("a.vtk:{}: ", line)) == 0);
+    }
+  };
+  // TimeValue announces 3 values: the second is the next array's name.
+  ascii_error(replace(with_field, "TimeValue 1 1", "TimeValue 1 3"), 8, "bad value 'CYCLE' in field array 'TimeValue'");
+  ascii_error(replace(with_field, "Names 1 2 string", "Names 1 99 string"), 38,
+              "field array 'Names' announces 99 strings, the file ends after 18");
+  ascii_error(replace(with_field, "CYCLE 1 1 int", "CYCLE 1 1 variant"), 8,
+              "field array 'CYCLE' has the unsupported data type 'variant'");
+  ascii_error(replace(with_field, "TimeValue 1 1", "TimeValue 1 100000"), 6,
+              "field array 'TimeValue' announces 100000 values but only");
+}
+
+TEST_CASE("VTK writers refuse counts beyond the format's int32 instead of writing corrupt files", "[volume][io]") {
+  // The check the ASCII and BINARY writers apply to the CELLS list size after each cell, with plain
+  // numbers: the largest int32 passes, one more and beyond throw.
+  CHECK_NOTHROW(io_detail::check_vtk_int32("big.vtk", "the CELLS list size", 2147483647u));
+  CHECK_NOTHROW(io_detail::check_vtk_int32("big.vtk", "the CELLS list size", 0));
+  for (std::uint64_t value : {std::uint64_t(2147483648u), std::uint64_t(4294967296u), std::uint64_t(1) << 40}) {
+    try {
+      io_detail::check_vtk_int32("big.vtk", "the CELLS list size", value);
+      FAIL("accepted " << value);
+    } catch (const FileError& e) {
+      INFO(e.what());
+      CHECK(e.file == "big.vtk");
+      CHECK(e.reason.find(fmt::format("the CELLS list size is {}", value)) == 0);
+      CHECK(e.reason.find("(at most 2147483647)") != std::string::npos);
+    }
+  }
+}
 
 TEST_CASE("VTK BINARY: a hand-built hexahedron and pyramid, both layouts, float and double", "[volume][io]") {
   for (bool float_points : {false, true})
@@ -136,11 +293,7 @@ TEST_CASE("VTK BINARY: a hand-built hexahedron and pyramid, both layouts, float 
       const double expected = float_points ? 0x1p-24 * 2.0 / m.rms_radius() : 0.0;
       CHECK(m.precision().noise == Approx(expected).epsilon(1e-12));
       // The same mesh as the ASCII file of the same numbers.
-      std::string ascii =
-          "# vtk DataFile Version 3.0\nhp\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 9 double\n";
-      for (const auto& p : kPoints) ascii += fmt::format("{} {} {}\n", p[0], p[1], p[2]);
-      ascii += "CELLS 2 15\n8 0 1 2 3 4 5 6 7\n5 4 5 6 7 8\nCELL_TYPES 2\n12\n14\n";
-      check_identical(read_volume_mesh_from_memory(ascii, "vtk", "hp_ascii.vtk"), m);
+      check_identical(read_volume_mesh_from_memory(hex_pyramid_ascii(), "vtk", "hp_ascii.vtk"), m);
     }
   // Without the METADATA block, and through the file-name route (format by the first word).
   CHECK(read_volume_mesh_from_memory(hex_pyramid_file(false, false, false), "vtk", "x").volume() ==
@@ -209,14 +362,7 @@ TEST_CASE("VTK BINARY: truncated files and lying counts name the byte offset", "
   const size_t points_at = good.find("POINTS 9 double\n") + 16;
   const size_t cells_at = good.find("CELLS 2 15\n");
   // Every truncation inside the header, the payloads or CELL_TYPES is a FileError, never a crash.
-  const size_t types_end = good.find("\nCELL_DATA");
-  for (size_t n = good.find("BINARY") + 7; n < types_end; ++n) {
-    INFO("truncated to " << n << " bytes");
-    const FileError e = read_error(good.substr(0, n));
-    CHECK(e.line == 0);
-    CHECK(e.byte_offset >= 0);
-    CHECK(e.byte_offset <= long(n));
-  }
+  check_every_truncation(good);
   expect_error(good.substr(0, points_at + 100), long(points_at),
                "truncated point coordinates: needs 216 bytes, the file ends after 100");
   // Counts larger than the file can hold are refused before anything is allocated.

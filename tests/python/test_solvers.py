@@ -1,5 +1,6 @@
 """tests/python/test_solvers.py — one end-to-end example per solver, each checked against an
-analytic value or an identity: heat geodesics against great-circle distance, the sphere's
+analytic value or an identity: heat geodesics against great-circle distance, the heat step's
+diagnostics and suggested time factor on a strip too long for the default factor, the sphere's
 spectrum l(l+1), the Hodge decomposition's orthogonality and harmonic dimension, the sphere's
 mean curvature 1/r, the curvature flow's kept area and rounding, and the conformal
 parametrization of a planar patch (a similarity: zero distortion)."""
@@ -48,6 +49,44 @@ def test_heat_geodesics_unreachable_is_infinite():
     d = polydec.HeatGeodesics(V, F).distance(0)
     n = V1.shape[0]
     assert np.all(np.isfinite(d[:n])) and np.all(np.isinf(d[n:]))
+
+
+def test_heat_diagnostics_on_a_long_strip():
+    # 1000 x 2 square quads (edge 0.01, length 10): at t = h^2 the heat solution falls below double
+    # precision's range ~650 edges from the source, beyond which the distance is wrong (flat, too
+    # small). The diagnostics must say so; the suggested factor must reach the end and give the
+    # strip's length (the C++ [geodesics] "a strip 2000 edges long", half as long).
+    V, F = polydec.quad_grid(1000, 2)
+    V = V * [10.0, 0.02, 1.0]
+    length = 10.0
+    extent = float(np.linalg.norm(V.max(0) - V.min(0)))
+    heat = polydec.HeatGeodesics(V, F)
+    d1, diag1 = heat.distance(0, return_diagnostics=True)
+    assert np.array_equal(d1, heat.distance(0))                    # the same distances either way
+    assert set(diag1) == {"unresolved_vertices", "resolved_radius"}
+    assert diag1["unresolved_vertices"] > 0.2 * V.shape[0]
+    assert 0.4 * length < diag1["resolved_radius"] < 0.9 * length
+    assert d1.max() < 0.9 * length
+    factor = polydec.suggested_time_factor(1.0, diag1, extent)
+    # The documented model: per mean edge length the heat step decays by kappa(f) = 2 asinh(1 / (2 sqrt f));
+    # the suggestion f' solves kappa(f') = kappa(1) resolved_radius / (1.25 extent).
+    kappa = 2 * np.arcsinh(0.5) * diag1["resolved_radius"] / (1.25 * extent)
+    assert factor == pytest.approx(0.25 / np.sinh(kappa / 2) ** 2, rel=1e-12)
+    assert factor > 1.0
+    d2, diag2 = polydec.HeatGeodesics(V, F, time_step_factor=factor).distance(0, return_diagnostics=True)
+    assert diag2["unresolved_vertices"] == 0
+    assert diag2["resolved_radius"] == pytest.approx(d2.max(), rel=1e-12)
+    assert abs(d2.max() - length) < 0.005 * length
+    assert polydec.suggested_time_factor(factor, diag2, extent) == factor   # nothing left to suggest
+    with pytest.raises(ValueError, match="positive"):
+        polydec.suggested_time_factor(0.0, diag1, extent)
+    with pytest.raises(ValueError, match="positive"):
+        polydec.suggested_time_factor(1.0, diag1, float("nan"))
+    # The volume solver reports the same way (a small cube: everything resolved).
+    mesh = polydec.hex_grid_volume(3, 3, 3)
+    dv, diag_v = polydec.VolumeHeatGeodesics(mesh).distance(0, return_diagnostics=True)
+    assert diag_v["unresolved_vertices"] == 0
+    assert diag_v["resolved_radius"] == pytest.approx(dv.max(), rel=1e-12)
 
 
 def test_spectrum_of_the_sphere(sphere):

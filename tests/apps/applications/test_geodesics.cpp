@@ -1,6 +1,7 @@
 // tests/apps/applications/test_geodesics.cpp — heat-method geodesics (paper section 5.5, eq. 31-33):
 // accuracy on generated meshes, the paper's Table 4 values (authors' program, lumped mass),
-// several sources, reuse of the factorizations, unreachable vertices.
+// several sources, reuse of the factorizations, unreachable vertices, the heat step's reach and the
+// suggested time factor from any starting factor.
 #include "polydec/apps/applications/geodesics.h"
 #include "polydec/dec/generators.h"
 #include "polydec/dec/io.h"
@@ -9,6 +10,7 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <limits>
 
 using namespace polydec;
 
@@ -182,6 +184,43 @@ TEST_CASE("a strip 2000 edges long: the heat step's reach is reported, and the s
   CHECK(std::abs(d2.maxCoeff() - length) < 0.005 * length);
   // Nothing to suggest when everything is resolved.
   CHECK(suggested_time_factor(factor, second, strip.bounding_box_diagonal()) == factor);
+}
+
+TEST_CASE("one suggested time factor resolves the strip from any factor in [1e-4, 1]", "[geodesics]") {
+  // Below t = h^2 the implicit heat step's reach grows like ln(1 / factor), not sqrt(factor): a
+  // suggestion that scaled the resolved radius as sqrt(t) undershot from small factors (0.13 from
+  // 1e-4, 3.3 from 1e-2, still unresolved). From every start the single suggestion must resolve
+  // the strip and give its length to 0.5%, and the suggestions must agree (the model's reach does
+  // not depend on where it was measured).
+  Mesh strip = quad_grid(2000, 4);
+  Eigen::MatrixX3d X = strip.positions();
+  X.col(0) *= 20.0;
+  X.col(1) *= 0.04;
+  strip = strip.with_positions(X);
+  const double length = 20.0, extent = strip.bounding_box_diagonal();
+  double lo = std::numeric_limits<double>::infinity(), hi = 0;
+  for (double start : {1e-4, 1e-3, 1e-2, 1e-1, 1.0}) {
+    INFO("start factor " << start);
+    HeatGeodesicsOptions o;
+    o.time_step_factor = start;
+    HeatDiagnostics first;
+    HeatGeodesics(strip, o).distance(std::span<const int>({0}), &first);
+    REQUIRE(first.unresolved_vertices > 0);
+    o.time_step_factor = suggested_time_factor(start, first, extent);
+    INFO("suggested " << o.time_step_factor);
+    HeatDiagnostics second;
+    const Eigen::VectorXd d = HeatGeodesics(strip, o).distance(std::span<const int>({0}), &second);
+    CHECK(second.unresolved_vertices == 0);
+    CHECK(std::abs(d.maxCoeff() - length) < 0.005 * length);
+    lo = std::min(lo, o.time_step_factor);
+    hi = std::max(hi, o.time_step_factor);
+  }
+  CHECK(hi < 1.1 * lo);
+  // For large factors the reach grows as sqrt(t): the suggestion tends to factor (1.25 extent / r)^2.
+  const HeatDiagnostics far{1, 0.01 * extent};
+  CHECK(suggested_time_factor(1e6, far, extent) == Approx(1e6 * 125.0 * 125.0).epsilon(1e-6));
+  // Never below the factor it started from.
+  CHECK(suggested_time_factor(0.5, HeatDiagnostics{1, 2 * extent}, extent) == 0.5);
 }
 
 }  // namespace test_geodesics
