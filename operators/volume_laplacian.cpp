@@ -9,18 +9,7 @@
 
 #include "polydec/dec/threads.h"
 
-
 namespace polydec {
-
-namespace volume_laplacian_detail {
-namespace {
-
-int local_index(std::span<const int> verts, int v) {
-  return int(std::lower_bound(verts.begin(), verts.end(), v) - verts.begin());
-}
-
-}  // namespace
-}  // namespace volume_laplacian_detail
 
 SparseMatrix volume_prolongation(const VolumeMesh& mesh, const VolumeRefinement& refinement) {
   const int nV = mesh.n_vertices(), nF = mesh.n_faces(), nC = mesh.n_cells();
@@ -131,6 +120,7 @@ struct CellWorkspace {
   std::vector<double> weight;  // the face weights in the same order
   std::vector<double> fine;    // a face's fine stiffness when it has more corners than the fixed sizes
   std::vector<double> hs, hm;  // couplings of the cell's vertices with the cell point
+  std::vector<int> local;      // |V|: a vertex's index in the current cell's vertices
 };
 
 inline void cross(const double* a, const double* b, double* out) {
@@ -203,8 +193,10 @@ void add_face(const SubTet* flags, int n_dyn, const int* o, const double* w, con
     buffer = ws.fine.data();
   }
   FaceFine F{buffer, buffer + n, buffer + 2 * n, buffer + 3 * n, buffer + 4 * n};
-  std::fill(buffer, buffer + 4 * n, 0.0);
   double qq = 0, qc = 0, cc = 0;
+  // Corner i's couplings come from tetrahedra i - 1 (as its second corner, carried in pd, pq, pc)
+  // and i (as its first); corner 0's from tetrahedron 0 wait in d0, q0, c0 for the last one.
+  double pd = 0, pq = 0, pc = 0, d0 = 0, q0 = 0, c0 = 0;
   const double* pa = p + 3 * o[0];
   double D0[3], Dp[3], Dn[3], E[3];
   cross(pa, q, D0);
@@ -224,20 +216,29 @@ void add_face(const SubTet* flags, int n_dyn, const int* o, const double* w, con
     }
     const double vol6 = std::abs(dot(pa, Dn));
     F.mv[i] = vol6 / 120.0;
+    double kaa = 0, kab = 0, kaq = 0, kac = 0, kbb = 0, kbq = 0, kbc = 0;
     if (flags[i] != SubTet::Degenerate && vol6 > 0) {
       cross(pa, pb, E);
       const double s = -1.0 / (6.0 * vol6);
-      const double kab = -s * dot(Dn, Dp), kaq = s * dot(Dn, E), kbq = -s * dot(Dp, E);
-      const double kaa = s * Dn2, kbb = s * Dp2, kqq = s * dot(E, E);
-      const double kac = -(kaa + kab + kaq), kbc = -(kab + kbb + kbq), kqc = -(kaq + kbq + kqq);
-      F.diag[i] += kaa, F.diag[b] += kbb, F.next[i] += kab;
-      F.fq[i] += kaq, F.fq[b] += kbq, F.fc[i] += kac, F.fc[b] += kbc;
+      kab = -s * dot(Dn, Dp), kaq = s * dot(Dn, E), kbq = -s * dot(Dp, E);
+      kaa = s * Dn2, kbb = s * Dp2;
+      const double kqq = s * dot(E, E);
+      kac = -(kaa + kab + kaq), kbc = -(kab + kbb + kbq);
+      const double kqc = -(kaq + kbq + kqq);
       qq += kqq, qc += kqc, cc -= kac + kbc + kqc;
     }
+    if (i == 0) {
+      d0 = kaa, q0 = kaq, c0 = kac;
+    } else {
+      F.diag[i] = pd + kaa, F.fq[i] = pq + kaq, F.fc[i] = pc + kac;
+    }
+    F.next[i] = kab;
+    pd = kbb, pq = kbq, pc = kbc;
     std::copy(Dn, Dn + 3, Dp);
     Dp2 = Dn2;
     pa = pb;
   }
+  F.diag[0] = d0 + pd, F.fq[0] = q0 + pq, F.fc[0] = c0 + pc;
   F.qq = qq, F.qc = qc, F.cc = cc;
   fold_face<N>(n, o, w, F, m, S, M, ws.hs.data(), ws.hm.data(), as, am, buffer + 5 * n, buffer + 6 * n);
 }
@@ -276,6 +277,8 @@ void cell_kernel(const VolumeMesh& mesh, const VolumeRefinement& refinement, int
   const auto& X = mesh.positions();
   const double xc[3] = {refinement.cell_points(c, 0), refinement.cell_points(c, 1), refinement.cell_points(c, 2)};
   ws.p.resize(3 * size_t(m));
+  if (ws.local.size() < size_t(mesh.n_vertices())) ws.local.resize(size_t(mesh.n_vertices()));
+  for (int k = 0; k < m; ++k) ws.local[verts[k]] = k;
   for (int k = 0; k < m; ++k)
     for (int d = 0; d < 3; ++d) ws.p[3 * k + d] = X(verts[k], d) - xc[d];
   S.setZero(m, m);
@@ -294,7 +297,7 @@ void cell_kernel(const VolumeMesh& mesh, const VolumeRefinement& refinement, int
     // Half-face 2f + 1 runs against the face: its i-th corner is face[n - 1 - i].
     for (int i = 0; i < n; ++i) {
       const int k = hf & 1 ? n - 1 - i : i;
-      ws.corner[i] = local_index(verts, face[k]);
+      ws.corner[i] = ws.local[face[k]];
       ws.weight[i] = wf[k];
     }
     const double q[3] = {refinement.face_points(f, 0) - xc[0], refinement.face_points(f, 1) - xc[1],
