@@ -276,15 +276,18 @@ void cell_kernel(const VolumeMesh& mesh, const VolumeRefinement& refinement, int
   const int m = int(verts.size());
   const auto& X = mesh.positions();
   const double xc[3] = {refinement.cell_points(c, 0), refinement.cell_points(c, 1), refinement.cell_points(c, 2)};
-  ws.p.resize(3 * size_t(m));
+  // Buffers only grow (no resizing per cell or face).
+  if (ws.p.size() < 3 * size_t(m)) ws.p.resize(3 * size_t(m)), ws.hs.resize(m), ws.hm.resize(m);
   if (ws.local.size() < size_t(mesh.n_vertices())) ws.local.resize(size_t(mesh.n_vertices()));
-  for (int k = 0; k < m; ++k) ws.local[verts[k]] = k;
-  for (int k = 0; k < m; ++k)
-    for (int d = 0; d < 3; ++d) ws.p[3 * k + d] = X(verts[k], d) - xc[d];
+  double* p = ws.p.data();
+  for (int k = 0; k < m; ++k) {
+    ws.local[verts[k]] = k;
+    for (int d = 0; d < 3; ++d) p[3 * k + d] = X(verts[k], d) - xc[d];
+  }
   S.setZero(m, m);
   M.setZero(m, m);
-  ws.hs.assign(m, 0.0);
-  ws.hm.assign(m, 0.0);
+  std::fill_n(ws.hs.data(), m, 0.0);
+  std::fill_n(ws.hm.data(), m, 0.0);
   double as = 0, am = 0;
   const SubTet* flags = refinement.tets.data() + refinement.tet_offsets[c];
   for (const int hf : cell) {
@@ -292,8 +295,7 @@ void cell_kernel(const VolumeMesh& mesh, const VolumeRefinement& refinement, int
     const auto face = mesh.face(f);
     const int n = int(face.size());
     const double* wf = refinement.weights_of_face(mesh, f).data();
-    ws.corner.resize(n);
-    ws.weight.resize(n);
+    if (ws.corner.size() < size_t(n)) ws.corner.resize(n), ws.weight.resize(n);
     // Half-face 2f + 1 runs against the face: its i-th corner is face[n - 1 - i].
     for (int i = 0; i < n; ++i) {
       const int k = hf & 1 ? n - 1 - i : i;
@@ -303,11 +305,11 @@ void cell_kernel(const VolumeMesh& mesh, const VolumeRefinement& refinement, int
     const double q[3] = {refinement.face_points(f, 0) - xc[0], refinement.face_points(f, 1) - xc[1],
                          refinement.face_points(f, 2) - xc[2]};
     if (n == 4)
-      add_face<4>(flags, n, ws.corner.data(), ws.weight.data(), ws.p.data(), q, m, S.data(), M.data(), ws, as, am);
+      add_face<4>(flags, n, ws.corner.data(), ws.weight.data(), p, q, m, S.data(), M.data(), ws, as, am);
     else if (n == 3)
-      add_face<3>(flags, n, ws.corner.data(), ws.weight.data(), ws.p.data(), q, m, S.data(), M.data(), ws, as, am);
+      add_face<3>(flags, n, ws.corner.data(), ws.weight.data(), p, q, m, S.data(), M.data(), ws, as, am);
     else
-      add_face<0>(flags, n, ws.corner.data(), ws.weight.data(), ws.p.data(), q, m, S.data(), M.data(), ws, as, am);
+      add_face<0>(flags, n, ws.corner.data(), ws.weight.data(), p, q, m, S.data(), M.data(), ws, as, am);
     flags += n;
   }
   const auto w = refinement.weights_of_cell(c);
@@ -338,7 +340,8 @@ VolumeLaplacian assemble_volume_laplacian(const VolumeMesh& mesh, const VolumeRe
     L.S = *pattern;
     L.S.coeffs().setZero();
   } else {
-    L.S = pattern_and_slots(mesh, &slots);  // values already zero
+    SparseMatrix built = pattern_and_slots(mesh, &slots);  // values already zero
+    L.S.swap(built);  // Eigen's assignment from a returned matrix would copy it
   }
   L.M = L.S;
   const int nC = mesh.n_cells(), nV = mesh.n_vertices();
