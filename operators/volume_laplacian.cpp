@@ -159,17 +159,15 @@ inline void fold_face(int n_dyn, const int* o, const double* w, const FaceFine& 
     hs[oi] += F.fc[i] + w[i] * F.qc;
     hm[oi] += si + w[i] * total;
   }
-  for (int i = 0; i < n; ++i) {
-    const long oi = o[i];
-    for (int j = i + 1; j < n; ++j) {
-      double vs = w[i] * ts[j] + w[j] * ts[i], vm = w[i] * tm[j] + w[j] * tm[i];
-      if (j == i + 1) vs += F.next[i], vm += F.mv[i];
-      if (i == 0 && j == n - 1) vs += F.next[n - 1], vm += F.mv[n - 1];
-      const long oj = o[j], k = oi < oj ? oi + oj * m : oj + oi * m;
-      S[k] += vs;
-      M[k] += vm;
-    }
-  }
+  // Corner pairs (i, j): the face's edges carry their own couplings, the other pairs only the fold's.
+  auto add_pair = [&](int i, int j, double es, double em) {
+    const long oi = o[i], oj = o[j], k = oi < oj ? oi + oj * m : oj + oi * m;
+    S[k] += w[i] * ts[j] + w[j] * ts[i] + es;
+    M[k] += w[i] * tm[j] + w[j] * tm[i] + em;
+  };
+  for (int i = 0; i < n; ++i) add_pair(i, i + 1 == n ? 0 : i + 1, F.next[i], F.mv[i]);
+  for (int i = 0; i < n; ++i)
+    for (int j = i + 2; j < (i == 0 ? n - 1 : n); ++j) add_pair(i, j, 0.0, 0.0);
   as += F.cc;
   am += 2 * total;
 }
