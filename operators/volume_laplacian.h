@@ -36,7 +36,9 @@ struct VolumeLaplacian {
   SubTetQuality quality;     // of the refinement that was used
 };
 
-// One pass over the cells; `pattern` (from cell_pattern) may be passed to skip the symbolic step.
+// One pass over the cells; `pattern` (from cell_pattern) may be passed to skip the symbolic step
+// (each cell's entries are then found by searching its columns; the pattern built here also records
+// where they sit, 2 bytes per local entry, freed on return).
 // `threads` (0: all hardware threads) compute the cells' local matrices in blocks and add them by
 // column ranges; results are bitwise identical for every thread count.
 VolumeLaplacian assemble_volume_laplacian(const VolumeMesh& mesh, const VolumeRefinement& refinement,
