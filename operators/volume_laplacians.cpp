@@ -15,11 +15,12 @@ namespace volume_laplacians_detail {
 namespace {
 
 OperatorSet refined_operators(const VolumeMesh& mesh, CellPointRule rule, bool with_gradient,
-                              SubTetQuality* quality) {
+                              SubTetQuality* quality, int threads) {
   VolumeRefinementOptions ropt;
   ropt.cell_rule = rule;
+  ropt.threads = threads;
   const VolumeRefinement r = refine_volume(mesh, ropt);
-  VolumeLaplacian L = assemble_volume_laplacian(mesh, r);
+  VolumeLaplacian L = assemble_volume_laplacian(mesh, r, nullptr, threads);
   OperatorSet ops;
   ops.S.swap(L.S);
   ops.M.swap(L.M);
@@ -36,14 +37,14 @@ OperatorSet refined_operators(const VolumeMesh& mesh, CellPointRule rule, bool w
 // One row per method: a new method (e.g. the volume Diamond Laplacian) is one more row.
 struct VolumeMethod {
   const char* name;
-  OperatorSet (*build)(const VolumeMesh&, bool with_gradient, SubTetQuality*);
+  OperatorSet (*build)(const VolumeMesh&, bool with_gradient, SubTetQuality*, int threads);
 };
 const VolumeMethod kVolumeMethods[] = {
-    {"ours", [](const VolumeMesh& m, bool g,
-                SubTetQuality* q) { return refined_operators(m, CellPointRule::SquaredVolume, g, q); }},
-    {"polylaplace", [](const VolumeMesh& m, bool g,
-                       SubTetQuality* q) { return refined_operators(m, CellPointRule::PolyLaplace, g, q); }},
-    {"diamond", [](const VolumeMesh& m, bool g, SubTetQuality* q) { return volume_diamond_operators(m, g, q); }},
+    {"ours", [](const VolumeMesh& m, bool g, SubTetQuality* q,
+                int t) { return refined_operators(m, CellPointRule::SquaredVolume, g, q, t); }},
+    {"polylaplace", [](const VolumeMesh& m, bool g, SubTetQuality* q,
+                       int t) { return refined_operators(m, CellPointRule::PolyLaplace, g, q, t); }},
+    {"diamond", [](const VolumeMesh& m, bool g, SubTetQuality* q, int) { return volume_diamond_operators(m, g, q); }},
 };
 
 const VolumeMethod* find_volume_method(const std::string& name) {
@@ -71,13 +72,13 @@ LaplacianChoice parse_volume_laplacian(const std::string& spec) {
 }
 
 OperatorSet build_volume_operators(const VolumeMesh& mesh, const LaplacianChoice& choice, bool with_gradient,
-                                   SubTetQuality* quality) {
+                                   SubTetQuality* quality, int threads) {
   const auto* m = volume_laplacians_detail::find_volume_method(choice.method);
   if (!m || choice.has_parameter)
     throw std::invalid_argument(fmt::format("unknown volume Laplacian '{}' (known: {})",
                                             choice.canonical_name(),
                                             fmt::join(volume_laplacian_names(), ", ")));
-  OperatorSet ops = m->build(mesh, with_gradient, quality);
+  OperatorSet ops = m->build(mesh, with_gradient, quality, threads);
   ops.name = m->name;
   ops.n_input_vertices = mesh.n_vertices();
   ops.mean_edge_length = mesh.mean_edge_length();

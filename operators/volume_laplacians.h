@@ -35,10 +35,12 @@ std::vector<std::string> volume_laplacian_names();
 // the known methods.
 LaplacianChoice parse_volume_laplacian(const std::string& spec);
 
-// Builds the operator set of `choice` on `mesh`; `with_gradient` asks for G and D too. Throws
-// std::invalid_argument for a method that is not a volume method.
+// Builds the operator set of `choice` on `mesh`; `with_gradient` asks for G and D too; `threads`
+// (0: all hardware threads) run the refinement and the assembly of "ours" and "polylaplace" (the
+// results do not depend on it). Throws std::invalid_argument for a method that is not a volume
+// method.
 OperatorSet build_volume_operators(const VolumeMesh& mesh, const LaplacianChoice& choice,
-                                   bool with_gradient = true, SubTetQuality* quality = nullptr);
+                                   bool with_gradient = true, SubTetQuality* quality = nullptr, int threads = 1);
 
 // Gradient G = G^tet P, (3T) x |V| (T = number of sub-tetrahedra), see above; with `volumes`, also
 // the sub-tetrahedra's volumes from the same pass (as sub_tet_volumes).

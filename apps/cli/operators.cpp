@@ -78,6 +78,7 @@ void run_volume(const Options& o) {
   using Clock = std::chrono::steady_clock;
   const VolumeMesh mesh = load_volume_mesh(o.mesh);
   VolumeRefinementOptions ropt;
+  ropt.threads = resolve_threads(o.threads);
   try {
     ropt.cell_rule = parse_cell_point_rule(o.cell_rule);
   } catch (const std::invalid_argument& e) {
@@ -89,19 +90,20 @@ void run_volume(const Options& o) {
     long nnz = 0;
     for (int i = 0; i < o.repeat; ++i) {
       const auto t0 = Clock::now();
-      const VolumeLaplacian L = assemble_volume_laplacian(mesh, refine_volume(mesh, ropt));
+      const VolumeLaplacian L = assemble_volume_laplacian(mesh, refine_volume(mesh, ropt), nullptr, ropt.threads);
       full.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
       nnz = L.S.nonZeros();
     }
     for (int i = 0; i < o.repeat; ++i) {
       const auto t0 = Clock::now();
-      const VolumeLaplacian L = assemble_volume_laplacian(mesh, refine_volume(mesh, ropt), &pattern);
+      const VolumeLaplacian L = assemble_volume_laplacian(mesh, refine_volume(mesh, ropt), &pattern, ropt.threads);
       values.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
     }
     nlohmann::json j = {{"mesh", o.mesh},         {"vertices", mesh.n_vertices()}, {"faces", mesh.n_faces()},
                         {"cells", mesh.n_cells()}, {"S_nonzeros", nnz},             {"repeat", o.repeat},
                         {"median_ms", median(full)}, {"min_ms", *std::min_element(full.begin(), full.end())},
-                        {"pattern_kept_median_ms", median(values)}, {"parts", {"S", "M", "M_lumped"}}};
+                        {"pattern_kept_median_ms", median(values)}, {"threads", ropt.threads},
+                        {"parts", {"S", "M", "M_lumped"}}};
     if (o.json) {
       print_json(j);
       return;
@@ -112,7 +114,7 @@ void run_volume(const Options& o) {
     return;
   }
   const VolumeRefinement r = refine_volume(mesh, ropt);
-  const VolumeLaplacian L = assemble_volume_laplacian(mesh, r);
+  const VolumeLaplacian L = assemble_volume_laplacian(mesh, r, nullptr, ropt.threads);
   std::filesystem::create_directories(o.out);
   SparseMatrix Ml(mesh.n_vertices(), mesh.n_vertices());
   Ml.setIdentity();

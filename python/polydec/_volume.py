@@ -213,38 +213,39 @@ def volume_laplacian_names():
     return list(_polydec.volume_laplacian_names())
 
 
-def volume_operators(mesh, laplacian="ours", parts=("S", "M", "M_lumped", "G", "D")):
+def volume_operators(mesh, laplacian="ours", parts=("S", "M", "M_lumped", "G", "D"), threads=1):
     """The parts asked for ("S", "M", "M_lumped", "G", "D") from one assembly -> dict with those
     (S, M, G, D csc_matrix; M_lumped a (|V|,) vector), "G_blocks" with G (row blocks the heat method
     normalizes as one vector; empty: blocks of 3), "name", and the refinement's sub-tetrahedron
-    counts "subtet_degenerate", "subtet_inverted", "cells_affected"."""
-    return _polydec.volume_operators(_mesh(mesh), str(laplacian), set(parts))
+    counts "subtet_degenerate", "subtet_inverted", "cells_affected". threads: refinement and
+    assembly threads for "ours" and "polylaplace" (0: all; the result does not depend on it)."""
+    return _polydec.volume_operators(_mesh(mesh), str(laplacian), set(parts), int(threads))
 
 
-def volume_stiffness(mesh, laplacian="ours"):
+def volume_stiffness(mesh, laplacian="ours", threads=1):
     """Stiffness S = P^T S^tet P (|V|, |V|) csc_matrix, symmetric NEGATIVE semi-definite, S @ 1 = 0,
     exact on linear functions at interior vertices."""
-    return volume_operators(mesh, laplacian, {"S"})["S"]
+    return volume_operators(mesh, laplacian, {"S"}, threads)["S"]
 
 
-def volume_mass(mesh, laplacian="ours"):
+def volume_mass(mesh, laplacian="ours", threads=1):
     """Galerkin mass M = P^T M^tet P (|V|, |V|) csc_matrix, positive semi-definite, summing to the volume."""
-    return volume_operators(mesh, laplacian, {"M"})["M"]
+    return volume_operators(mesh, laplacian, {"M"}, threads)["M"]
 
 
-def volume_lumped_mass(mesh, laplacian="ours"):
+def volume_lumped_mass(mesh, laplacian="ours", threads=1):
     """Lumped mass (row sums of M) as a diagonal (|V|, |V|) csc_matrix."""
     from . import _diagonal
 
-    return _diagonal(volume_operators(mesh, laplacian, {"M_lumped"})["M_lumped"])
+    return _diagonal(volume_operators(mesh, laplacian, {"M_lumped"}, threads)["M_lumped"])
 
 
-def volume_laplacian(mesh, laplacian="ours", mass="lumped"):
+def volume_laplacian(mesh, laplacian="ours", mass="lumped", threads=1):
     """(S, M) from one assembly; mass="lumped" (diagonal, default) or "galerkin"; L = M^-1 S."""
     from . import _diagonal
 
     lumped = _convert.lumped_flag(mass)
-    d = volume_operators(mesh, laplacian, {"S", "M_lumped" if lumped else "M"})
+    d = volume_operators(mesh, laplacian, {"S", "M_lumped" if lumped else "M"}, threads)
     return d["S"], _diagonal(d["M_lumped"]) if lumped else d["M"]
 
 

@@ -66,7 +66,8 @@ py::tuple cell_arrays(const VolumeMesh& mesh) {
 const char* kParts[] = {"S", "M", "M_lumped", "G", "D"};
 
 py::dict volume_operator_dict(const VolumeMesh& mesh, const std::string& spec,
-                              const std::set<std::string>& parts) {
+                              const std::set<std::string>& parts, int threads) {
+  if (threads < 0) throw std::invalid_argument("threads must be at least 0 (0: all hardware threads)");
   for (const auto& p : parts)
     if (std::find(std::begin(kParts), std::end(kParts), p) == std::end(kParts))
       throw std::invalid_argument("unknown operator part '" + p + "' (known: S, M, M_lumped, G, D)");
@@ -75,7 +76,7 @@ py::dict volume_operator_dict(const VolumeMesh& mesh, const std::string& spec,
   SubTetQuality q;
   {
     py::gil_scoped_release release;
-    ops = build_volume_operators(mesh, choice, parts.count("G") || parts.count("D"), &q);
+    ops = build_volume_operators(mesh, choice, parts.count("G") || parts.count("D"), &q, threads);
   }
   py::dict d;
   d["name"] = ops.name;

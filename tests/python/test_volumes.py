@@ -349,3 +349,17 @@ def test_generators_and_jitter():
         polydec.hex_grid_volume(0, 1, 1)
     with pytest.raises(ValueError, match="jitter"):
         polydec.jitter_interior(a, -1.0)
+
+
+def test_volume_operators_threads_give_identical_results():
+    # Threads only split meshes of at least 2 x 2048 cells; the results are bitwise those of one thread.
+    mesh = polydec.hex_grid_volume(16, 16, 17, jitter=0.2, seed=3)
+    one = polydec.volume_operators(mesh, "ours", {"S", "M", "M_lumped", "G"}, threads=1)
+    for threads in (2, 0):
+        many = polydec.volume_operators(mesh, "ours", {"S", "M", "M_lumped", "G"}, threads=threads)
+        for part in ("S", "M", "G"):
+            assert (one[part] != many[part]).nnz == 0
+            assert np.array_equal(one[part].indices, many[part].indices)
+        assert np.array_equal(one["M_lumped"], many["M_lumped"])
+    with pytest.raises(ValueError):
+        polydec.volume_operators(mesh, "ours", {"S"}, threads=-1)
