@@ -59,14 +59,22 @@ Eigen::Matrix3d to_matrix(const Sym3& a) {
   return A;
 }
 
-// Solves A x = b by Cholesky when det A > tau trace(A)^3 (which implies lambda_min > tau
-// lambda_max for a positive semi-definite A, without the eigenvalues); false (x not written)
-// otherwise.
+// Solves A x = b (A positive semi-definite) by Cholesky when lambda_min > tau lambda_max; false
+// (x not written) otherwise. det A > tau trace(A)^3 implies the criterion without the
+// eigenvalues (the usual case); failing that, the closed-form eigenvalues decide.
 bool well_conditioned_solve(const Sym3& a, const double* b, double tau, double* x) {
   const double tr = a[0] + a[3] + a[5];
   const double det = a[0] * (a[3] * a[5] - a[4] * a[4]) - a[1] * (a[1] * a[5] - a[4] * a[2]) +
                      a[2] * (a[1] * a[4] - a[3] * a[2]);
-  if (!(det > tau * tr * tr * tr)) return false;
+  if (!(det > tau * tr * tr * tr)) {
+    const Eigen::Matrix3d A = to_matrix(a);
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+    eig.computeDirect(A, Eigen::EigenvaluesOnly);
+    if (!(eig.eigenvalues()(0) > tau * eig.eigenvalues().cwiseAbs().maxCoeff())) return false;
+    Eigen::Map<Eigen::Vector3d> solution(x);
+    solution = A.llt().solve(Eigen::Map<const Eigen::Vector3d>(b));
+    return true;
+  }
   const double l00 = std::sqrt(a[0]), l10 = a[1] / l00, l20 = a[2] / l00;
   const double l11 = std::sqrt(a[3] - l10 * l10), l21 = (a[4] - l20 * l10) / l11;
   const double l22 = std::sqrt(a[5] - l20 * l20 - l21 * l21);
@@ -80,15 +88,11 @@ bool well_conditioned_solve(const Sym3& a, const double* b, double tau, double* 
 // The minimizer (offset from the centre) of sum_t (n_t . x - n_t . a_t)^2 from its normal
 // equations N x = r (N = sum n_t n_t^T, r = sum n_t (n_t . a_t), coordinates centred).
 Eigen::Vector3d solve_squared_volume(const Sym3& n, const Eigen::Vector3d& r) {
-  // Well conditioned (the usual case): a Cholesky solve when det N > 1e-6 trace(N)^3; otherwise
-  // the closed-form eigenvalues decide.
+  // Well conditioned (the usual case, lambda_min > 1e-6 lambda_max): a Cholesky solve; otherwise
+  // the eigen-decomposition's pseudo-inverse.
   Eigen::Vector3d x;
   if (well_conditioned_solve(n, r.data(), 1e-6, x.data())) return x;
   const Eigen::Matrix3d N = to_matrix(n);
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> direct;
-  direct.computeDirect(N, Eigen::EigenvaluesOnly);
-  if (direct.eigenvalues()(0) > 1e-6 * direct.eigenvalues().cwiseAbs().maxCoeff())
-    return N.llt().solve(r);
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(N);
   const Eigen::Vector3d lambda = eig.eigenvalues();
   const double top = lambda.cwiseAbs().maxCoeff();
@@ -100,29 +104,17 @@ Eigen::Vector3d solve_squared_volume(const Sym3& n, const Eigen::Vector3d& r) {
   return x;
 }
 
-// The squared-volume minimizer (squared_volume_minimizer()) of the triangles that
-// for_each_triangle(visit) passes to visit(a, b, c), in the same order on each call.
-template <class ForEachTriangle>
-Eigen::Vector3d squared_volume_point(ForEachTriangle&& for_each_triangle) {
-  // vol(a, b, c, x) = n . (x - a) / 6 with n = (b - a) x (c - a): minimize sum (n_t . x - n_t . a_t)^2.
-  long T = 0;
-  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-  for_each_triangle([&](const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
-    centre += a + b + c;
-    ++T;
-  });
-  centre /= double(3 * std::max<long>(T, 1));
+// The normal equations N x = r of min_x sum_t (n_t . x - n_t . a_t)^2, the sum of squared volumes
+// vol(a_t, b_t, c_t, x) = n_t . (x - a_t) / 6 with n_t = (b_t - a_t) x (c_t - a_t).
+struct SquaredVolumeSystem {
   Sym3 N{};
   Eigen::Vector3d r = Eigen::Vector3d::Zero();
-  for_each_triangle([&](const Eigen::Vector3d& at, const Eigen::Vector3d& bt, const Eigen::Vector3d& ct) {
-    const Eigen::Vector3d a = at - centre, b = bt - centre, c = ct - centre;
-    const Eigen::Vector3d n = (b - a).cross(c - a);
-    N[0] += n[0] * n[0], N[1] += n[0] * n[1], N[2] += n[0] * n[2];
-    N[3] += n[1] * n[1], N[4] += n[1] * n[2], N[5] += n[2] * n[2];
-    r += n * n.dot(a);
-  });
-  return centre + solve_squared_volume(N, r);
-}
+  // Adds a triangle's normal n_t and its n_t . a_t.
+  void add(double n0, double n1, double n2, double na) {
+    N[0] += n0 * n0, N[1] += n0 * n1, N[2] += n0 * n2, N[3] += n1 * n1, N[4] += n1 * n2, N[5] += n2 * n2;
+    r[0] += n0 * na, r[1] += n1 * na, r[2] += n2 * na;
+  }
+};
 
 // Least-norm affine weights of the centred points Xc (m x 3, columns summing to zero) reproducing
 // the offset y from their mean, written to w (m entries): w = 1/m + Xc^+ y.
@@ -139,17 +131,7 @@ void centred_affine_weights(const Eigen::MatrixX3d& Xc, const Eigen::Vector3d& y
     g[3] += x1[k] * x1[k], g[4] += x1[k] * x2[k], g[5] += x2[k] * x2[k];
   }
   double z[3];
-  bool gram = well_conditioned_solve(g, y.data(), 1e-10, z);
-  if (!gram) {
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
-    eig.computeDirect(to_matrix(g), Eigen::EigenvaluesOnly);
-    if (eig.eigenvalues()(0) > 1e-10 * eig.eigenvalues()(2)) {
-      const Eigen::Vector3d zz = to_matrix(g).llt().solve(y);
-      z[0] = zz[0], z[1] = zz[1], z[2] = zz[2];
-      gram = true;
-    }
-  }
-  if (gram) {
+  if (well_conditioned_solve(g, y.data(), 1e-10, z)) {
     for (long k = 0; k < m; ++k) w[k] = 1.0 / double(m) + x0[k] * z[0] + x1[k] * z[1] + x2[k] * z[2];
     return;
   }
@@ -165,10 +147,16 @@ void centred_affine_weights(const Eigen::MatrixX3d& Xc, const Eigen::Vector3d& y
 
 Eigen::Vector3d squared_volume_minimizer(const Eigen::MatrixX3d& A, const Eigen::MatrixX3d& B,
                                          const Eigen::MatrixX3d& C) {
-  return volume_refinement_detail::squared_volume_point([&](auto&& visit) {
-    for (long t = 0; t < A.rows(); ++t)
-      visit(A.row(t).transpose(), B.row(t).transpose(), C.row(t).transpose());
-  });
+  using namespace volume_refinement_detail;
+  const long T = A.rows();
+  const Eigen::RowVector3d centre = (A.colwise().sum() + B.colwise().sum() + C.colwise().sum()) / double(3 * std::max<long>(T, 1));
+  SquaredVolumeSystem system;
+  for (long t = 0; t < T; ++t) {
+    const Eigen::RowVector3d a = A.row(t) - centre;
+    const Eigen::RowVector3d n = (B.row(t) - A.row(t)).cross(C.row(t) - A.row(t));
+    system.add(n[0], n[1], n[2], n.dot(a));
+  }
+  return centre.transpose() + solve_squared_volume(system.N, system.r);
 }
 
 Eigen::VectorXd least_norm_affine_weights(const Eigen::MatrixX3d& X, const Eigen::Vector3d& x) {
@@ -261,7 +249,7 @@ VolumeRefinement refine_volume(const VolumeMesh& mesh, const VolumeRefinementOpt
       Xc.resize(m, 3);
       for (int k = 0; k < m; ++k) Xc(k, 0) = P0[verts[k]] - o[0], Xc(k, 1) = P1[verts[k]] - o[1], Xc(k, 2) = P2[verts[k]] - o[2];
       tri.resize(kStride * size_t(R.tet_offsets[c + 1] - R.tet_offsets[c]));
-      double n00 = 0, n01 = 0, n02 = 0, n11 = 0, n12 = 0, n22 = 0, r0 = 0, r1 = 0, r2 = 0;
+      SquaredVolumeSystem system;
       double* t = tri.data();
       for (int hf : cell) {
         const int f = hf / 2;
@@ -280,9 +268,7 @@ VolumeRefinement refine_volume(const VolumeMesh& mesh, const VolumeRefinementOpt
           corner(i + 1 == n ? 0 : i + 1, b);
           const double ub0 = b[0] - q0, ub1 = b[1] - q1, ub2 = b[2] - q2, ubb = ub0 * ub0 + ub1 * ub1 + ub2 * ub2;
           const double m0 = ua1 * ub2 - ua2 * ub1, m1 = ua2 * ub0 - ua0 * ub2, m2 = ua0 * ub1 - ua1 * ub0;
-          n00 += m0 * m0, n01 += m0 * m1, n02 += m0 * m2, n11 += m1 * m1, n12 += m1 * m2, n22 += m2 * m2;
-          const double mq = m0 * q0 + m1 * q1 + m2 * q2;
-          r0 += m0 * mq, r1 += m1 * mq, r2 += m2 * mq;
+          system.add(m0, m1, m2, m0 * q0 + m1 * q1 + m2 * q2);
           const double e0 = b[0] - a[0], e1 = b[1] - a[1], e2 = b[2] - a[2];
           t[0] = m0, t[1] = m1, t[2] = m2;
           t[3] = std::max({e0 * e0 + e1 * e1 + e2 * e2, uaa, ubb});
@@ -291,7 +277,7 @@ VolumeRefinement refine_volume(const VolumeMesh& mesh, const VolumeRefinementOpt
           ua0 = ub0, ua1 = ub1, ua2 = ub2, uaa = ubb;
         }
       }
-      const Eigen::Vector3d xc = solve_squared_volume({n00, n01, n02, n11, n12, n22}, Eigen::Vector3d(r0, r1, r2));
+      const Eigen::Vector3d xc = solve_squared_volume(system.N, system.r);
       R.cell_points(c, 0) = o[0] + xc[0], R.cell_points(c, 1) = o[1] + xc[1], R.cell_points(c, 2) = o[2] + xc[2];
 
       double* w = R.cell_weights.data() + R.cell_weight_offsets[c];

@@ -335,9 +335,12 @@ def suggested_time_factor(time_step_factor, diagnostics, extent):
     """The heat time step factor whose heat step reaches `extent` (e.g. the bounding-box diagonal,
     np.linalg.norm(V.max(0) - V.min(0))), from a run at `time_step_factor` and its diagnostics
     (the dict of HeatGeodesics/VolumeHeatGeodesics .distance(..., return_diagnostics=True)):
-    time_step_factor * (1.25 extent / resolved_radius)^2, the reach growing as sqrt(t);
-    time_step_factor itself when no vertex was unresolved. ValueError unless time_step_factor
-    and extent are positive and finite."""
+    the factor f' whose implicit heat step decays per mean edge length by
+    kappa(f') = kappa(time_step_factor) resolved_radius / (1.25 extent), with
+    kappa(f) = 2 asinh(1 / (2 sqrt(f))) (for large factors time_step_factor * (1.25 extent /
+    resolved_radius)^2, the reach growing as sqrt(t)); time_step_factor itself when no vertex was
+    unresolved, never less. ValueError unless time_step_factor and extent are positive and
+    finite."""
     factor, extent = float(time_step_factor), float(extent)
     if not (np.isfinite(factor) and factor > 0 and np.isfinite(extent) and extent > 0):
         raise ValueError(f"time_step_factor and extent must be positive and finite, got {factor} and {extent}")
