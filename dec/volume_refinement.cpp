@@ -106,12 +106,17 @@ Eigen::Vector3d solve_squared_volume(const Sym3& n, const Eigen::Vector3d& r) {
 
 // The normal equations N x = r of min_x sum_t (n_t . x - n_t . a_t)^2, the sum of squared volumes
 // vol(a_t, b_t, c_t, x) = n_t . (x - a_t) / 6 with n_t = (b_t - a_t) x (c_t - a_t).
+// Adds n n^T to the symmetric N.
+inline void add_outer(Sym3& N, double n0, double n1, double n2) {
+  N[0] += n0 * n0, N[1] += n0 * n1, N[2] += n0 * n2, N[3] += n1 * n1, N[4] += n1 * n2, N[5] += n2 * n2;
+}
+
 struct SquaredVolumeSystem {
   Sym3 N{};
   Eigen::Vector3d r = Eigen::Vector3d::Zero();
   // Adds a triangle's normal n_t and its n_t . a_t.
   void add(double n0, double n1, double n2, double na) {
-    N[0] += n0 * n0, N[1] += n0 * n1, N[2] += n0 * n2, N[3] += n1 * n1, N[4] += n1 * n2, N[5] += n2 * n2;
+    add_outer(N, n0, n1, n2);
     r[0] += n0 * na, r[1] += n1 * na, r[2] += n2 * na;
   }
 };
@@ -192,6 +197,11 @@ VolumeRefinement refine_volume(const VolumeMesh& mesh, const VolumeRefinementOpt
 
   R.face_weights.resize(mesh.face_indices().size());
   R.face_points.resize(nF, 3);
+  // Each face's moment N_f = sum_i n_i n_i^T of its fan triangles' normals
+  // n_i = (x_i - x_f) x (x_{i+1} - x_f): the part of the cells' squared-volume normal equations
+  // that the face contributes (below), the same for both of its cells (n_i changes sign with the
+  // orientation), so computed once here.
+  std::vector<Sym3> moments(static_cast<size_t>(nF));
   const double planarity =
       options.planarity_tolerance > 0 ? options.planarity_tolerance : mesh.precision().planarity_tolerance;
   const double noise = mesh.coordinate_noise();
@@ -207,9 +217,19 @@ VolumeRefinement refine_volume(const VolumeMesh& mesh, const VolumeRefinementOpt
       double* w = R.face_weights.data() + mesh.face_offsets()[f];
       squared_area_weights(corners.data(), n, w, work.data(),
                            planarity_cut(planarity, noise, corners.data(), n));
-      Eigen::Vector3d x = Eigen::Vector3d::Zero();
-      for (int k = 0; k < n; ++k) x += w[k] * Eigen::Vector3d(corners[3 * k], corners[3 * k + 1], corners[3 * k + 2]);
-      R.face_points.row(f) = x.transpose();
+      double x[3] = {0, 0, 0};
+      for (int k = 0; k < n; ++k)
+        for (int d = 0; d < 3; ++d) x[d] += w[k] * corners[3 * k + d];
+      for (int d = 0; d < 3; ++d) R.face_points(f, d) = x[d];
+      Sym3& Nf = moments[size_t(f)];
+      Nf = {};
+      const double* last = corners.data() + 3 * (n - 1);
+      double a0 = last[0] - x[0], a1 = last[1] - x[1], a2 = last[2] - x[2];
+      for (int k = 0; k < n; ++k) {
+        const double b0 = corners[3 * k] - x[0], b1 = corners[3 * k + 1] - x[1], b2 = corners[3 * k + 2] - x[2];
+        add_outer(Nf, a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0);
+        a0 = b0, a1 = b1, a2 = b2;
+      }
     }
   });
 
@@ -225,18 +245,17 @@ VolumeRefinement refine_volume(const VolumeMesh& mesh, const VolumeRefinementOpt
   R.cell_weights.resize(size_t(R.cell_weight_offsets[nC]));
   R.tets.resize(size_t(R.tet_offsets[nC]));
   std::vector<SubTetQuality> quality(T);
-  // One cell in two passes over its sub-tetrahedra, in coordinates relative to the mean o of its
-  // vertices: the first builds the squared-volume normal equations from the face triangles'
-  // normals n_t = (x_i - x_f) x (x_{i+1} - x_f) and keeps them with the triangle's longest squared
-  // edge and its corner x_i; the second classifies with 6 vol = n_t . (x_c - x_f) (classify()'s
-  // determinant) and the squared distances of x_c from the corners and the face point.
+  // One cell, in coordinates relative to the mean o of its vertices. The squared-volume normal
+  // equations are N x = r with N = sum_f N_f and r = sum_f N_f (x_f - o) (6 vol of a sub-tetrahedron
+  // is n_i . (x - x_f)). The classification computes each sub-tetrahedron's 6 vol = n_i . (x_c - x_f);
+  // its longest squared edge (classify()) only when 6 vol is below the tolerance for a bound of
+  // every edge of the cell's refinement: (2 R)^2, R the largest distance of a corner, face point
+  // or the cell point from o (taken as 4.5 R^2 to absorb the round-off).
   const double *P0 = P.col(0).data(), *P1 = P.col(1).data(), *P2 = P.col(2).data();
   const double *F0 = R.face_points.col(0).data(), *F1 = R.face_points.col(1).data(),
                *F2 = R.face_points.col(2).data();
-  constexpr int kStride = 7;  // per sub-tetrahedron: n_t (3), longest squared edge, x_i (3)
   run_on_threads(T, [&](int thread) {
     Eigen::MatrixX3d X, Xc;  // reused: no allocation per cell of the same size
-    std::vector<double> tri;
     SubTetQuality& Q = quality[thread];
     const double tol2 = options.degenerate_tolerance * options.degenerate_tolerance;
     for (int c = int(long(nC) * thread / T); c < int(long(nC) * (thread + 1) / T); ++c) {
@@ -247,37 +266,25 @@ VolumeRefinement refine_volume(const VolumeMesh& mesh, const VolumeRefinementOpt
       for (int v : verts) o[0] += P0[v], o[1] += P1[v], o[2] += P2[v];
       for (double& x : o) x /= double(m);
       Xc.resize(m, 3);
-      for (int k = 0; k < m; ++k) Xc(k, 0) = P0[verts[k]] - o[0], Xc(k, 1) = P1[verts[k]] - o[1], Xc(k, 2) = P2[verts[k]] - o[2];
-      tri.resize(kStride * size_t(R.tet_offsets[c + 1] - R.tet_offsets[c]));
-      SquaredVolumeSystem system;
-      double* t = tri.data();
+      double R2 = 0;
+      for (int k = 0; k < m; ++k) {
+        const double y0 = P0[verts[k]] - o[0], y1 = P1[verts[k]] - o[1], y2 = P2[verts[k]] - o[2];
+        Xc(k, 0) = y0, Xc(k, 1) = y1, Xc(k, 2) = y2;
+        R2 = std::max(R2, y0 * y0 + y1 * y1 + y2 * y2);
+      }
+      Sym3 N{};
+      double r[3] = {0, 0, 0};
       for (int hf : cell) {
         const int f = hf / 2;
-        const auto face = mesh.face(f);
-        const int n = int(face.size());
+        const Sym3& A = moments[size_t(f)];
         const double q0 = F0[f] - o[0], q1 = F1[f] - o[1], q2 = F2[f] - o[2];
-        // Corner i in outward order, relative to o (half-face 2f + 1 runs against the face).
-        auto corner = [&](int i, double* x) {
-          const int v = hf & 1 ? face[n - 1 - i] : face[i];
-          x[0] = P0[v] - o[0], x[1] = P1[v] - o[1], x[2] = P2[v] - o[2];
-        };
-        double a[3], b[3];
-        corner(0, a);
-        double ua0 = a[0] - q0, ua1 = a[1] - q1, ua2 = a[2] - q2, uaa = ua0 * ua0 + ua1 * ua1 + ua2 * ua2;
-        for (int i = 0; i < n; ++i, t += kStride) {
-          corner(i + 1 == n ? 0 : i + 1, b);
-          const double ub0 = b[0] - q0, ub1 = b[1] - q1, ub2 = b[2] - q2, ubb = ub0 * ub0 + ub1 * ub1 + ub2 * ub2;
-          const double m0 = ua1 * ub2 - ua2 * ub1, m1 = ua2 * ub0 - ua0 * ub2, m2 = ua0 * ub1 - ua1 * ub0;
-          system.add(m0, m1, m2, m0 * q0 + m1 * q1 + m2 * q2);
-          const double e0 = b[0] - a[0], e1 = b[1] - a[1], e2 = b[2] - a[2];
-          t[0] = m0, t[1] = m1, t[2] = m2;
-          t[3] = std::max({e0 * e0 + e1 * e1 + e2 * e2, uaa, ubb});
-          t[4] = a[0], t[5] = a[1], t[6] = a[2];
-          a[0] = b[0], a[1] = b[1], a[2] = b[2];
-          ua0 = ub0, ua1 = ub1, ua2 = ub2, uaa = ubb;
-        }
+        for (int k = 0; k < 6; ++k) N[k] += A[k];
+        r[0] += A[0] * q0 + A[1] * q1 + A[2] * q2;
+        r[1] += A[1] * q0 + A[3] * q1 + A[4] * q2;
+        r[2] += A[2] * q0 + A[4] * q1 + A[5] * q2;
+        R2 = std::max(R2, q0 * q0 + q1 * q1 + q2 * q2);
       }
-      const Eigen::Vector3d xc = solve_squared_volume(system.N, system.r);
+      const Eigen::Vector3d xc = solve_squared_volume(N, Eigen::Vector3d(r[0], r[1], r[2]));
       R.cell_points(c, 0) = o[0] + xc[0], R.cell_points(c, 1) = o[1] + xc[1], R.cell_points(c, 2) = o[2] + xc[2];
 
       double* w = R.cell_weights.data() + R.cell_weight_offsets[c];
@@ -305,25 +312,42 @@ VolumeRefinement refine_volume(const VolumeMesh& mesh, const VolumeRefinementOpt
 
       bool affected = false;
       SubTet* flag = R.tets.data() + R.tet_offsets[c];
-      t = tri.data();
       const double x0 = xc[0], x1 = xc[1], x2 = xc[2];
-      auto distance2 = [&](const double* y) {
-        const double d0 = x0 - y[0], d1 = x1 - y[1], d2 = x2 - y[2];
-        return d0 * d0 + d1 * d1 + d2 * d2;
-      };
+      R2 = std::max(R2, x0 * x0 + x1 * x1 + x2 * x2);
+      const double bound = 4.5 * R2, clear = tol2 * bound * bound * bound;
       for (int hf : cell) {
-        const int f = hf / 2, n = mesh.face_size(f);
-        const double h0 = x0 - (F0[f] - o[0]), h1 = x1 - (F1[f] - o[1]), h2 = x2 - (F2[f] - o[2]);
-        const double hh = h0 * h0 + h1 * h1 + h2 * h2;
-        const double d_first = distance2(t + 4);
-        double da = d_first;
-        for (int i = 0; i < n; ++i, t += kStride, ++flag) {
-          const double db = i + 1 == n ? d_first : distance2(t + kStride + 4);
-          *flag = classify(t[0] * h0 + t[1] * h1 + t[2] * h2, std::max({t[3], da, db, hh}), tol2);
+        const int f = hf / 2;
+        const auto face = mesh.face(f);
+        const int n = int(face.size());
+        const double q0 = F0[f] - o[0], q1 = F1[f] - o[1], q2 = F2[f] - o[2];
+        const double h0 = x0 - q0, h1 = x1 - q1, h2 = x2 - q2;
+        // Corner i in outward order, relative to o (half-face 2f + 1 runs against the face).
+        auto corner = [&](int i, double* y) {
+          const int v = hf & 1 ? face[n - 1 - i] : face[i];
+          y[0] = P0[v] - o[0], y[1] = P1[v] - o[1], y[2] = P2[v] - o[2];
+        };
+        double a[3], b[3];
+        corner(0, a);
+        double ua0 = a[0] - q0, ua1 = a[1] - q1, ua2 = a[2] - q2;
+        for (int i = 0; i < n; ++i, ++flag) {
+          corner(i + 1 == n ? 0 : i + 1, b);
+          const double ub0 = b[0] - q0, ub1 = b[1] - q1, ub2 = b[2] - q2;
+          const double m0 = ua1 * ub2 - ua2 * ub1, m1 = ua2 * ub0 - ua0 * ub2, m2 = ua0 * ub1 - ua1 * ub0;
+          const double vol6 = m0 * h0 + m1 * h1 + m2 * h2;
+          if (vol6 * vol6 > clear) {
+            *flag = vol6 < 0 ? SubTet::Valid : SubTet::Inverted;
+          } else {
+            auto d2 = [](double e0, double e1, double e2) { return e0 * e0 + e1 * e1 + e2 * e2; };
+            const double longest2 =
+                std::max({d2(b[0] - a[0], b[1] - a[1], b[2] - a[2]), d2(ua0, ua1, ua2), d2(ub0, ub1, ub2),
+                          d2(x0 - a[0], x1 - a[1], x2 - a[2]), d2(x0 - b[0], x1 - b[1], x2 - b[2]), d2(h0, h1, h2)});
+            *flag = classify(vol6, longest2, tol2);
+          }
           if (*flag == SubTet::Degenerate) ++Q.n_degenerate;
           if (*flag == SubTet::Inverted) ++Q.n_inverted;
           affected = affected || *flag != SubTet::Valid;
-          da = db;
+          a[0] = b[0], a[1] = b[1], a[2] = b[2];
+          ua0 = ub0, ua1 = ub1, ua2 = ub2;
         }
       }
       if (affected) ++Q.n_cells_affected;
