@@ -148,43 +148,51 @@ inline bool planar_affine_weights(const double* Y, int n_dyn, const double y[3],
                                   const PlanarityCut& planarity) {
   const int n = N > 0 ? N : n_dyn;
   if (n < 3) return false;
-  Eigen::Vector3d v = Eigen::Vector3d::Zero();
-  double F2 = 0;
+  double v0 = 0, v1 = 0, v2 = 0, F2 = 0;
   for (int k = 0; k < n; ++k) {
-    const Eigen::Map<const Eigen::Vector3d> a(Y + 3 * k), b(Y + 3 * (k + 1 == n ? 0 : k + 1));
-    v += a.cross(b);
-    F2 += a.squaredNorm();
+    const double *a = Y + 3 * k, *b = Y + 3 * (k + 1 == n ? 0 : k + 1);
+    v0 += a[1] * b[2] - a[2] * b[1], v1 += a[2] * b[0] - a[0] * b[2], v2 += a[0] * b[1] - a[1] * b[0];
+    F2 += a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
   }
-  const double vn = v.norm(), F = std::sqrt(F2), eps = std::numeric_limits<double>::epsilon();
+  const double vn = std::sqrt(v0 * v0 + v1 * v1 + v2 * v2), F = std::sqrt(F2);
+  const double eps = std::numeric_limits<double>::epsilon();
   if (!(vn > 0)) return false;
-  v /= vn;
+  v0 /= vn, v1 /= vn, v2 /= vn;
   double h2 = 0;
   for (int k = 0; k < n; ++k) {
-    const double h = Eigen::Map<const Eigen::Vector3d>(Y + 3 * k).dot(v);
+    const double h = Y[3 * k] * v0 + Y[3 * k + 1] * v1 + Y[3 * k + 2] * v2;
     h2 += h * h;
   }
   // sigma_min <= |Y v|; sigma_max >= |Y|_F / sqrt(3), so the cut is at least planarity_cut(F / sqrt 3).
   const double h = std::sqrt(h2);
   if (!(h <= 64 * eps * F) || !(h + 16 * eps * F <= planarity_cut<double>(planarity, n, F / std::sqrt(3.0))))
     return false;
-  const Eigen::Vector3d p = v.unitOrthogonal(), q = v.cross(p);
+  // An orthonormal basis (p, q) of the plane: p = v x (the axis of v's smaller component among z
+  // and x), normalized (|p| >= sqrt(0.19)), q = v x p.
+  double p0, p1, p2;
+  if (std::abs(v2) < 0.9) {
+    const double s = 1 / std::sqrt(v0 * v0 + v1 * v1);
+    p0 = -v1 * s, p1 = v0 * s, p2 = 0;
+  } else {
+    const double s = 1 / std::sqrt(v1 * v1 + v2 * v2);
+    p0 = 0, p1 = -v2 * s, p2 = v1 * s;
+  }
+  const double q0 = v1 * p2 - v2 * p1, q1 = v2 * p0 - v0 * p2, q2 = v0 * p1 - v1 * p0;
   double g00 = 0, g01 = 0, g11 = 0;
   for (int k = 0; k < n; ++k) {
-    const Eigen::Map<const Eigen::Vector3d> a(Y + 3 * k);
-    const double ap = a.dot(p), aq = a.dot(q);
+    const double* a = Y + 3 * k;
+    const double ap = a[0] * p0 + a[1] * p1 + a[2] * p2, aq = a[0] * q0 + a[1] * q1 + a[2] * q2;
     g00 += ap * ap, g01 += ap * aq, g11 += aq * aq;
   }
   const double tr = g00 + g11, det = g00 * g11 - g01 * g01;
   // lambda_min(G2) >= det / trace must clear (2 cut)^2, the cut taken at its largest (sigma_max <= |Y|_F).
   const double cut = planarity_cut<double>(planarity, n, F);
   if (!(det >= 1e-4 * tr * tr) || !(det > 4 * cut * cut * tr)) return false;
-  const Eigen::Map<const Eigen::Vector3d> yv(y);
-  const double yp = yv.dot(p), yq = yv.dot(q);
+  const double yp = y[0] * p0 + y[1] * p1 + y[2] * p2, yq = y[0] * q0 + y[1] * q1 + y[2] * q2;
   const double c0 = (g11 * yp - g01 * yq) / det, c1 = (g00 * yq - g01 * yp) / det;
-  for (int k = 0; k < n; ++k) {
-    const Eigen::Map<const Eigen::Vector3d> a(Y + 3 * k);
-    w[k] = a.dot(p) * c0 + a.dot(q) * c1 + 1.0 / double(n);
-  }
+  // w_k = 1/n + Y_k . (c0 p + c1 q)
+  const double z0 = c0 * p0 + c1 * q0, z1 = c0 * p1 + c1 * q1, z2 = c0 * p2 + c1 * q2;
+  for (int k = 0; k < n; ++k) w[k] = Y[3 * k] * z0 + Y[3 * k + 1] * z1 + Y[3 * k + 2] * z2 + 1.0 / double(n);
   return true;
 }
 
@@ -217,19 +225,19 @@ PolygonPositions centred(const PolygonPositions& X) {
 // n corners Y (row by row; eq. 38): A = sum_k (|e_k|^2 I - e_k e_k^T), b = sum_k (|e_k|^2 I - e_k e_k^T) y_k.
 template <int N = 0, class T = double>
 inline std::pair<Eigen::Matrix<T, 3, 3>, Eigen::Matrix<T, 3, 1>> squared_area_system(const T* Y, int n_dyn) {
-  using V3 = Eigen::Matrix<T, 3, 1>;
   const int n = N > 0 ? N : n_dyn;
-  Eigen::Matrix<T, 3, 3> A = Eigen::Matrix<T, 3, 3>::Zero();
-  V3 b = V3::Zero();
+  T a00 = 0, a01 = 0, a02 = 0, a11 = 0, a12 = 0, a22 = 0, b0 = 0, b1 = 0, b2 = 0;
   for (int k = 0; k < n; ++k) {
-    const Eigen::Map<const V3> p(Y + 3 * k), q(Y + 3 * (k + 1 == n ? 0 : k + 1));
-    const V3 e = q - p;
-    const T ee = e.squaredNorm();
-    A -= e * e.transpose();
-    A.diagonal().array() += ee;
-    b += ee * p - e * e.dot(p);
+    const T *p = Y + 3 * k, *q = Y + 3 * (k + 1 == n ? 0 : k + 1);
+    const T e0 = q[0] - p[0], e1 = q[1] - p[1], e2 = q[2] - p[2];
+    const T s0 = e0 * e0, s1 = e1 * e1, s2 = e2 * e2, ee = s0 + s1 + s2, ep = e0 * p[0] + e1 * p[1] + e2 * p[2];
+    a00 += s1 + s2, a11 += s0 + s2, a22 += s0 + s1;  // |e|^2 - e_d^2
+    a01 -= e0 * e1, a02 -= e0 * e2, a12 -= e1 * e2;
+    b0 += ee * p[0] - e0 * ep, b1 += ee * p[1] - e1 * ep, b2 += ee * p[2] - e2 * ep;
   }
-  return {A, b};
+  Eigen::Matrix<T, 3, 3> A;
+  A << a00, a01, a02, a01, a11, a12, a02, a12, a22;
+  return {A, Eigen::Matrix<T, 3, 1>(b0, b1, b2)};
 }
 
 // Squared diameter proxy of a polygon: the largest squared distance of a corner from the centroid.

@@ -417,7 +417,14 @@ VolumeLaplacian assemble_volume_laplacian(const VolumeMesh& mesh, const VolumeRe
       });
     }
   }
-  L.M_lumped = L.M * Eigen::VectorXd::Ones(nV);
+  // Row sums of M as its column sums (M is bitwise symmetric: both triangles get the same local
+  // values, so this is the sum M 1 in the same order), one pass over the values.
+  L.M_lumped.resize(nV);
+  for (int v = 0; v < nV; ++v) {
+    double sum = 0;
+    for (int k = outer[v]; k < outer[v + 1]; ++k) sum += mv[k];
+    L.M_lumped[v] = sum;
+  }
   return L;
 }
 
