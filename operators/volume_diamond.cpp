@@ -89,14 +89,16 @@ VolumeLaplacian assemble_volume_diamond(const VolumeMesh& mesh, const VolumeRefi
   return V;
 }
 
-OperatorSet volume_diamond_operators(const VolumeMesh& mesh, bool with_gradient, SubTetQuality* quality) {
+OperatorSet volume_diamond_operators(const VolumeMesh& mesh, bool with_gradient, SubTetQuality* quality,
+                                     VolumeRefinement* refinement) {
   OperatorSet ops;
   ops.name = "diamond (volume)";
   ops.n_input_vertices = mesh.n_vertices();
   ops.mean_edge_length = mesh.mean_edge_length();
-  const VolumeRefinement R = refine_volume(mesh);
+  VolumeRefinement R = refine_volume(mesh);
   if (quality) *quality = R.quality;
   fill_diamond_operators(volume_diamonds(mesh, R), volume_prolongation(mesh, R), with_gradient, ops);
+  if (refinement) *refinement = std::move(R);
   return ops;
 }
 

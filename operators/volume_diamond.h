@@ -30,8 +30,9 @@ VolumeLaplacian assemble_volume_diamond(const VolumeMesh& mesh, const VolumeRefi
 // domain, n_input_vertices = |V|, mean_edge_length of the volume mesh); with_gradient adds G (3 rows
 // per sub-diamond) and D. n_degenerate_triangles / n_folded_triangles count degenerate and folded
 // (negative Gauss volume) sub-diamonds; `quality` (optional) receives the refinement's sub-tetrahedron
-// counts. Method "diamond" of operators/volume_laplacians.h.
+// counts, `refinement` (optional) the refinement itself. Method "diamond" of operators/volume_laplacians.h.
 OperatorSet volume_diamond_operators(const VolumeMesh& mesh, bool with_gradient = true,
-                                     SubTetQuality* quality = nullptr);
+                                     SubTetQuality* quality = nullptr,
+                                     VolumeRefinement* refinement = nullptr);
 
 }  // namespace polydec

@@ -15,11 +15,11 @@ namespace volume_laplacians_detail {
 namespace {
 
 OperatorSet refined_operators(const VolumeMesh& mesh, CellPointRule rule, bool with_gradient,
-                              SubTetQuality* quality, int threads) {
+                              SubTetQuality* quality, int threads, VolumeRefinement* refinement) {
   VolumeRefinementOptions ropt;
   ropt.cell_rule = rule;
   ropt.threads = threads;
-  const VolumeRefinement r = refine_volume(mesh, ropt);
+  VolumeRefinement r = refine_volume(mesh, ropt);
   VolumeLaplacian L = assemble_volume_laplacian(mesh, r, nullptr, threads);
   OperatorSet ops;
   ops.S.swap(L.S);
@@ -31,20 +31,26 @@ OperatorSet refined_operators(const VolumeMesh& mesh, CellPointRule rule, bool w
     ops.D = volume_divergence(ops.G, volumes);
   }
   if (quality) *quality = r.quality;
+  if (refinement) *refinement = std::move(r);
   return ops;
 }
 
 // One row per method: a new method (e.g. the volume Diamond Laplacian) is one more row.
 struct VolumeMethod {
   const char* name;
-  OperatorSet (*build)(const VolumeMesh&, bool with_gradient, SubTetQuality*, int threads);
+  OperatorSet (*build)(const VolumeMesh&, bool with_gradient, SubTetQuality*, int threads, VolumeRefinement*);
 };
 const VolumeMethod kVolumeMethods[] = {
-    {"ours", [](const VolumeMesh& m, bool g, SubTetQuality* q,
-                int t) { return refined_operators(m, CellPointRule::SquaredVolume, g, q, t); }},
-    {"polylaplace", [](const VolumeMesh& m, bool g, SubTetQuality* q,
-                       int t) { return refined_operators(m, CellPointRule::PolyLaplace, g, q, t); }},
-    {"diamond", [](const VolumeMesh& m, bool g, SubTetQuality* q, int) { return volume_diamond_operators(m, g, q); }},
+    {"ours",
+     [](const VolumeMesh& m, bool g, SubTetQuality* q, int t, VolumeRefinement* r) {
+       return refined_operators(m, CellPointRule::SquaredVolume, g, q, t, r);
+     }},
+    {"polylaplace",
+     [](const VolumeMesh& m, bool g, SubTetQuality* q, int t, VolumeRefinement* r) {
+       return refined_operators(m, CellPointRule::PolyLaplace, g, q, t, r);
+     }},
+    {"diamond", [](const VolumeMesh& m, bool g, SubTetQuality* q, int,
+                   VolumeRefinement* r) { return volume_diamond_operators(m, g, q, r); }},
 };
 
 const VolumeMethod* find_volume_method(const std::string& name) {
@@ -72,13 +78,13 @@ LaplacianChoice parse_volume_laplacian(const std::string& spec) {
 }
 
 OperatorSet build_volume_operators(const VolumeMesh& mesh, const LaplacianChoice& choice, bool with_gradient,
-                                   SubTetQuality* quality, int threads) {
+                                   SubTetQuality* quality, int threads, VolumeRefinement* refinement) {
   const auto* m = volume_laplacians_detail::find_volume_method(choice.method);
   if (!m || choice.has_parameter)
     throw std::invalid_argument(fmt::format("unknown volume Laplacian '{}' (known: {})",
                                             choice.canonical_name(),
                                             fmt::join(volume_laplacian_names(), ", ")));
-  OperatorSet ops = m->build(mesh, with_gradient, quality, threads);
+  OperatorSet ops = m->build(mesh, with_gradient, quality, threads, refinement);
   ops.name = m->name;
   ops.n_input_vertices = mesh.n_vertices();
   ops.mean_edge_length = mesh.mean_edge_length();

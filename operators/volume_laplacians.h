@@ -37,10 +37,12 @@ LaplacianChoice parse_volume_laplacian(const std::string& spec);
 
 // Builds the operator set of `choice` on `mesh`; `with_gradient` asks for G and D too; `threads`
 // (0: all hardware threads) run the refinement and the assembly of "ours" and "polylaplace" (the
-// results do not depend on it). Throws std::invalid_argument for a method that is not a volume
-// method.
+// results do not depend on it); `refinement` (optional) receives the refinement the operators were
+// built on (for pictures of their fields, apps/pictures/volume_cut.h). Throws std::invalid_argument
+// for a method that is not a volume method.
 OperatorSet build_volume_operators(const VolumeMesh& mesh, const LaplacianChoice& choice,
-                                   bool with_gradient = true, SubTetQuality* quality = nullptr, int threads = 1);
+                                   bool with_gradient = true, SubTetQuality* quality = nullptr,
+                                   int threads = 1, VolumeRefinement* refinement = nullptr);
 
 // Gradient G = G^tet P, (3T) x |V| (T = number of sub-tetrahedra), see above; with `volumes`, also
 // the sub-tetrahedra's volumes from the same pass (as sub_tet_volumes).

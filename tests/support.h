@@ -1,7 +1,10 @@
 // tests/support.h — helpers shared by the tests: paths of the paper's meshes in ../shared/data
 // (skipped with a message where a clone has no such folder, mandatory when the environment
-// sets POLYDEC_REQUIRE_SHARED_DATA=1, as .ci/run does), and small matrix comparisons.
+// sets POLYDEC_REQUIRE_SHARED_DATA=1, as .ci/run does), scratch folders that remove themselves, and
+// small matrix comparisons.
 #pragma once
+
+#include <unistd.h>
 
 #include <Eigen/Sparse>
 #include <cmath>
@@ -32,6 +35,27 @@ inline std::string shared_path(const std::string& name) {
   if (req && std::string(req) == "1") FAIL("required test mesh missing: " << p);
   return "";
 }
+
+// A folder polydec_TAG_PID under the system's temporary folder (the process id keeps parallel ctest
+// runs apart), emptied and created now and removed with everything in it when the object dies, passed
+// or failed (a failed REQUIRE unwinds): at the end of its scope, or at exit for a static one (by the
+// process that made it only, not by a forked child that exits).
+struct ScratchDir {
+  pid_t owner = ::getpid();  // before dir, which is named after it
+  std::filesystem::path dir;
+  explicit ScratchDir(const std::string& tag)
+      : dir(std::filesystem::temp_directory_path() / ("polydec_" + tag + "_" + std::to_string(owner))) {
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+  }
+  ~ScratchDir() {
+    std::error_code ec;
+    if (::getpid() == owner) std::filesystem::remove_all(dir, ec);
+  }
+  ScratchDir(const ScratchDir&) = delete;
+  ScratchDir& operator=(const ScratchDir&) = delete;
+  std::string path(const std::string& name) const { return (dir / name).string(); }
+};
 
 // Relative Frobenius difference |A - B| / max(|A|, |B|, tiny).
 inline double relative_difference(const Eigen::SparseMatrix<double>& A, const Eigen::SparseMatrix<double>& B) {

@@ -110,7 +110,9 @@ void run_volume(const Options& o) {
   hopt.mass_weighted_source = !o.delta_source;
   hopt.time_step_factor = o.time_factor;
   SubTetQuality quality;
-  const HeatGeodesics heat(build_volume_operators(mesh, parse_volume_laplacian(o.laplacian), true, &quality),
+  VolumeRefinement refinement;  // the operators' own, for the picture (kept only with --png)
+  const HeatGeodesics heat(build_volume_operators(mesh, parse_volume_laplacian(o.laplacian), true, &quality,
+                                                  1, o.png.empty() ? nullptr : &refinement),
                            mesh.mean_edge_length(), hopt);
   HeatDiagnostics diagnostics;
   const Eigen::VectorXd d = heat.distance(o.sources, &diagnostics);
@@ -138,7 +140,7 @@ void run_volume(const Options& o) {
     ropt.isolines = 15;
     ropt.scalar_label = "distance";
     ropt.title = fmt::format("heat geodesics in the volume ({})", heat.operators().name);
-    render_volume_cut_png(o.png, mesh, d, centre_plane(mesh, Eigen::Vector3d::UnitZ()), ropt);
+    render_volume_cut_png(o.png, mesh, refinement, d, centre_plane(mesh, Eigen::Vector3d::UnitZ()), ropt);
     j["png"] = o.png;
   }
   if (o.json) {

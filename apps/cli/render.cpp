@@ -81,21 +81,24 @@ void run_volume(const Options& o) {
     plane = centre_plane(mesh, Eigen::Vector3d::Unit(o.cut_axis[0] - 'x'));
   }
   Eigen::VectorXd s;
+  VolumeRefinement refinement;  // the distance's operators' own, or the default one
   if (o.source >= 0) {
     if (o.scalar != "none") throw UsageError("--distance-from and --scalar exclude each other");
     if (o.source >= mesh.n_vertices())
       throw std::out_of_range(fmt::format("source vertex {} is out of range (the mesh has {} vertices)",
                                           o.source, mesh.n_vertices()));
-    s = HeatGeodesics(build_volume_operators(mesh, parse_volume_laplacian(o.laplacian)),
-                      mesh.mean_edge_length())
+    s = HeatGeodesics(
+            build_volume_operators(mesh, parse_volume_laplacian(o.laplacian), true, nullptr, 1, &refinement),
+            mesh.mean_edge_length())
             .distance(o.source);
     r.scalar_label = "distance";
     r.isolines = 15;
   } else {
     s = coordinate_scalar(o, mesh.positions(), r);
+    refinement = refine_volume(mesh);
   }
   finish_options(o, r);
-  render_volume_cut_png(o.png, mesh, s, plane, r);
+  render_volume_cut_png(o.png, mesh, refinement, s, plane, r);
   if (o.json)
     print_json({{"mesh", o.mesh},
                 {"png", o.png},

@@ -42,7 +42,8 @@ struct VolumeCut {
 // The section of `mesh` by `plane`; `vertex_values` has |V| values, or is empty. Pieces that
 // collapse to a point or a segment (the plane touching a sub-tetrahedron at a vertex or an edge) are
 // dropped. Empty when the plane misses the mesh. Throws std::invalid_argument for a zero or
-// non-finite normal or a scalar of the wrong size.
+// non-finite normal, a scalar of the wrong size, or a refinement whose sizes are not those of a
+// refinement of `mesh` (faces, cells, weights per face and cell, sub-tetrahedra per cell).
 VolumeCut cut_volume(const VolumeMesh& mesh, const VolumeRefinement& refinement,
                      const Eigen::VectorXd& vertex_values, const CutPlane& plane);
 
@@ -63,7 +64,13 @@ Eigen::Vector3d cut_view_direction(const CutPlane& plane,
                                    const Eigen::Vector3d& up = Eigen::Vector3d::UnitY());
 
 // cut_solid rendered to a PNG (render_png) with the scalar colour-mapped (empty: plain grey); a zero
-// options.view_direction is replaced by cut_view_direction.
+// options.view_direction is replaced by cut_view_direction. Pass the refinement the field's operators
+// were built on (build_volume_operators), so that the picture interpolates as they do.
+void render_volume_cut_png(const std::string& path, const VolumeMesh& mesh,
+                           const VolumeRefinement& refinement, const Eigen::VectorXd& vertex_values,
+                           const CutPlane& plane, RenderOptions options);
+
+// The same on the default refinement, refine_volume(mesh).
 void render_volume_cut_png(const std::string& path, const VolumeMesh& mesh,
                            const Eigen::VectorXd& vertex_values, const CutPlane& plane,
                            RenderOptions options);

@@ -20,10 +20,10 @@ namespace test_io {
 
 namespace {
 
-fs::path temp_dir() {
-  const fs::path d = fs::temp_directory_path() / ("polydec_test_io_" + std::to_string(::getpid()));
-  fs::create_directories(d);
-  return d;
+// The process's scratch folder polydec_test_io_PID, removed when the test process exits.
+const fs::path& temp_dir() {
+  static const test::ScratchDir d("test_io");
+  return d.dir;
 }
 
 std::string slurp(const std::string& path) {

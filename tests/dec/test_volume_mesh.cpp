@@ -316,10 +316,10 @@ TEST_CASE("OVM: write and read back the same mesh", "[volume]") {
     CHECK(std::equal(r.cell(c).begin(), r.cell(c).end(), m.cell(c).begin()));
   CHECK(r.volume() == m.volume());
   // Through a file, too.
-  const std::string path = (std::filesystem::temp_directory_path() / "polydec_test_volume.ovm").string();
+  const test::ScratchDir scratch("test_volume_mesh");
+  const std::string path = scratch.path("m.ovm");
   write_volume_mesh(m, path);
   CHECK(read_volume_mesh(path).positions() == m.positions());
-  std::filesystem::remove(path);
   CHECK(is_volume_mesh_path("a/b.OVM"));
   CHECK(is_volume_mesh_path("x.vtk"));
   CHECK(is_volume_mesh_path("x.mesh"));

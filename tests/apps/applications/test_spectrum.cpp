@@ -231,26 +231,22 @@ namespace {
 
 // Runs `polydec ARGS` and returns its stdout parsed as JSON (the exit code must be 0).
 nlohmann::json run_cli_json(const std::string& args) {
-  const auto out =
-      std::filesystem::temp_directory_path() / ("polydec_apps_cli_" + std::to_string(::getpid()) + ".json");
-  const std::string cmd =
-      std::string("'") + POLYDEC_CLI_PATH + "' " + args + " --json >'" + out.string() + "'";
+  const test::ScratchDir scratch("apps_cli_json");
+  const std::string out = scratch.path("stdout.json");
+  const std::string cmd = std::string("'") + POLYDEC_CLI_PATH + "' " + args + " --json >'" + out + "'";
   const int status = std::system(cmd.c_str());
   REQUIRE(WIFEXITED(status));
   REQUIRE(WEXITSTATUS(status) == 0);
   std::ifstream in(out);
-  nlohmann::json j = nlohmann::json::parse(in);
-  std::filesystem::remove(out);
-  return j;
+  return nlohmann::json::parse(in);
 }
 
 }  // namespace
 
 TEST_CASE("applications CLI: named JSON keys and output files agree with the library", "[apps]") {
   POLYDEC_SHARED_MESH(path, "quad-sphere.off");
-  const auto dir =
-      std::filesystem::temp_directory_path() / ("polydec_apps_cli_dir_" + std::to_string(::getpid()));
-  std::filesystem::remove_all(dir);
+  const test::ScratchDir scratch("apps_cli_dir");
+  const std::filesystem::path dir = scratch.dir / "out";
   const Mesh sphere = unit_sphere_mesh(path);
 
   const nlohmann::json sp = run_cli_json("spectrum '" + path + "' --k 5 --out '" + dir.string() + "'");
@@ -285,7 +281,6 @@ TEST_CASE("applications CLI: named JSON keys and output files agree with the lib
       CHECK(residual <= 1e-7 * (ops.S * X.col(i)).norm() + 1e-12 * scale);
     }
   }
-  std::filesystem::remove_all(dir);
 
   const nlohmann::json cu = run_cli_json("curvature '" + path + "' --unit-sphere");
   CHECK(cu["rmse_vs_unit_sphere"].get<double>() == Approx(0.016770).epsilon(0.01));

@@ -1,9 +1,8 @@
 // tests/apps/cli/cli_run.h — the CLI tests' way to run the built `polydec` program: exit code,
-// stdout and stderr (through files in a scratch folder), and the scratch folder itself.
+// stdout and stderr (through files in a scratch folder: test::ScratchDir of tests/support.h).
 #pragma once
 
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -45,22 +44,5 @@ inline std::vector<std::string> split_lines(const std::string& text) {
   for (std::string line; std::getline(in, line);) lines.push_back(line);
   return lines;
 }
-
-// A folder polydec_TAG_PID under the system's temporary folder, created now and removed with
-// everything in it at the end of the scope.
-struct ScratchDir {
-  std::filesystem::path dir;
-  explicit ScratchDir(const std::string& tag) {
-    dir = std::filesystem::temp_directory_path() / ("polydec_" + tag + "_" + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir);
-  }
-  ~ScratchDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(dir, ec);
-  }
-  ScratchDir(const ScratchDir&) = delete;
-  ScratchDir& operator=(const ScratchDir&) = delete;
-  std::string path(const std::string& name) const { return (dir / name).string(); }
-};
 
 }  // namespace polydec::test

@@ -32,13 +32,6 @@ using Run = test::CliRun;
 
 Run run_cli(const std::string& args, const std::string& dir) { return test::run_cli_in(dir, args); }
 
-std::string temp_dir(const std::string& name) {
-  const auto p = std::filesystem::temp_directory_path() /
-                 ("polydec_spectral_" + name + "_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(p);
-  return p.string();
-}
-
 bool is_png(const std::string& path) {
   std::ifstream f(path, std::ios::binary);
   char sig[8] = {};
@@ -75,7 +68,8 @@ std::map<std::string, Eigen::VectorXd> read_ply_properties(const std::string& pa
 }  // namespace
 
 TEST_CASE("polydec spectrum --form 1 and --form 2 write eigenpairs, parts and pictures", "[cli_spectral]") {
-  const std::string dir = temp_dir("form");
+  const test::ScratchDir scratch("spectral_form");
+  const std::string dir = scratch.dir.string();
   write_mesh(dir + "/torus.obj", test::torus(10, 6, 0.1, true));
   const Mesh mesh = read_mesh(dir + "/torus.obj");
   const CoarseComplex cx(mesh);
@@ -114,7 +108,6 @@ TEST_CASE("polydec spectrum --form 1 and --form 2 write eigenpairs, parts and pi
   CHECK(run_cli("spectrum " + dir + "/torus.obj --form 3 --k 4", dir).code == 2);
   CHECK(run_cli("spectrum " + dir + "/torus.obj --form 1 --k 4 --png " + dir + "/x.png --png-index 9", dir)
             .code == 2);
-  std::filesystem::remove_all(dir);
 }
 
 TEST_CASE("polydec spectrum --form warns of degenerate fan triangles", "[cli_spectral]") {
@@ -137,7 +130,8 @@ TEST_CASE("polydec spectrum --form warns of degenerate fan triangles", "[cli_spe
 }
 
 TEST_CASE("polydec spectral writes HKS, WKS, distances and the filtered mesh", "[cli_spectral]") {
-  const std::string dir = temp_dir("tools");
+  const test::ScratchDir scratch("spectral_tools");
+  const std::string dir = scratch.dir.string();
   write_mesh(dir + "/sphere.obj", add_noise(hex_sphere(1), 0.1, 2));
   const Mesh mesh = read_mesh(dir + "/sphere.obj");
   SpectrumOptions so;
@@ -192,7 +186,6 @@ TEST_CASE("polydec spectral writes HKS, WKS, distances and the filtered mesh", "
   CHECK(run_cli("spectral " + dir + "/sphere.obj --hks --wks --json", dir).code == 2);
   CHECK(run_cli("spectral " + dir + "/sphere.obj --json", dir).code == 2);
   CHECK(run_cli("spectral " + dir + "/sphere.obj --biharmonic 100000 --json", dir).code != 0);
-  std::filesystem::remove_all(dir);
 }
 
 }  // namespace test_cli_spectral

@@ -47,13 +47,6 @@ Run run_cli(const std::string& env, const std::string& args, const std::string& 
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, ss.str(), s};
 }
 
-std::string temp_dir(const std::string& name) {
-  const auto p =
-      std::filesystem::temp_directory_path() / ("polydec_threads_" + name + "_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(p);
-  return p.string();
-}
-
 nlohmann::json blas_of(const Run& r) {
   const nlohmann::json j = nlohmann::json::parse(r.out, nullptr, false);
   REQUIRE(!j.is_discarded());
@@ -87,7 +80,8 @@ double load_average() {
 }  // namespace
 
 TEST_CASE("the CLI reports its BLAS thread policy in --json", "[threads][cli]") {
-  const std::string dir = temp_dir("report");
+  const test::ScratchDir scratch("threads_report");
+  const std::string dir = scratch.dir.string();
   write_mesh(dir + "/grid.obj", quad_grid(20, 20));
   const std::string geo = "geodesics '" + dir + "/grid.obj' --source 0 --json";
   const nlohmann::json def = blas_of(run_cli("", geo, dir));
@@ -113,7 +107,6 @@ TEST_CASE("the CLI reports its BLAS thread policy in --json", "[threads][cli]") 
   // The planarity tolerance is a global option too (after the subcommand as well).
   CHECK(run_cli("", geo + " --planarity-tolerance 1e-5", dir).code == 0);
   CHECK(run_cli("", geo + " --planarity-tolerance 2", dir).code == 2);
-  std::filesystem::remove_all(dir);
 }
 
 // Robustness: the mesh (a 100k-vertex quad torus) makes CHOLMOD's supernodes large enough for
@@ -129,7 +122,8 @@ TEST_CASE("under load the default BLAS policy is as fast as one thread", "[threa
                     load));
     return;
   }
-  const std::string dir = temp_dir("load");
+  const test::ScratchDir scratch("threads_load");
+  const std::string dir = scratch.dir.string();
   write_mesh(dir + "/torus.ply", torus(400, 250));
   const std::string geo = "geodesics '" + dir + "/torus.ply' --source 0 --json";
   const pid_t a = spin(), b = spin();
@@ -149,7 +143,6 @@ TEST_CASE("under load the default BLAS policy is as fast as one thread", "[threa
       "default (one thread per core) {:.2f} s",
       median(policy), median(one), ratio, all_cores));
   CHECK(ratio <= 1.5);
-  std::filesystem::remove_all(dir);
 }
 
 }  // namespace test_cli_threads

@@ -31,26 +31,30 @@ struct PaperRun {
   int code = -1;
   fs::path dir;
   json results;
-  std::string report;
+  std::string report, err;  // report.md, the program's stderr
 };
 
-// One quick run of the CLI per test binary (it takes seconds), kept for every test case.
+std::string slurp(const fs::path& path) {
+  std::stringstream ss;
+  ss << std::ifstream(path).rdbuf();
+  return ss.str();
+}
+
+// One quick run of the CLI per test binary (it takes seconds), kept for every test case; its output
+// (folder out) and stderr (stderr.txt) in polydec_paper_test_PID, removed when the process exits.
 const PaperRun& paper_run(const std::string& data) {
+  static const polydec::test::ScratchDir scratch("paper_test");
   static const PaperRun r = [&] {
     PaperRun p;
-    p.dir = fs::temp_directory_path() / ("polydec_paper_test_" + std::to_string(::getpid()));
-    fs::remove_all(p.dir);
-    const std::string cmd = std::string("'") + POLYDEC_CLI_PATH + "' paper --quick --data '" + data + "' --out '" +
-                            p.dir.string() + "' 2>'" + (fs::temp_directory_path() / "polydec_paper_stderr.txt").string() +
-                            "'";
+    p.dir = scratch.dir / "out";
+    const std::string cmd = std::string("'") + POLYDEC_CLI_PATH + "' paper --quick --data '" + data +
+                            "' --out '" + p.dir.string() + "' 2>'" + scratch.path("stderr.txt") + "'";
     const int status = std::system(cmd.c_str());
     p.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     std::ifstream j(p.dir / "results.json");
     if (j) p.results = json::parse(j, nullptr, false);
-    std::ifstream m(p.dir / "report.md");
-    std::stringstream ss;
-    ss << m.rdbuf();
-    p.report = ss.str();
+    p.report = slurp(p.dir / "report.md");
+    p.err = slurp(scratch.path("stderr.txt"));
     return p;
   }();
   return r;
@@ -66,7 +70,7 @@ TEST_CASE("polydec paper --quick: report and pictures written, cells agree with 
           "[paper][cli]") {
   POLYDEC_SHARED_MESH(sphere, "quad-sphere.off");
   const PaperRun& r = paper_run(fs::path(sphere).parent_path().string());
-  REQUIRE(r.code == 0);
+  if (r.code != 0) FAIL("polydec paper exited with code " << r.code << ", its stderr:\n" << r.err);
   REQUIRE(r.results.is_object());
   SECTION("the report, the results and the pictures are written") {
     for (const char* t : {"table1", "table2", "table3", "table4", "table6", "figure9", "figure7", "figure8"})

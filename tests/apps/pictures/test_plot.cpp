@@ -10,6 +10,7 @@
 
 #include "polydec/apps/pictures/plot.h"
 #include "polydec/dec/io.h"
+#include "tests/support.h"
 
 using namespace polydec;
 
@@ -180,9 +181,8 @@ TEST_CASE("plot_image draws the series in their colours", "[render]") {
 }
 
 TEST_CASE("write_plot writes SVG or PNG by extension", "[render]") {
-  const auto dir = std::filesystem::temp_directory_path();
-  const std::string svg = (dir / "polydec_test_plot.svg").string(),
-                    png = (dir / "polydec_test_plot.png").string();
+  const test::ScratchDir scratch("test_plot");
+  const std::string svg = scratch.path("p.svg"), png = scratch.path("p.png");
   write_plot(svg, study(), {});
   write_plot(png, study(), {});
   std::ifstream in(svg);
@@ -193,9 +193,7 @@ TEST_CASE("write_plot writes SVG or PNG by extension", "[render]") {
   char sig[8] = {};
   pin.read(sig, 8);
   CHECK(std::string(sig + 1, 3) == "PNG");
-  std::filesystem::remove(svg);
-  std::filesystem::remove(png);
-  CHECK_THROWS_AS(write_plot((dir / "x.pdf").string(), study(), {}), std::invalid_argument);
+  CHECK_THROWS_AS(write_plot(scratch.path("x.pdf"), study(), {}), std::invalid_argument);
   CHECK_THROWS_AS(write_plot("/nonexistent-dir/p.svg", study(), {}), FileError);
 }
 

@@ -389,7 +389,8 @@ TEST_CASE("render_png writes a decodable PNG of the rendered image", "[render]")
   o.height = 120;
   o.isolines = 4;
   const Eigen::VectorXd s = mesh.positions().col(0) + mesh.positions().col(1);
-  const std::string path = (std::filesystem::temp_directory_path() / "polydec_test_render.png").string();
+  const test::ScratchDir scratch("test_render");
+  const std::string path = scratch.path("r.png");
   render_png(path, mesh, s, o);
   int w = 0, h = 0, n = 0;
   unsigned char* data = stbi_load(path.c_str(), &w, &h, &n, 3);
@@ -406,7 +407,6 @@ TEST_CASE("render_png writes a decodable PNG of the rendered image", "[render]")
   stbi_image_free(data);
   CHECK(worst <= 0.5 / 255 + 1e-6);
   CHECK_FALSE(std::filesystem::exists(path + ".tmp"));
-  std::filesystem::remove(path);
 }
 
 TEST_CASE("render: bad input is refused with a clear error", "[render]") {
@@ -432,9 +432,8 @@ TEST_CASE("render: bad input is refused with a clear error", "[render]") {
 
 TEST_CASE("polydec geodesics --png and polydec render write pictures", "[render]") {
   POLYDEC_SHARED_MESH(mesh, "quad-sphere.off");
-  const auto dir = std::filesystem::temp_directory_path();
-  const std::string a = (dir / "polydec_test_geodesics.png").string(),
-                    b = (dir / "polydec_test_render_cli.png").string();
+  const test::ScratchDir scratch("test_render_cli");
+  const std::string a = scratch.path("geodesics.png"), b = scratch.path("render.png");
   const std::string cli = POLYDEC_CLI_PATH;
   REQUIRE(std::system(
               (cli + " geodesics " + mesh + " --source 0 --png " + a + " --json > /dev/null").c_str()) == 0);
@@ -461,8 +460,6 @@ TEST_CASE("polydec geodesics --png and polydec render write pictures", "[render]
   REQUIRE(data != nullptr);
   CHECK((w == 320 && h == 240));
   stbi_image_free(data);
-  std::filesystem::remove(a);
-  std::filesystem::remove(b);
   // Usage errors exit with code 2.
   CHECK(WEXITSTATUS(std::system(
             (cli + " render " + mesh + " --png " + b + " --scalar w 2> /dev/null").c_str())) == 2);

@@ -1,13 +1,18 @@
 // tests/apps/pictures/test_volume_cut.cpp — planar cuts of volume meshes ([volume-render]): the section
 // of a unit cube's hex grid through its centre has area 1 (also tilted: the analytic polygon area),
 // a linear field is reproduced exactly at the section's vertices, a plane missing the mesh gives an
-// empty section and a clear error for the solid, the clipped solid is a valid closed surface.
+// empty section and a clear error for the solid, the clipped solid is a valid closed surface; the
+// operators' refinement passed in gives the default refinement's cut and picture (polyLaplace's its
+// own values), a refinement of another mesh is refused.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <fstream>
+#include <sstream>
 
 #include "polydec/apps/pictures/volume_cut.h"
 #include "polydec/dec/io_volume.h"
 #include "polydec/dec/volume_generators.h"
+#include "polydec/operators/volume_laplacians.h"
 #include "tests/support.h"
 
 using namespace polydec;
@@ -96,6 +101,81 @@ TEST_CASE("volume cut: a plane missing the mesh", "[volume-render]") {
   CHECK_THROWS_AS(cut_volume(mesh, r, {}, p), std::invalid_argument);
   p.normal = Eigen::Vector3d::UnitX();
   CHECK_THROWS_AS(cut_volume(mesh, r, Eigen::VectorXd::Zero(3), p), std::invalid_argument);
+}
+
+TEST_CASE("volume cut: the operators' refinement passed in, and a refinement of another mesh",
+          "[volume-render]") {
+  const auto slurp = [](const std::string& path) {
+    std::stringstream ss;
+    ss << std::ifstream(path, std::ios::binary).rdbuf();
+    return ss.str();
+  };
+  const test::ScratchDir scratch("test_volume_cut");
+  for (const VolumeMesh& mesh :
+       {hex_grid_volume(3, 4, 2, {0.3, 17}), truncated_octahedra_volume(2, {0.2, 5})}) {
+    INFO(mesh.n_cells() << " cells");
+    // Not linear on the sub-tetrahedra: the face and cell points' weights show in the values.
+    const Eigen::ArrayXd x = mesh.positions().col(0), y = mesh.positions().col(1),
+                         z = mesh.positions().col(2);
+    const Eigen::VectorXd u = (3 * x).sin() + y * z.square();
+    CutPlane p;
+    p.point = Eigen::Vector3d(0.41, 0.52, 0.47);
+    p.normal = Eigen::Vector3d(0.3, -1.0, 0.6);
+    const VolumeRefinement fresh = refine_volume(mesh);
+    VolumeRefinement ours, poly;
+    build_volume_operators(mesh, parse_volume_laplacian("ours"), true, nullptr, 2, &ours);
+    build_volume_operators(mesh, parse_volume_laplacian("polylaplace"), false, nullptr, 1, &poly);
+    // The refinement "ours" was built on (two threads) cuts exactly as a fresh default one.
+    Eigen::VectorXd v_fresh, v_ours, v_poly;
+    const Mesh s_fresh = cut_solid(mesh, fresh, u, p, &v_fresh),
+               s_ours = cut_solid(mesh, ours, u, p, &v_ours);
+    REQUIRE(s_fresh.n_faces() > 0);
+    CHECK(s_ours.positions() == s_fresh.positions());
+    CHECK(s_ours.face_offsets() == s_fresh.face_offsets());
+    CHECK(s_ours.face_indices() == s_fresh.face_indices());
+    CHECK(v_ours == v_fresh);
+    const VolumeCut c_fresh = cut_volume(mesh, fresh, u, p), c_ours = cut_volume(mesh, ours, u, p);
+    CHECK(c_ours.positions == c_fresh.positions);
+    CHECK(c_ours.values == c_fresh.values);
+    CHECK(c_ours.indices == c_fresh.indices);
+    // The picture: the same bytes through both overloads.
+    RenderOptions o;
+    o.width = 200;
+    o.height = 150;
+    o.isolines = 8;
+    render_volume_cut_png(scratch.path("passed.png"), mesh, ours, u, p, o);
+    render_volume_cut_png(scratch.path("default.png"), mesh, u, p, o);
+    CHECK(slurp(scratch.path("passed.png")).size() > 1000);
+    CHECK(slurp(scratch.path("passed.png")) == slurp(scratch.path("default.png")));
+    // polyLaplace's refinement has the same points (the cell rule changes the cell weights only), so
+    // the same solid, with its own cell values: the refinement passed in is the one used.
+    REQUIRE(poly.cell_points == fresh.cell_points);
+    const Mesh s_poly = cut_solid(mesh, poly, u, p, &v_poly);
+    CHECK(s_poly.positions() == s_fresh.positions());
+    REQUIRE(v_poly.size() == v_fresh.size());
+    CHECK((v_poly - v_fresh).cwiseAbs().maxCoeff() > 1e-6 * u.cwiseAbs().maxCoeff());
+    // A refinement of another mesh, or with sizes that do not match the cells, is refused before
+    // anything is read (and no picture written).
+    const VolumeRefinement other = refine_volume(hex_grid_volume(2, 2, 2));
+    CHECK_THROWS_AS(cut_volume(mesh, other, u, p), std::invalid_argument);
+    CHECK_THROWS_WITH(cut_solid(mesh, other, u, p),
+                      Catch::Contains("the refinement does not belong to this mesh"));
+    CHECK_THROWS_AS(render_volume_cut_png(scratch.path("other.png"), mesh, other, u, p, o),
+                    std::invalid_argument);
+    CHECK_FALSE(std::filesystem::exists(scratch.path("other.png")));
+    VolumeRefinement bad = fresh;
+    bad.face_weights.pop_back();
+    CHECK_THROWS_WITH(cut_volume(mesh, bad, u, p), Catch::Contains("face weights"));
+    bad = fresh;
+    bad.cell_weight_offsets[1] -= 1;  // cell 0 one weight short, cell 1 one too many
+    CHECK_THROWS_WITH(cut_volume(mesh, bad, u, p), Catch::Contains("cell 0 has"));
+    bad = fresh;
+    bad.tets.pop_back();
+    CHECK_THROWS_WITH(cut_volume(mesh, bad, u, p), Catch::Contains("sub-tetrahedra for offsets"));
+    bad = fresh;
+    bad.cell_points.conservativeResize(mesh.n_cells() - 1, 3);
+    CHECK_THROWS_WITH(cut_volume(mesh, bad, u, p), Catch::Contains("cell points"));
+  }
 }
 
 TEST_CASE("volume cut on a shared cube: area 1", "[volume-render]") {
