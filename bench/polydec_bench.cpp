@@ -534,10 +534,13 @@ int main(int argc, char** argv) {
     if (a == "--memory-child" && i + 1 < argc) return memory_child(std::stoi(argv[i + 1]));
     if (a == "--volume-memory" && i + 1 < argc) return volume_memory(std::stoi(argv[i + 1]));
     if (a == "--profile" && i + 1 < argc && std::string(argv[i + 1]) == "volume") {
-      // one volume assembly of hex_grid_volume(16^3) (with `plain`: also the plain volume reference)
-      const VolumeMesh grid = hex_grid_volume(16, 16, 16);
+      // one volume assembly of hex_grid_volume(16^3), or with `cube` of cube_hexahedron_4 (with
+      // `plain`: also the plain volume reference)
+      const bool cube = i + 2 < argc && std::string(argv[i + 2]) == "cube";
+      const VolumeMesh grid =
+          cube ? read_volume_mesh(shared("volume/cube_hexahedron_4.ovm")) : hex_grid_volume(16, 16, 16);
       SparseMatrix Sp, Mp;
-      if (i + 2 < argc && std::string(argv[i + 2]) == "plain")
+      if (i + 2 + int(cube) < argc && std::string(argv[i + 2 + int(cube)]) == "plain")
         plain_volume_reference::build(plain_volume_reference::from_volume_mesh(grid), Sp, Mp);
       const VolumeLaplacian L = assemble_volume_laplacian(grid, refine_volume(grid));
       return L.S.nonZeros() + Sp.nonZeros() > 0 ? 0 : 1;
