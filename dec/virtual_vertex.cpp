@@ -167,8 +167,8 @@ inline bool planar_affine_weights(const double* Y, int n_dyn, const double y[3],
   const double h = std::sqrt(h2);
   if (!(h <= 64 * eps * F) || !(h + 16 * eps * F <= planarity_cut<double>(planarity, n, F / std::sqrt(3.0))))
     return false;
-  // An orthonormal basis (p, q) of the plane: p = v x (the axis of v's smaller component among z
-  // and x), normalized (|p| >= sqrt(0.19)), q = v x p.
+  // An orthonormal basis (p, q) of the plane: p = e x v normalized, with e the z axis unless
+  // |v_z| >= 0.9, then the x axis (so |e x v| >= sqrt(0.19)), and q = v x p.
   double p0, p1, p2;
   if (std::abs(v2) < 0.9) {
     const double s = 1 / std::sqrt(v0 * v0 + v1 * v1);
