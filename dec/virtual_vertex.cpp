@@ -136,16 +136,28 @@ inline bool least_norm_affine_weights(T* Y, int n_dyn, const T y[3], T* w, const
   return true;
 }
 
-// least_norm_affine_weights() for a polygon that is planar to round-off, without the QR and the
-// SVD: its unit normal v (Newell's vector area) leaves |Y v| <= 64 eps |Y|_F, which bounds
-// sigma_min and is below the cut, so the SVD would drop exactly that direction; the weights are
-// w = 1/n + Y2 (Y2^T Y2)^-1 (p, q)^T y with Y2 = Y (p, q) the corners in an orthonormal basis of
-// the plane. Taken only when that 2x2 Gram matrix is well conditioned (det >= 1e-4 trace^2: its
-// round-off ~eps cond^2 stays near the SVD's) and its smaller eigenvalue is certainly above the
-// cut (sigma_2 kept, as the SVD would); returns false (w not written) otherwise.
+// The plane of a polygon that is planar to round-off, for least_norm_affine_weights() without the
+// QR and the SVD: its unit normal v (Newell's vector area) leaves |Y v| <= 64 eps |Y|_F, which
+// bounds sigma_min and is below the cut, so the SVD would drop exactly that direction; the weights
+// are then w = 1/n + Y2 (Y2^T Y2)^-1 (p, q)^T y with Y2 = Y (p, q) the corners in an orthonormal
+// basis (p, q) of the plane. Taken only when that 2x2 Gram matrix G is well conditioned
+// (det >= 1e-4 trace^2: its round-off ~eps cond^2 stays near the SVD's) and its smaller
+// eigenvalue is certainly above the cut (sigma_2 kept, as the SVD would).
+struct PlaneFrame {
+  double p[3], q[3];
+  double g00, g01, g11, det;     // G
+  double a00, a01, a11, b0, b1;  // the in-plane squared-area system (planar_squared_area_point())
+};
+
+// Corner k of Y in the frame's plane coordinates (Y_k . p, Y_k . q).
+inline void in_plane(const PlaneFrame& fr, const double* a, double& s, double& t) {
+  s = a[0] * fr.p[0] + a[1] * fr.p[1] + a[2] * fr.p[2];
+  t = a[0] * fr.q[0] + a[1] * fr.q[1] + a[2] * fr.q[2];
+}
+
+// The frame of the n centred corners Y when the polygon qualifies (above); false otherwise.
 template <int N>
-inline bool planar_affine_weights(const double* Y, int n_dyn, const double y[3], double* w,
-                                  const PlanarityCut& planarity) {
+inline bool plane_frame(const double* Y, int n_dyn, const PlanarityCut& planarity, PlaneFrame& fr) {
   const int n = N > 0 ? N : n_dyn;
   if (n < 3) return false;
   double v0 = 0, v1 = 0, v2 = 0, F2 = 0;
@@ -167,33 +179,57 @@ inline bool planar_affine_weights(const double* Y, int n_dyn, const double y[3],
   const double h = std::sqrt(h2);
   if (!(h <= 64 * eps * F) || !(h + 16 * eps * F <= planarity_cut<double>(planarity, n, F / std::sqrt(3.0))))
     return false;
-  // An orthonormal basis (p, q) of the plane: p = e x v normalized, with e the z axis unless
-  // |v_z| >= 0.9, then the x axis (so |e x v| >= sqrt(0.19)), and q = v x p.
-  double p0, p1, p2;
+  // p = e x v normalized, with e the z axis unless |v_z| >= 0.9, then the x axis (so
+  // |e x v| >= sqrt(0.19)), and q = v x p.
+  double* p = fr.p;
   if (std::abs(v2) < 0.9) {
     const double s = 1 / std::sqrt(v0 * v0 + v1 * v1);
-    p0 = -v1 * s, p1 = v0 * s, p2 = 0;
+    p[0] = -v1 * s, p[1] = v0 * s, p[2] = 0;
   } else {
     const double s = 1 / std::sqrt(v1 * v1 + v2 * v2);
-    p0 = 0, p1 = -v2 * s, p2 = v1 * s;
+    p[0] = 0, p[1] = -v2 * s, p[2] = v1 * s;
   }
-  const double q0 = v1 * p2 - v2 * p1, q1 = v2 * p0 - v0 * p2, q2 = v0 * p1 - v1 * p0;
-  double g00 = 0, g01 = 0, g11 = 0;
+  fr.q[0] = v1 * p[2] - v2 * p[1], fr.q[1] = v2 * p[0] - v0 * p[2], fr.q[2] = v0 * p[1] - v1 * p[0];
+  // G and, from the edges e_k in plane coordinates turned by 90 degrees (e_k' = (-e_t, e_s)), the
+  // in-plane squared-area system A = sum_k e_k' e_k'^T, b = sum_k e_k' (e_k' . y_k).
+  fr.g00 = fr.g01 = fr.g11 = fr.a00 = fr.a01 = fr.a11 = fr.b0 = fr.b1 = 0;
+  double s0, t0;
+  in_plane(fr, Y + 3 * (n - 1), s0, t0);
   for (int k = 0; k < n; ++k) {
-    const double* a = Y + 3 * k;
-    const double ap = a[0] * p0 + a[1] * p1 + a[2] * p2, aq = a[0] * q0 + a[1] * q1 + a[2] * q2;
-    g00 += ap * ap, g01 += ap * aq, g11 += aq * aq;
+    double s1, t1;
+    in_plane(fr, Y + 3 * k, s1, t1);
+    fr.g00 += s1 * s1, fr.g01 += s1 * t1, fr.g11 += t1 * t1;
+    const double ns = t0 - t1, nt = s1 - s0, ny = ns * s0 + nt * t0;
+    fr.a00 += ns * ns, fr.a01 += ns * nt, fr.a11 += nt * nt;
+    fr.b0 += ns * ny, fr.b1 += nt * ny;
+    s0 = s1, t0 = t1;
   }
-  const double tr = g00 + g11, det = g00 * g11 - g01 * g01;
-  // lambda_min(G2) >= det / trace must clear (2 cut)^2, the cut taken at its largest (sigma_max <= |Y|_F).
+  const double tr = fr.g00 + fr.g11;
+  fr.det = fr.g00 * fr.g11 - fr.g01 * fr.g01;
+  // lambda_min(G) >= det / trace must clear (2 cut)^2, the cut taken at its largest (sigma_max <= |Y|_F).
   const double cut = planarity_cut<double>(planarity, n, F);
-  if (!(det >= 1e-4 * tr * tr) || !(det > 4 * cut * cut * tr)) return false;
-  const double yp = y[0] * p0 + y[1] * p1 + y[2] * p2, yq = y[0] * q0 + y[1] * q1 + y[2] * q2;
-  const double c0 = (g11 * yp - g01 * yq) / det, c1 = (g00 * yq - g01 * yp) / det;
-  // w_k = 1/n + Y_k . (c0 p + c1 q)
-  const double z0 = c0 * p0 + c1 * q0, z1 = c0 * p1 + c1 * q1, z2 = c0 * p2 + c1 * q2;
-  for (int k = 0; k < n; ++k) w[k] = Y[3 * k] * z0 + Y[3 * k + 1] * z1 + Y[3 * k + 2] * z2 + 1.0 / double(n);
+  return fr.det >= 1e-4 * tr * tr && fr.det > 4 * cut * cut * tr;
+}
+
+// The squared-area minimizer (eq. 38) in the plane from the frame's system (the in-plane block of
+// squared_area_system(), whose normal direction decouples for a planar polygon). False (nothing
+// written) when a pivot is at most 1e-3 of the trace (nearly parallel edges).
+inline bool planar_squared_area_point(const PlaneFrame& fr, double& ys, double& yt) {
+  const double tau = 1e-3 * (fr.a00 + fr.a11);
+  if (!(fr.a00 > tau)) return false;
+  const double l10 = fr.a01 / fr.a00, d1 = fr.a11 - l10 * fr.a01;
+  if (!(d1 > tau)) return false;
+  yt = (fr.b1 - l10 * fr.b0) / d1;
+  ys = fr.b0 / fr.a00 - l10 * yt;
   return true;
+}
+
+// w_k = 1/n + Y_k . (c0 p + c1 q) with (c0, c1) = G^-1 (ys, yt): the least-norm affine weights of
+// the in-plane point (ys, yt).
+inline void planar_weights(const double* Y, int n, const PlaneFrame& fr, double ys, double yt, double* w) {
+  const double c0 = (fr.g11 * ys - fr.g01 * yt) / fr.det, c1 = (fr.g00 * yt - fr.g01 * ys) / fr.det;
+  const double z0 = c0 * fr.p[0] + c1 * fr.q[0], z1 = c0 * fr.p[1] + c1 * fr.q[1], z2 = c0 * fr.p[2] + c1 * fr.q[2];
+  for (int k = 0; k < n; ++k) w[k] = Y[3 * k] * z0 + Y[3 * k + 1] * z1 + Y[3 * k + 2] * z2 + 1.0 / double(n);
 }
 
 // Corners row by row (x[3k..3k+2]), the layout of the pointer routines.
@@ -289,31 +325,14 @@ Eigen::VectorXd squared_area_weights(const PolygonPositions& X, const PlanarityC
 
 namespace {
 
-// The weights of the n corners x in arithmetic T, Y and w scratch of 3n and n entries of T.
-// With `certify`, false when the polygon is too flat for T (least_norm_affine_weights()).
+// The minimizer y of the squared fan area of the n centred corners Y: A y = b (eq. 38).
 template <int N, class T>
-bool squared_area_weights_t(const double* x, int n_dyn, T* Y, T* w, const PlanarityCut& planarity,
-                            bool certify) {
-  const int n = N > 0 ? N : n_dyn;
-  // Centred corners Y (so that nothing depends on where the polygon sits), in two passes: far
-  // from the origin the rounded mean c leaves a residual mean of ~eps |c| in Y, which the
-  // least-norm weights below (they assume sum_k Y_k = 0) would amplify by the inverse of the
-  // polygon's out-of-plane extent; the second pass removes it down to ~eps |Y|.
-  for (int pass = 0; pass < 2; ++pass) {
-    T c[3] = {0, 0, 0};
-    for (int k = 0; k < n; ++k)
-      for (int d = 0; d < 3; ++d) c[d] += pass == 0 ? T(x[3 * k + d]) : Y[3 * k + d];
-    for (int d = 0; d < 3; ++d) c[d] /= T(n);
-    for (int k = 0; k < n; ++k)
-      for (int d = 0; d < 3; ++d) Y[3 * k + d] = (pass == 0 ? T(x[3 * k + d]) : Y[3 * k + d]) - c[d];
-  }
-  // The minimizer y of the squared fan area: A y = b (eq. 38). A is positive semi-definite and
-  // singular only for degenerate polygons (all edges parallel). LDL^T when every pivot exceeds
-  // 1e-3 of the trace: then lambda_min >= 1e-9 lambda_max (the pivots' product is det A), above
-  // the eigenvalue cut of psd_solve(), which handles the rest.
+void squared_area_point(const T* Y, int n, T* y) {
+  // A is positive semi-definite and singular only for degenerate polygons (all edges parallel).
+  // LDL^T when every pivot exceeds 1e-3 of the trace: then lambda_min >= 1e-9 lambda_max (the
+  // pivots' product is det A), above the eigenvalue cut of psd_solve(), which handles the rest.
   const auto [A, b] = squared_area_system<N, T>(Y, n);
   const T tau = T(1e-3) * A.trace();
-  T y[3];
   bool solved = false;
   if (A(0, 0) > tau) {
     const T l10 = A(1, 0) / A(0, 0), l20 = A(2, 0) / A(0, 0);
@@ -333,8 +352,42 @@ bool squared_area_weights_t(const double* x, int n_dyn, T* Y, T* w, const Planar
     const Eigen::Matrix<T, 3, 1> ys = psd_solve<T>(A, b);
     for (int d = 0; d < 3; ++d) y[d] = ys[d];
   }
-  if constexpr (std::is_same_v<T, double>)
-    if (certify && planar_affine_weights<N>(Y, n, y, w, planarity)) return true;
+}
+
+// The weights of the n corners x in arithmetic T, Y and w scratch of 3n and n entries of T.
+// With `certify`, false when the polygon is too flat for T (least_norm_affine_weights()).
+template <int N, class T>
+bool squared_area_weights_t(const double* x, int n_dyn, T* Y, T* w, const PlanarityCut& planarity,
+                            bool certify) {
+  const int n = N > 0 ? N : n_dyn;
+  // Centred corners Y (so that nothing depends on where the polygon sits), in two passes: far
+  // from the origin the rounded mean c leaves a residual mean of ~eps |c| in Y, which the
+  // least-norm weights below (they assume sum_k Y_k = 0) would amplify by the inverse of the
+  // polygon's out-of-plane extent; the second pass removes it down to ~eps |Y|.
+  for (int pass = 0; pass < 2; ++pass) {
+    T c[3] = {0, 0, 0};
+    for (int k = 0; k < n; ++k)
+      for (int d = 0; d < 3; ++d) c[d] += pass == 0 ? T(x[3 * k + d]) : Y[3 * k + d];
+    for (int d = 0; d < 3; ++d) c[d] /= T(n);
+    for (int k = 0; k < n; ++k)
+      for (int d = 0; d < 3; ++d) Y[3 * k + d] = (pass == 0 ? T(x[3 * k + d]) : Y[3 * k + d]) - c[d];
+  }
+  // A polygon planar to round-off: the minimizer and the weights in its plane (plane_frame()).
+  if constexpr (std::is_same_v<T, double>) {
+    PlaneFrame frame;
+    if (certify && plane_frame<N>(Y, n, planarity, frame)) {
+      double ys, yt;
+      if (!planar_squared_area_point(frame, ys, yt)) {
+        double y[3];
+        squared_area_point<N, T>(Y, n, y);
+        in_plane(frame, y, ys, yt);
+      }
+      planar_weights(Y, n, frame, ys, yt, w);
+      return true;
+    }
+  }
+  T y[3];
+  squared_area_point<N, T>(Y, n, y);
   return least_norm_affine_weights<N, T>(Y, n, y, w, planarity, certify);
 }
 
