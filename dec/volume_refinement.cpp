@@ -217,9 +217,14 @@ VolumeRefinement refine_volume(const VolumeMesh& mesh, const VolumeRefinementOpt
       double* w = R.face_weights.data() + mesh.face_offsets()[f];
       squared_area_weights(corners.data(), n, w, work.data(),
                            planarity_cut(planarity, noise, corners.data(), n));
-      double x[3] = {0, 0, 0};
+      // x_f = c + sum_k w_k (x_k - c) with c the corners' mean: far from the origin no digits are
+      // lost, and a face in a coordinate plane keeps that coordinate exactly.
+      double c[3] = {0, 0, 0}, x[3];
       for (int k = 0; k < n; ++k)
-        for (int d = 0; d < 3; ++d) x[d] += w[k] * corners[3 * k + d];
+        for (int d = 0; d < 3; ++d) c[d] += corners[3 * k + d];
+      for (int d = 0; d < 3; ++d) x[d] = c[d] /= n;
+      for (int k = 0; k < n; ++k)
+        for (int d = 0; d < 3; ++d) x[d] += w[k] * (corners[3 * k + d] - c[d]);
       for (int d = 0; d < 3; ++d) R.face_points(f, d) = x[d];
       Sym3& Nf = moments[size_t(f)];
       Nf = {};

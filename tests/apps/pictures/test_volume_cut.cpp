@@ -3,10 +3,11 @@
 // a linear field is reproduced exactly at the section's vertices, a plane missing the mesh gives an
 // empty section and a clear error for the solid, the clipped solid is a valid closed surface; the
 // operators' refinement passed in gives the default refinement's cut and picture (polyLaplace's its
-// own values), a refinement of another mesh is refused.
+// own values), a refinement of another mesh is refused; points within round-off of the plane lie on it.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "polydec/apps/pictures/volume_cut.h"
@@ -84,6 +85,37 @@ TEST_CASE("volume cut: the solid behind the plane is closed with the section's a
     area += 0.5 * a.norm();
   }
   CHECK(area == Approx(4.0).epsilon(1e-12));
+}
+
+TEST_CASE("volume cut: refined vertices within round-off of the plane lie on it", "[volume-render]") {
+  // Face and cell points of faces and cells in the plane, moved off it by a few ulps each way (what
+  // a weighted sum of corners in the plane may give): the section and the solid are those of the
+  // exact points, not slivers of arbitrary orientation.
+  const VolumeMesh mesh = truncated_octahedra_volume(2);
+  for (int axis = 0; axis < 3; ++axis) {
+    VolumeRefinement r = refine_volume(mesh);
+    const CutPlane p = centre_plane(mesh, Eigen::Vector3d::Unit(axis));
+    int moved = 0;
+    for (Eigen::MatrixX3d* points : {&r.face_points, &r.cell_points})
+      for (Eigen::Index k = 0; k < points->rows(); ++k)
+        if ((*points)(k, axis) == p.point[axis]) {
+          (*points)(k, axis) *= 1 + (k % 2 ? 3 : -2) * std::numeric_limits<double>::epsilon();
+          ++moved;
+        }
+    INFO("axis " << axis);
+    REQUIRE(moved > 0);
+    CHECK(cut_volume(mesh, r, {}, p).area() == Approx(1.0).epsilon(1e-12));
+    const Mesh solid = cut_solid(mesh, r, {}, p);
+    double area = 0;
+    for (int f = 0; f < solid.n_faces(); ++f) {
+      const auto face = solid.face(f);
+      Eigen::Vector3d a = Eigen::Vector3d::Zero();
+      for (size_t i = 0; i < face.size(); ++i)
+        a += solid.position(face[i]).cross(solid.position(face[(i + 1) % face.size()]));
+      area += 0.5 * a.norm();
+    }
+    CHECK(area == Approx(4.0).epsilon(1e-12));
+  }
 }
 
 TEST_CASE("volume cut: a plane missing the mesh", "[volume-render]") {
