@@ -21,6 +21,7 @@ int find_root(std::vector<int>& parent, int x) {
 
 FormSpan form_span(const Mesh& mesh, const Refinement& refinement, const CoarseComplex& complex, int degree,
                    double tolerance) {
+  check_refinement(mesh, refinement, "form_span");
   if (degree != 1 && degree != 2) throw std::invalid_argument("form_span: degree must be 1 or 2");
   FormSpan span;
   span.degree = degree;

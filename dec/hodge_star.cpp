@@ -214,6 +214,7 @@ Eigen::MatrixXd polygon_star0(const PolygonPositions& X, const Eigen::VectorXd& 
 }  // namespace
 
 SparseMatrix refined_star0(const Mesh& mesh, const Refinement& refinement) {
+  check_refinement(mesh, refinement, "refined_star0");
   const int nv = mesh.n_vertices();
   std::vector<Triplet> t;
   t.reserve(9 * size_t(mesh.n_halfedges()));
@@ -231,6 +232,7 @@ SparseMatrix refined_star0(const Mesh& mesh, const Refinement& refinement) {
 }
 
 SparseMatrix refined_star1(const Mesh& mesh, const Refinement& refinement) {
+  check_refinement(mesh, refinement, "refined_star1");
   const int ne = mesh.n_edges();
   std::vector<Triplet> t;
   t.reserve(9 * size_t(mesh.n_halfedges()));
@@ -253,6 +255,7 @@ SparseMatrix refined_star1(const Mesh& mesh, const Refinement& refinement) {
 }
 
 SparseMatrix refined_star2(const Mesh& mesh, const Refinement& refinement) {
+  check_refinement(mesh, refinement, "refined_star2");
   std::vector<Triplet> t;
   t.reserve(mesh.n_halfedges());
   for (int h = 0; h < mesh.n_halfedges(); ++h) {
@@ -328,6 +331,7 @@ StarPatterns star_patterns(const Mesh& mesh, const CoarseComplex& complex, Hodge
 
 HodgeStars hodge_stars(const Mesh& mesh, const Refinement& refinement, const CoarseComplex& complex,
                        HodgeStarParts parts, const StarPatterns* patterns) {
+  check_refinement(mesh, refinement, "hodge_stars");
   HodgeStars H;
   const int nf = mesh.n_faces();
   const bool want0 = parts.star0 || parts.star0_lumped;
@@ -374,6 +378,7 @@ HodgeStars hodge_stars(const Mesh& mesh, const Refinement& refinement, const Coa
 }
 
 SparseMatrix star1(const Mesh& mesh, const Refinement& refinement, const CoarseComplex& complex) {
+  check_refinement(mesh, refinement, "star1");
   HodgeStars H = hodge_stars(mesh, refinement, complex, {false, false, true, false});
   SparseMatrix A;
   A.swap(H.star1);
@@ -381,6 +386,7 @@ SparseMatrix star1(const Mesh& mesh, const Refinement& refinement, const CoarseC
 }
 
 SparseMatrix star2(const Mesh& mesh, const Refinement& refinement, const CoarseComplex& complex) {
+  check_refinement(mesh, refinement, "star2");
   HodgeStars H = hodge_stars(mesh, refinement, complex, {false, false, false, true});
   SparseMatrix A;
   A.swap(H.star2);

@@ -6,6 +6,7 @@ namespace polydec {
 using Triplet = Eigen::Triplet<double>;
 
 Eigen::SparseMatrix<double> prolongation(const Mesh& mesh, const Refinement& refinement) {
+  check_refinement(mesh, refinement, "prolongation");
   const int nv = mesh.n_vertices(), nf = mesh.n_faces();
   std::vector<Triplet> t;
   t.reserve(nv + mesh.n_halfedges());
@@ -19,6 +20,7 @@ Eigen::SparseMatrix<double> prolongation(const Mesh& mesh, const Refinement& ref
 
 Eigen::SparseMatrix<double> prolongation1(const Mesh& mesh, const Refinement& refinement,
                                           const CoarseComplex& complex) {
+  check_refinement(mesh, refinement, "prolongation1");
   const int ne = mesh.n_edges();
   std::vector<Triplet> t;
   t.reserve(ne + size_t(mesh.n_halfedges()) * size_t(mesh.max_face_size()));
@@ -42,6 +44,7 @@ Eigen::SparseMatrix<double> prolongation1(const Mesh& mesh, const Refinement& re
 
 Eigen::SparseMatrix<double> prolongation2(const Mesh& mesh, const Refinement& refinement,
                                           const CoarseComplex& complex) {
+  check_refinement(mesh, refinement, "prolongation2");
   std::vector<Triplet> t;
   t.reserve(size_t(mesh.n_halfedges()) * size_t(mesh.max_face_size()));
   for (int h = 0; h < mesh.n_halfedges(); ++h) {

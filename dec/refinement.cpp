@@ -150,6 +150,7 @@ Refinement refine(const Mesh& mesh, const RefinementOptions& options) {
 Refinement refine(const Mesh& mesh, const Refinement& previous) { return refine(mesh, previous.options); }
 
 Mesh refined_mesh(const Mesh& mesh, const Refinement& refinement) {
+  check_refinement(mesh, refinement, "refined_mesh");
   const int nv = mesh.n_vertices(), nf = mesh.n_faces();
   PolygonSoup soup;
   soup.positions.resize(nv + nf, 3);

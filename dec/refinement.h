@@ -62,6 +62,12 @@ Refinement refine(const Mesh& mesh, const Refinement& previous);
 // virtual vertex of face f; triangle h (one per halfedge) is (source(h), target(h), |V|+f).
 Mesh refined_mesh(const Mesh& mesh, const Refinement& refinement);
 
+// Throws std::invalid_argument, naming `caller`, unless `refinement` has the sizes of a refinement
+// of `mesh` (|F| virtual points, one weight and one fan triangle per halfedge): every function
+// taking a mesh with its refinement calls it first, so that a refinement of another mesh (or a
+// default-constructed one) is refused instead of read out of bounds. O(1), no allocation.
+void check_refinement(const Mesh& mesh, const Refinement& refinement, const char* caller);
+
 // Gathers the positions of face f's corners (n x 3).
 PolygonPositions face_positions(const Mesh& mesh, int f);
 

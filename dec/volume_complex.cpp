@@ -158,6 +158,7 @@ SimplexComplex3 volume_coarse_complex(const VolumeMesh& mesh, int max_degree) {
 }
 
 SimplexComplex3 volume_refined_complex(const VolumeMesh& mesh, const VolumeRefinement& refinement) {
+  check_refinement(mesh, refinement, "volume_refined_complex");
   std::vector<int> offsets{0}, groups;
   for (const RefinedTet& t : refined_tets(mesh, refinement)) {
     groups.insert(groups.end(), t.v, t.v + 4);

@@ -76,6 +76,7 @@ void prolong_row(const RowMajor& P0, const SimplexComplex3& coarse, std::span<co
 Eigen::SparseMatrix<double> volume_prolongation_k(const VolumeMesh& mesh, const VolumeRefinement& refinement,
                                                   const SimplexComplex3& coarse,
                                                   const SimplexComplex3& refined, int k) {
+  check_refinement(mesh, refinement, "volume_prolongation_k");
   using namespace volume_hodge_star_detail;
   if (k < 0 || k > 3)
     throw std::invalid_argument("volume_prolongation_k: k = " + std::to_string(k) + " (0..3)");
@@ -97,6 +98,7 @@ Eigen::SparseMatrix<double> volume_prolongation_k(const VolumeMesh& mesh, const 
 
 Eigen::SparseMatrix<double> volume_refined_star(const VolumeMesh& mesh, const VolumeRefinement& refinement,
                                                 const SimplexComplex3& refined, int k) {
+  check_refinement(mesh, refinement, "volume_refined_star");
   if (k < 0 || k > 3)
     throw std::invalid_argument("volume_refined_star: k = " + std::to_string(k) + " (0..3)");
   std::vector<Eigen::Triplet<double>> t;
@@ -142,6 +144,7 @@ Eigen::SparseMatrix<double> volume_refined_star(const VolumeMesh& mesh, const Vo
 }
 
 VolumeDec volume_dec(const VolumeMesh& mesh, const VolumeRefinement& refinement, int max_degree) {
+  check_refinement(mesh, refinement, "volume_dec");
   VolumeDec D;
   D.max_degree = max_degree;
   D.coarse = volume_coarse_complex(mesh, max_degree);
@@ -157,6 +160,7 @@ VolumeDec volume_dec(const VolumeMesh& mesh, const VolumeRefinement& refinement,
 
 FormSpan volume_form_span(const VolumeDec& dec, const VolumeMesh& mesh, const VolumeRefinement& refinement,
                           int degree, double tolerance, long max_entries) {
+  check_refinement(mesh, refinement, "volume_form_span");
   if (degree < 1 || degree > dec.max_degree)
     throw std::invalid_argument("volume_form_span: degree " + std::to_string(degree) + " (1.." +
                                 std::to_string(dec.max_degree) + " for this VolumeDec)");

@@ -367,6 +367,7 @@ VolumeRefinement refine_volume(const VolumeMesh& mesh, const VolumeRefinementOpt
 }
 
 std::vector<RefinedTet> refined_tets(const VolumeMesh& mesh, const VolumeRefinement& refinement) {
+  check_refinement(mesh, refinement, "refined_tets");
   using namespace volume_refinement_detail;
   std::vector<RefinedTet> out;
   out.reserve(refinement.tets.size());
@@ -385,6 +386,7 @@ std::vector<RefinedTet> refined_tets(const VolumeMesh& mesh, const VolumeRefinem
 }
 
 Eigen::Vector3d refined_position(const VolumeMesh& mesh, const VolumeRefinement& refinement, int r) {
+  check_refined_vertex(mesh, refinement, r, "refined_position");
   const int nV = mesh.n_vertices(), nF = mesh.n_faces();
   if (r < nV) return mesh.position(r);
   if (r < nV + nF) return refinement.face_points.row(r - nV).transpose();

@@ -100,6 +100,21 @@ std::vector<RefinedTet> refined_tets(const VolumeMesh& mesh, const VolumeRefinem
 // Position of refined vertex r (mesh vertex, face point or cell point).
 Eigen::Vector3d refined_position(const VolumeMesh& mesh, const VolumeRefinement& refinement, int r);
 
+// Throws std::invalid_argument, naming `caller` and the first mismatch, unless `refinement` has the
+// sizes of a refinement of `mesh`: |F| face points, one face weight per face corner, |C| cell points,
+// and per cell as many weights as vertices and as many sub-tetrahedra as face corners (offsets from 0
+// to the arrays' sizes). Every function taking a volume mesh with its refinement calls it first, so
+// that a refinement of another mesh (or a default-constructed or truncated one) is refused instead of
+// read out of bounds. O(|F| + |C|) integer compares, no allocation.
+void check_refinement(const VolumeMesh& mesh, const VolumeRefinement& refinement, const char* caller);
+// The same for what one cell c reads (c a cell of `mesh`; the arrays' sizes and cell c's weights and
+// sub-tetrahedra), O(size of cell c): for per-cell functions.
+void check_refinement_cell(const VolumeMesh& mesh, const VolumeRefinement& refinement, int c,
+                           const char* caller);
+// The same for refined vertex r (in range, |F| face points, |C| cell points), O(1).
+void check_refined_vertex(const VolumeMesh& mesh, const VolumeRefinement& refinement, int r,
+                          const char* caller);
+
 // Single-cell kernels (pure functions of positions).
 
 // The point x minimizing sum_t vol(a_t, b_t, c_t, x)^2 over the triangles t (rows of A, B, C):

@@ -46,6 +46,7 @@ Eigen::Vector3d face_vector_area(const Mesh& mesh, int f) {
 }  // namespace
 
 FineDiamonds surface_diamonds(const Mesh& mesh, const Refinement& refinement) {
+  check_refinement(mesh, refinement, "surface_diamonds");
   const int nV = mesh.n_vertices(), nF = mesh.n_faces(), nE = mesh.n_edges();
   std::vector<int> edge_halfedge(nE, -1);
   for (int h = 0; h < mesh.n_halfedges(); ++h)

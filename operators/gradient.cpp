@@ -18,6 +18,7 @@ void hat_gradients(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const E
 }
 
 Eigen::VectorXd fan_areas(const Mesh& mesh, const Refinement& refinement) {
+  check_refinement(mesh, refinement, "fan_areas");
   Eigen::VectorXd a(mesh.n_halfedges());
   for (int h = 0; h < mesh.n_halfedges(); ++h) {
     if (refinement.fan[h] == FanTriangle::Degenerate) {
@@ -92,6 +93,7 @@ SparseMatrix gradient_transposed(const Mesh& mesh, const Refinement& refinement)
 }  // namespace
 
 SparseMatrix gradient(const Mesh& mesh, const Refinement& refinement) {
+  check_refinement(mesh, refinement, "gradient");
   const SparseMatrix T = gradient_transposed(mesh, refinement);
   // Transpose by counting sort: rows ascending within each column, as setFromTriplets leaves them.
   SparseMatrix G(T.cols(), T.rows());
@@ -111,6 +113,7 @@ SparseMatrix gradient(const Mesh& mesh, const Refinement& refinement) {
 }
 
 SparseMatrix divergence(const Mesh& mesh, const Refinement& refinement) {
+  check_refinement(mesh, refinement, "divergence");
   // D = -G^T W: G^T with column 3h + c scaled by -area(h).
   SparseMatrix D = gradient_transposed(mesh, refinement);
   const Eigen::VectorXd a = fan_areas(mesh, refinement);

@@ -326,11 +326,13 @@ void assemble_into(const Mesh& mesh, const Refinement& refinement, const FacePat
 
 void reassemble_laplacian(const Mesh& mesh, const Refinement& refinement, const FacePattern& pattern,
                           LaplacianParts parts, Laplacian& L, const AssemblyOptions& options) {
+  check_refinement(mesh, refinement, "reassemble_laplacian");
   assemble_into(mesh, refinement, pattern, pattern.pattern, parts, L, options);
 }
 
 Laplacian assemble_laplacian(const Mesh& mesh, const Refinement& refinement, LaplacianParts parts,
                              const FacePattern* pattern, const AssemblyOptions& options) {
+  check_refinement(mesh, refinement, "assemble_laplacian");
   Laplacian L;
   if (pattern) {
     reassemble_laplacian(mesh, refinement, *pattern, parts, L, options);
@@ -353,14 +355,17 @@ Laplacian assemble_laplacian(const Mesh& mesh, const Refinement& refinement, Lap
 }
 
 SparseMatrix stiffness(const Mesh& mesh, const Refinement& refinement) {
+  check_refinement(mesh, refinement, "stiffness");
   return assemble_laplacian(mesh, refinement, {true, false, false}).S;
 }
 
 SparseMatrix mass(const Mesh& mesh, const Refinement& refinement) {
+  check_refinement(mesh, refinement, "mass");
   return assemble_laplacian(mesh, refinement, {false, true, false}).M;
 }
 
 Eigen::VectorXd lumped_mass(const Mesh& mesh, const Refinement& refinement) {
+  check_refinement(mesh, refinement, "lumped_mass");
   return assemble_laplacian(mesh, refinement, {false, false, true}).M_lumped;
 }
 

@@ -9,6 +9,7 @@
 namespace polydec {
 
 FineDiamonds volume_diamonds(const VolumeMesh& mesh, const VolumeRefinement& refinement) {
+  check_refinement(mesh, refinement, "volume_diamonds");
   const int nV = mesh.n_vertices(), nF = mesh.n_faces(), nC = mesh.n_cells();
   FineDiamonds d;
   d.n_points = nV + nF + nC;
@@ -82,6 +83,7 @@ FineDiamonds volume_diamonds(const VolumeMesh& mesh, const VolumeRefinement& ref
 }
 
 VolumeLaplacian assemble_volume_diamond(const VolumeMesh& mesh, const VolumeRefinement& refinement) {
+  check_refinement(mesh, refinement, "assemble_volume_diamond");
   VolumeLaplacian V;
   coarsen_diamonds(volume_diamonds(mesh, refinement), volume_prolongation(mesh, refinement), V.S, V.M,
                    V.M_lumped, nullptr, nullptr);

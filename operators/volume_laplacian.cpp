@@ -12,6 +12,7 @@
 namespace polydec {
 
 SparseMatrix volume_prolongation(const VolumeMesh& mesh, const VolumeRefinement& refinement) {
+  check_refinement(mesh, refinement, "volume_prolongation");
   const int nV = mesh.n_vertices(), nF = mesh.n_faces(), nC = mesh.n_cells();
   std::vector<Eigen::Triplet<double>> t;
   t.reserve(size_t(nV) + mesh.face_indices().size() + refinement.cell_weights.size());
@@ -319,6 +320,7 @@ void cell_kernel(const VolumeMesh& mesh, const VolumeRefinement& refinement, int
 
 void cell_matrices(const VolumeMesh& mesh, const VolumeRefinement& refinement, int c, Eigen::MatrixXd* S,
                    Eigen::MatrixXd* M) {
+  check_refinement_cell(mesh, refinement, c, "cell_matrices");
   volume_laplacian_detail::CellWorkspace ws;
   Eigen::MatrixXd Sc, Mc;
   volume_laplacian_detail::cell_kernel(mesh, refinement, c, Sc, Mc, ws);
@@ -330,6 +332,7 @@ void cell_matrices(const VolumeMesh& mesh, const VolumeRefinement& refinement, i
 
 VolumeLaplacian assemble_volume_laplacian(const VolumeMesh& mesh, const VolumeRefinement& refinement,
                                           const SparseMatrix* pattern, int threads) {
+  check_refinement(mesh, refinement, "assemble_volume_laplacian");
   using namespace volume_laplacian_detail;
   VolumeLaplacian L;
   L.quality = refinement.quality;

@@ -219,6 +219,7 @@ FormSpectrum form_spectrum(const Mesh& mesh, const FormSpectrumOptions& options)
 
 Eigen::MatrixX3d whitney_vectors_at_virtual_vertices(const Mesh& mesh, const Refinement& refinement,
                                                      const Eigen::VectorXd& cochain) {
+  check_refinement(mesh, refinement, "whitney_vectors_at_virtual_vertices");
   const CoarseComplex cx(mesh);
   if (cochain.size() != cx.n_pairs())
     throw std::invalid_argument(fmt::format("whitney vectors: the cochain has {} values, the mesh {} pairs",

@@ -194,6 +194,7 @@ Eigen::VectorXd vertex_conformal_distortion(const Mesh& mesh, const Eigen::Matri
 }
 
 int count_flipped_fan_triangles(const Mesh& mesh, const Refinement& r, const Eigen::MatrixX2d& uv) {
+  check_refinement(mesh, r, "count_flipped_fan_triangles");
   int flipped = 0;
   for (int f = 0; f < mesh.n_faces(); ++f) {
     const auto face = mesh.face(f);

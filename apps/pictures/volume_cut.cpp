@@ -16,37 +16,6 @@ namespace polydec {
 namespace volume_cut_detail {
 namespace {
 
-// Throws std::invalid_argument unless `r` has the sizes of a refinement of `m`: a refinement of
-// another mesh would be read out of bounds.
-void check_refinement(const VolumeMesh& m, const VolumeRefinement& r) {
-  const int nF = m.n_faces(), nC = m.n_cells();
-  const auto fail = [&](const std::string& what) {
-    throw std::invalid_argument(fmt::format(
-        "volume cut: the refinement does not belong to this mesh ({} faces, {} cells): {}", nF, nC, what));
-  };
-  if (r.face_points.rows() != nF || r.face_weights.size() != m.face_indices().size())
-    fail(fmt::format("it has {} face points and {} face weights for {} face corners", r.face_points.rows(),
-                     r.face_weights.size(), m.face_indices().size()));
-  if (r.cell_points.rows() != nC || long(r.cell_weight_offsets.size()) != nC + 1L ||
-      long(r.tet_offsets.size()) != nC + 1L)
-    fail(fmt::format("it has {} cell points, {} cell weight offsets and {} sub-tetrahedron offsets",
-                     r.cell_points.rows(), r.cell_weight_offsets.size(), r.tet_offsets.size()));
-  if (r.cell_weight_offsets[0] != 0 || r.tet_offsets[0] != 0) fail("its offsets do not start at 0");
-  for (int c = 0; c < nC; ++c) {
-    long corners = 0;
-    for (int hf : m.cell(c)) corners += m.face_size(hf / 2);
-    if (r.cell_weight_offsets[c + 1] - r.cell_weight_offsets[c] != long(m.cell_vertices(c).size()) ||
-        r.tet_offsets[c + 1] - r.tet_offsets[c] != corners)
-      fail(fmt::format("cell {} has {} weights and {} sub-tetrahedra for {} vertices and {} face corners", c,
-                       r.cell_weight_offsets[c + 1] - r.cell_weight_offsets[c],
-                       r.tet_offsets[c + 1] - r.tet_offsets[c], m.cell_vertices(c).size(), corners));
-  }
-  if (size_t(r.cell_weight_offsets[nC]) != r.cell_weights.size() ||
-      size_t(r.tet_offsets[nC]) != r.tets.size())
-    fail(fmt::format("it has {} cell weights and {} sub-tetrahedra for offsets ending at {} and {}",
-                     r.cell_weights.size(), r.tets.size(), r.cell_weight_offsets[nC], r.tet_offsets[nC]));
-}
-
 // Refined vertices (mesh vertices, face points, cell points) with their signed distances and
 // values, and the points made on the way, keyed by the refined edge (a, b), a <= b, they lie on.
 struct Builder {
@@ -66,7 +35,6 @@ struct Builder {
     if (vertex_values.size() != 0 && vertex_values.size() != m.n_vertices())
       throw std::invalid_argument(
           fmt::format("volume cut: {} values for {} vertices", vertex_values.size(), m.n_vertices()));
-    check_refinement(m, r);
     const int n = m.n_vertices() + m.n_faces() + m.n_cells();
     const Eigen::Vector3d nn = plane.normal.normalized();
     s.resize(n);
@@ -180,6 +148,7 @@ double VolumeCut::area() const {
 
 VolumeCut cut_volume(const VolumeMesh& mesh, const VolumeRefinement& refinement,
                      const Eigen::VectorXd& vertex_values, const CutPlane& plane) {
+  check_refinement(mesh, refinement, "cut_volume");
   using namespace volume_cut_detail;
   Builder B(mesh, refinement, vertex_values, plane);
   cut_all(B, plane.normal);
@@ -194,6 +163,7 @@ VolumeCut cut_volume(const VolumeMesh& mesh, const VolumeRefinement& refinement,
 
 Mesh cut_solid(const VolumeMesh& mesh, const VolumeRefinement& refinement,
                const Eigen::VectorXd& vertex_values, const CutPlane& plane, Eigen::VectorXd* values) {
+  check_refinement(mesh, refinement, "cut_solid");
   using namespace volume_cut_detail;
   Builder B(mesh, refinement, vertex_values, plane);
   cut_all(B, plane.normal);
@@ -241,6 +211,7 @@ Eigen::Vector3d cut_view_direction(const CutPlane& plane, const Eigen::Vector3d&
 void render_volume_cut_png(const std::string& path, const VolumeMesh& mesh,
                            const VolumeRefinement& refinement, const Eigen::VectorXd& vertex_values,
                            const CutPlane& plane, RenderOptions options) {
+  check_refinement(mesh, refinement, "render_volume_cut_png");
   Eigen::VectorXd values;
   const Mesh solid = cut_solid(mesh, refinement, vertex_values, plane, &values);
   if (options.view_direction.isZero()) options.view_direction = cut_view_direction(plane, options.up);
