@@ -145,8 +145,9 @@ struct FaceFine {
 // tetrahedron's is vol/20 (I + 1 1^T), and corner i lies in sub-tetrahedra i - 1 and i. ts, tm:
 // n entries of scratch each. N > 0: n at compile time.
 template <int N>
-inline void fold_face(int n_dyn, const int* o, const double* w, const FaceFine& F, long m, double* S, double* M,
-                      double* hs, double* hm, double& as, double& am, double* ts, double* tm) {
+inline void fold_face(int n_dyn, const int* o, const double* w, const FaceFine& F, long m, double* __restrict S,
+                      double* __restrict M, double* __restrict hs, double* __restrict hm, double& as, double& am,
+                      double* __restrict ts, double* __restrict tm) {
   const int n = N > 0 ? N : n_dyn;
   double total = 0;
   for (int i = 0; i < n; ++i) total += F.mv[i];
@@ -246,7 +247,7 @@ void add_face(const SubTet* flags, int n_dyn, const int* o, const double* w, con
 // of P_c is w, so the fine couplings h (vertex, cell point) and alpha (cell point, cell point)
 // become coarse ones.
 void add_cell_point(const double* hs, double as, const double* hm, double am, std::span<const double> w, long m,
-                    double* S, double* M) {
+                    double* __restrict S, double* __restrict M) {
   for (long j = 0; j < m; ++j) {
     double *cs = S + j * m, *cm = M + j * m;
     const double wj = w[j], sj = hs[j] + as * wj, mj = hm[j] + am * wj;
