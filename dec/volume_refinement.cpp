@@ -226,8 +226,7 @@ VolumeRefinement refine_volume(const VolumeMesh& mesh, const VolumeRefinementOpt
       for (int k = 0; k < n; ++k)
         for (int d = 0; d < 3; ++d) x[d] += w[k] * (corners[3 * k + d] - c[d]);
       for (int d = 0; d < 3; ++d) R.face_points(f, d) = x[d];
-      Sym3& Nf = moments[size_t(f)];
-      Nf = {};
+      Sym3 Nf{};
       const double* last = corners.data() + 3 * (n - 1);
       double a0 = last[0] - x[0], a1 = last[1] - x[1], a2 = last[2] - x[2];
       for (int k = 0; k < n; ++k) {
@@ -235,6 +234,7 @@ VolumeRefinement refine_volume(const VolumeMesh& mesh, const VolumeRefinementOpt
         add_outer(Nf, a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0);
         a0 = b0, a1 = b1, a2 = b2;
       }
+      moments[size_t(f)] = Nf;
     }
   });
 
