@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -61,31 +62,43 @@ SparseMatrix pattern_and_slots(const VolumeMesh& mesh, CellSlots* slots) {
     }
   }
   // Column v, unsorted: the vertices of v's cells, each once (marked with v).
-  std::vector<int> outer(nV + 1, 0), unsorted, mark(nV, -1);
-  unsorted.reserve(size_t(count[nV]) * 4);
+  // At most sum_c m_c^2 entries (each cell's vertices once per vertex of the cell): allocated
+  // uninitialized, so that the pages never written are never touched.
+  std::vector<int> outer(nV + 1, 0), mark(nV, -1);
+  size_t bound = 0;
+  for (int c = 0; c < nC; ++c) bound += mesh.cell_vertices(c).size() * mesh.cell_vertices(c).size();
+  std::unique_ptr<int[]> unsorted(new int[bound]);
+  size_t n_unsorted = 0;
   int longest = 0;
   for (int v = 0; v < nV; ++v) {
-    for (int k = count[v]; k < count[v + 1]; ++k)
-      for (int u : mesh.cell_vertices(cells[k]))
+    for (int k = count[v]; k < count[v + 1]; ++k) {
+      const auto verts = mesh.cell_vertices(cells[k]);
+      auto visit = [&](int u) {
         if (mark[u] != v) {
           mark[u] = v;
-          unsorted.push_back(u);
+          unsorted[n_unsorted++] = u;
         }
-    outer[v + 1] = int(unsorted.size());
+      };
+      if (verts.size() == 8)  // hexahedra: unrolled
+        for (int a = 0; a < 8; ++a) visit(verts[a]);
+      else
+        for (int u : verts) visit(u);
+    }
+    outer[v + 1] = int(n_unsorted);
     longest = std::max(longest, outer[v + 1] - outer[v]);
   }
   // Sorted by transposition (the pattern is symmetric): visiting the columns v in order and
   // appending v to column u for each row u of column v leaves every column's rows ascending.
   SparseMatrix pattern(nV, nV);
-  pattern.resizeNonZeros(long(unsorted.size()));
+  pattern.resizeNonZeros(long(n_unsorted));
   std::copy(outer.begin(), outer.end(), pattern.outerIndexPtr());
   int* inner = pattern.innerIndexPtr();
   std::copy(outer.begin(), outer.end() - 1, fill.begin());
   for (int v = 0; v < nV; ++v)
     for (int k = outer[v]; k < outer[v + 1]; ++k) inner[fill[unsorted[k]]++] = v;
-  std::fill(pattern.valuePtr(), pattern.valuePtr() + unsorted.size(), 0.0);
+  std::fill(pattern.valuePtr(), pattern.valuePtr() + n_unsorted, 0.0);
   if (!slots || longest > 65535) return pattern;
-  unsorted = {};
+  unsorted.reset();
   slots->offset.assign(size_t(nC) + 1, 0);
   for (int c = 0; c < nC; ++c) {
     const long m = long(mesh.cell_vertices(c).size());
@@ -100,7 +113,10 @@ SparseMatrix pattern_and_slots(const VolumeMesh& mesh, CellSlots* slots) {
       const auto verts = mesh.cell_vertices(c);
       const long m = long(verts.size());
       std::uint16_t* out = slots->slot.data() + slots->offset[c] + local[k] * m;
-      for (long a = 0; a < m; ++a) out[a] = std::uint16_t(where[verts[a]]);
+      if (m == 8)  // hexahedra: unrolled
+        for (int a = 0; a < 8; ++a) out[a] = std::uint16_t(where[verts[a]]);
+      else
+        for (long a = 0; a < m; ++a) out[a] = std::uint16_t(where[verts[a]]);
     }
   }
   return pattern;
