@@ -11,24 +11,15 @@ import hashlib
 import os
 import sys
 import threading
-import time
 
 import numpy as np
 
 import polydec
-
-
-def median_s(fn, n):
-    t = []
-    for _ in range(n):
-        t0 = time.perf_counter()
-        fn()
-        t.append(time.perf_counter() - t0)
-    return float(np.median(t))
+from python_overhead import median_ms  # bench/ is the script's directory, first on sys.path
 
 
 def ratio_two_threads(fn, n):
-    """(median wall time of fn in two concurrent threads / that of fn alone, fn alone in s)."""
+    """(median wall time of fn in two concurrent threads / that of fn alone, fn alone in ms)."""
     def two():
         ts = [threading.Thread(target=fn) for _ in range(2)]
         for t in ts:
@@ -37,8 +28,8 @@ def ratio_two_threads(fn, n):
             t.join()
 
     fn()
-    one = median_s(fn, n)
-    return median_s(two, n) / one, one
+    one = median_ms(fn, n)
+    return median_ms(two, n) / one, one
 
 
 def main():
@@ -65,7 +56,7 @@ def main():
         free = max(before, after) <= 1.3
         if free:
             counted.append(ratio)
-        print(f"attempt {k + 1}: one thread {1e3 * one:.0f} ms, two threads / one = {ratio:.2f}x; controls "
+        print(f"attempt {k + 1}: one thread {one:.0f} ms, two threads / one = {ratio:.2f}x; controls "
               f"{before:.2f}x, {after:.2f}x ({'two free cores' if free else 'not counted: no two free cores'})")
     print(f"load average at the end {os.getloadavg()[0]:.1f}")
     if not counted:
