@@ -9,6 +9,9 @@
 //                 form-spectrum: a 100k-face quad sphere)
 //   polydec_bench --only volume [--volume-big N]   (volume S + M against the plain volume reference:
 //                 cube_hexahedron_4, hex_grid_volume(16^3) and hex_grid_volume(N^3), default N = 100)
+//   polydec_bench --only blas-load [--cli PATH]   (not part of the default run: `polydec geodesics` on
+//                 a 100k-vertex quad torus with the default BLAS policy against OPENBLAS_NUM_THREADS=1,
+//                 two busy processes beside it, wall time; PATH defaults to this build's CLI)
 //   polydec_bench --memory-child N      (internal: peak memory of one assembly, fresh process)
 //   polydec_bench --volume-memory N     (the polydec side alone on hex_grid_volume(N^3): peak memory,
 //                 for /usr/bin/time -v; prints the sizes of the mesh and the matrices)
@@ -38,6 +41,9 @@
 #include <functional>
 #include <ctime>
 #include <malloc.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 #include <set>
 #include <sstream>
 #include <string>
@@ -500,6 +506,71 @@ void bench_volumes(int big, int reps) {
   }
 }
 
+// A process spinning on the CPU until killed (its pid; the caller kills exactly it).
+pid_t spin() {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    volatile unsigned long x = 0;
+    for (;;) x = x + 1;
+  }
+  return pid;
+}
+
+// One run of the CLI with a clean thread environment plus `env`: wall ms, or -1 with the exit
+// status in `failure` when it does not succeed.
+double cli_wall_ms(const std::string& cli, const std::string& env, const std::string& args, const std::string& dir,
+                   std::string& failure) {
+  const std::string cmd = "env -u OPENBLAS_NUM_THREADS -u OMP_NUM_THREADS -u POLYDEC_BLAS_THREADS " + env + " '" +
+                          cli + "' " + args + " > '" + dir + "/stdout.txt' 2> '" + dir + "/stderr.txt'";
+  int status = 0;
+  const double ms = wall_ms([&] { status = std::system(cmd.c_str()); });
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return ms;
+  failure = fmt::format("`{}` failed (status {})", cmd, status);
+  return -1;
+}
+
+// The CLI's default BLAS policy (operators/cholesky.h: one thread) against a run forced to one
+// BLAS thread, with two busy processes beside it: `polydec geodesics` on a 100k-vertex quad torus
+// (CHOLMOD's supernodes large enough for BLAS-3 work), three runs each, interleaved, medians of
+// wall time; one more run with OpenBLAS's own default (one thread per core) is reported.
+void bench_blas_load(const std::string& cli) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / fmt::format("polydec_bench_blas_load_{}", getpid());
+  std::filesystem::create_directories(dir);
+  const Mesh mesh = torus(400, 250);
+  write_mesh((dir / "torus.ply").string(), mesh);
+  const std::string geo = "geodesics '" + (dir / "torus.ply").string() + "' --source 0 --json";
+  const std::string load_before = load_note();
+  std::string failure;
+  std::vector<double> policy, one;
+  const pid_t a = spin(), b = spin();
+  for (int k = 0; k < 3 && failure.empty(); ++k) {
+    policy.push_back(cli_wall_ms(cli, "", geo, dir.string(), failure));
+    one.push_back(cli_wall_ms(cli, "OPENBLAS_NUM_THREADS=1", geo, dir.string(), failure));
+  }
+  const double all_cores = failure.empty() ? cli_wall_ms(cli, "POLYDEC_BLAS_THREADS=0", geo, dir.string(), failure) : -1;
+  kill(a, SIGKILL);
+  kill(b, SIGKILL);
+  waitpid(a, nullptr, 0);
+  waitpid(b, nullptr, 0);
+  std::filesystem::remove_all(dir);
+  const std::string name = fmt::format("TORUS {}k", mesh.n_vertices() / 1000);
+  if (!failure.empty()) {
+    add({"CLI geodesics under load", name, "", "", 0, 0, 0, -1.5, "skipped: " + failure});
+    return;
+  }
+  Row r{"CLI geodesics under load, default BLAS policy", name, "OPENBLAS_NUM_THREADS=1", "default policy",
+        median(one), median(policy), 0, -1.5,
+        fmt::format("ratio = default / one thread (lower is better); wall time of `polydec geodesics --source 0 "
+                    "--json`, medians of 3 interleaved runs (default {:.0f}, {:.0f}, {:.0f} ms; one thread {:.0f}, "
+                    "{:.0f}, {:.0f} ms) with two busy processes beside them; OpenBLAS's own default "
+                    "(POLYDEC_BLAS_THREADS=0, one thread per core, one run) {:.0f} ms; before the spinners{}, at the "
+                    "end{}",
+                    policy[0], policy[1], policy[2], one[0], one[1], one[2], all_cores, load_before, load_note())};
+  r.ratio = median(policy) / median(one);
+  add(r);
+}
+
 std::string status(const Row& r) {
   if (r.required == 0) return "(reported)";
   if (r.required < 0) return r.ratio <= -r.required ? "met" : fmt::format("MISSED by {:.2f}x", r.ratio / -r.required);
@@ -527,6 +598,7 @@ void print_table() {
 int main(int argc, char** argv) {
   int big = 500, reps = 5, blas_threads = 1, volume_big = 100;
   bool with_big = true, quick = false, big_geodesics = true;  // --quick: assembly rows on HEX and FINE only
+  std::string cli = POLYDEC_CLI;  // --cli PATH: the polydec CLI timed by --only blas-load
   std::string only;  // --only spectrum|feec|geodesics|cholesky: that section alone, on FINE SPHERE;
                      // form-spectrum: on a 100k-face quad sphere
   for (int i = 1; i < argc; ++i) {
@@ -566,9 +638,11 @@ int main(int argc, char** argv) {
     else if (a == "--no-big-geodesics") big_geodesics = false;
     else if (a == "--only" && i + 1 < argc) only = argv[++i];
     else if (a == "--blas-threads" && i + 1 < argc) blas_threads = std::stoi(argv[++i]);
+    else if (a == "--cli" && i + 1 < argc) cli = argv[++i];
     else if (a == "--reps" && i + 1 < argc) reps = std::stoi(argv[++i]);
     else {
-      std::fprintf(stderr, "usage: polydec_bench [--big N] [--no-big] [--quick] [--reps K] [--blas-threads N] [--no-big-geodesics] [--only SECTION] [--volume-big N]\n");
+      std::fprintf(stderr, "usage: polydec_bench [--big N] [--no-big] [--quick] [--reps K] [--blas-threads N] [--no-big-geodesics] [--only SECTION] [--volume-big N] [--cli PATH]\n"
+                           "  SECTION: spectrum|form-spectrum|feec|geodesics|cholesky|volume|blas-load (blas-load runs only when asked for)\n");
       return 2;
     }
   }
@@ -576,6 +650,12 @@ int main(int argc, char** argv) {
   // One BLAS thread by default: Eigen's factorization it is compared with is single-threaded,
   // and on a shared 2-core machine OpenBLAS's spinning worker threads lose to other processes.
   const int blas_in_effect = polydec::set_blas_threads(blas_threads).threads;  // the library's policy (operators/cholesky.h)
+  if (only == "blas-load") {
+    std::fprintf(stderr, "CLI geodesics under load (%s)...\n", cli.c_str());
+    bench_blas_load(cli);
+    print_table();
+    return 0;
+  }
   std::fprintf(stderr, "loading and generating meshes...\n");
   const Mesh hex = project_to_unit_sphere(dual(read_mesh(shared("unit-sphere.off"))));
   const Mesh fine = project_to_unit_sphere(catmull_clark(hex));
