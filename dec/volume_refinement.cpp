@@ -104,13 +104,13 @@ Eigen::Vector3d solve_squared_volume(const Sym3& n, const Eigen::Vector3d& r) {
   return x;
 }
 
-// The normal equations N x = r of min_x sum_t (n_t . x - n_t . a_t)^2, the sum of squared volumes
-// vol(a_t, b_t, c_t, x) = n_t . (x - a_t) / 6 with n_t = (b_t - a_t) x (c_t - a_t).
 // Adds n n^T to the symmetric N.
 inline void add_outer(Sym3& N, double n0, double n1, double n2) {
   N[0] += n0 * n0, N[1] += n0 * n1, N[2] += n0 * n2, N[3] += n1 * n1, N[4] += n1 * n2, N[5] += n2 * n2;
 }
 
+// The normal equations N x = r of min_x sum_t (n_t . x - n_t . a_t)^2, the sum of squared volumes
+// vol(a_t, b_t, c_t, x) = n_t . (x - a_t) / 6 with n_t = (b_t - a_t) x (c_t - a_t).
 struct SquaredVolumeSystem {
   Sym3 N{};
   Eigen::Vector3d r = Eigen::Vector3d::Zero();
