@@ -2,8 +2,6 @@
 // Spectra's generalized shift-invert solver on a quasi-definite LDL^T of the mixed system.
 #include "polydec/apps/applications/form_spectrum.h"
 
-#include <Spectra/MatOp/SparseSymMatProd.h>
-#include <Spectra/SymGEigsShiftSolver.h>
 #include <fmt/format.h>
 
 #include <Eigen/SparseCholesky>
@@ -11,6 +9,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "polydec/apps/applications/complete_eigs.h"
 #include "polydec/apps/applications/hodge_decomposition.h"
 #include "polydec/apps/applications/spectrum.h"
 #include "polydec/dec/complex.h"
@@ -73,31 +72,6 @@ class MixedShiftInvert {
   std::string name_;
   Eigen::SimplicialLDLT<SpMat, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt_;
   mutable Eigen::VectorXd rhs_;
-};
-
-// The shift-invert operator with found eigenpairs removed (Hotelling deflation in the B inner
-// product): y = (K - sigma B)^-1 z - V diag(theta) V^T z with V B-orthonormal eigenvectors and
-// theta_i = 1 / (lambda_i - sigma). Spectra applies it to z = B x, so the found eigenvectors get
-// eigenvalue 0 of the shift-inverted problem (never wanted) and the others keep theirs. `op` is
-// already factored at the shift.
-class DeflatedShiftInvert {
- public:
-  using Scalar = double;
-  DeflatedShiftInvert(const MixedShiftInvert& op, const Eigen::MatrixXd& V, const Eigen::VectorXd& theta)
-      : op_(op), V_(V), theta_(theta) {}
-  Eigen::Index rows() const { return op_.rows(); }
-  Eigen::Index cols() const { return op_.cols(); }
-  void set_shift(double) {}
-  void perform_op(const double* x_in, double* y_out) const {
-    op_.perform_op(x_in, y_out);
-    const Eigen::Map<const Eigen::VectorXd> x(x_in, rows());
-    Eigen::Map<Eigen::VectorXd>(y_out, rows()) -= V_ * theta_.cwiseProduct(V_.transpose() * x);
-  }
-
- private:
-  const MixedShiftInvert& op_;
-  const Eigen::MatrixXd& V_;
-  const Eigen::VectorXd& theta_;
 };
 
 SpMat diagonal_matrix(const Eigen::VectorXd& d) {
@@ -180,63 +154,15 @@ FormSpectrum form_spectrum(const Mesh& mesh, const FormSpectrumOptions& options)
   const int ncv = options.krylov_size > 0 ? std::clamp(options.krylov_size, options.k + 1, n)
                                           : spectrum_krylov_size(options.k, n);
   MixedShiftInvert op(A, B, C, D, name);
-  Spectra::SparseSymMatProd<double> Bop(B);
-  Spectra::SymGEigsShiftSolver<MixedShiftInvert, Spectra::SparseSymMatProd<double>,
-                               Spectra::GEigsMode::ShiftInvert>
-      solver(op, Bop, options.k, ncv, out.shift);
-  solver.init();
-  out.n_converged = int(solver.compute(Spectra::SortRule::LargestMagn, options.max_iterations,
-                                       options.tolerance, Spectra::SortRule::SmallestAlge));
-  out.n_solves = int(solver.num_operations());
-  if (solver.info() != Spectra::CompInfo::Successful)
-    throw SolverError(
-        fmt::format("form spectrum: Spectra did not converge ({} of {} eigenpairs after {} restarts)",
-                    out.n_converged, options.k, options.max_iterations));
+  op.set_shift(out.shift);
+  // Complete in the copies of multiple eigenvalues (complete_eigs.h).
+  const complete_eigs_detail::Pairs pairs = complete_eigs_detail::smallest_pairs(
+      op, B, options.k, ncv, out.shift, options.max_iterations, options.tolerance, "form spectrum");
+  out.n_converged = pairs.n_converged;
+  out.n_solves = pairs.n_solves;
   out.method = "Spectra SymGEigsShiftSolver + quasi-definite SimplicialLDLT";
-  Eigen::VectorXd lambda = solver.eigenvalues();
-  Eigen::MatrixXd V = solver.eigenvectors();
-  // Lanczos from one start vector can return fewer copies of a multiple eigenvalue than it has
-  // (symmetric meshes have exact multiplicities) and take the next eigenvalue instead. A second
-  // run on the operator with the found pairs deflated finds the smallest remaining eigenvalues;
-  // those below the largest found replace it, until none does.
-  const int k2 = std::min(3, n - options.k - 1);
-  for (int round = 0; k2 >= 1 && round < 4; ++round) {
-    for (int i = 0; i < V.cols(); ++i) V.col(i) /= std::sqrt(V.col(i).dot(B * V.col(i)));
-    const Eigen::VectorXd theta = (lambda.array() - out.shift).inverse().matrix();
-    DeflatedShiftInvert deflated(op, V, theta);
-    Spectra::SymGEigsShiftSolver<DeflatedShiftInvert, Spectra::SparseSymMatProd<double>,
-                                 Spectra::GEigsMode::ShiftInvert>
-        check(deflated, Bop, k2, spectrum_krylov_size(k2, n), out.shift);
-    check.init();
-    check.compute(Spectra::SortRule::LargestMagn, options.max_iterations, options.tolerance,
-                  Spectra::SortRule::SmallestAlge);
-    out.n_solves += int(check.num_operations());
-    if (check.info() != Spectra::CompInfo::Successful) break;
-    const Eigen::VectorXd mu = check.eigenvalues();
-    const double top = lambda.maxCoeff();
-    if (!(mu.minCoeff() < top - 1e3 * options.tolerance * std::abs(top))) break;
-    // The k smallest of both sets.
-    std::vector<std::pair<double, int>> all;
-    for (int i = 0; i < lambda.size(); ++i) all.emplace_back(lambda[i], i);
-    for (int i = 0; i < mu.size(); ++i) all.emplace_back(mu[i], int(lambda.size()) + i);
-    std::sort(all.begin(), all.end());
-    const Eigen::MatrixXd W = check.eigenvectors();
-    Eigen::VectorXd l2(options.k);
-    Eigen::MatrixXd V2(V.rows(), options.k);
-    for (int i = 0; i < options.k; ++i) {
-      const int j = all[size_t(i)].second;
-      l2[i] = all[size_t(i)].first;
-      if (j < lambda.size())
-        V2.col(i) = V.col(j);
-      else
-        V2.col(i) = W.col(j - lambda.size());
-    }
-    lambda = l2;
-    V = V2;
-    ++out.n_deflation_rounds;
-  }
-  out.eigenvalues = lambda;
-  out.eigenvectors = R * V;
+  out.eigenvalues = pairs.values;
+  out.eigenvectors = R * pairs.vectors;
   if (!options.decompose) return out;
 
   const int k = options.k;

@@ -61,9 +61,6 @@ struct FormSpectrum {
   double shift = 0;
   int n_converged = 0;
   int n_solves = 0;
-  // Rounds in which a second run on the deflated operator found eigenvalues the first had missed
-  // (copies of a multiple eigenvalue; form_spectrum()).
-  int n_deflation_rounds = 0;
   std::string method;
   // Fan triangles of the refinement: a degenerate one (zero area) carries no Whitney form, so each
   // can add a zero eigenvalue that is no harmonic form (callers should warn).

@@ -2,9 +2,6 @@
 // lumped M, Spectra's generalized solver for Galerkin M.
 #include "polydec/apps/applications/spectrum.h"
 
-#include <Spectra/MatOp/SparseSymMatProd.h>
-#include <Spectra/SymGEigsShiftSolver.h>
-#include <numeric>
 #include <fmt/format.h>
 
 #include <Eigen/Eigenvalues>
@@ -16,6 +13,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "polydec/apps/applications/complete_eigs.h"
 #include "polydec/dec/huge_pages.h"
 #include "polydec/operators/cholesky.h"
 
@@ -58,36 +56,6 @@ class ShiftInvert {
   bool reference_;
   Eigen::SimplicialLDLT<SparseMatrix> ldlt_;
   std::unique_ptr<SparseCholesky> chol_;
-};
-
-// ShiftInvert deflated by B-orthonormal vectors X: y = (I - X X^T B) (A - sigma B)^-1 (I - B X X^T) x.
-// With Spectra's B-inner product this is the shift-inverted pencil restricted to the B-orthogonal
-// complement of X: the pairs in X get Ritz value 0 (lambda = infinity) and are not found again.
-class DeflatedShiftInvert {
- public:
-  using Scalar = double;
-  DeflatedShiftInvert(ShiftInvert& op, const SparseMatrix& B, const Eigen::MatrixXd& X, double sigma)
-      : op_(op), B_(B), X_(X), sigma_(sigma), t_(op.rows()) {}
-  Eigen::Index rows() const { return op_.rows(); }
-  Eigen::Index cols() const { return op_.cols(); }
-  void set_shift(double sigma) {
-    if (sigma != sigma_) throw SolverError("spectrum: the deflated operator keeps its shift");
-  }
-  void perform_op(const double* x_in, double* y_out) const {
-    const Eigen::Map<const Eigen::VectorXd> x(x_in, rows());
-    Eigen::Map<Eigen::VectorXd> y(y_out, rows());
-    t_ = x;
-    if (X_.cols() > 0) t_.noalias() -= B_ * (X_ * (X_.transpose() * x));
-    op_.perform_op(t_.data(), y_out);
-    if (X_.cols() > 0) y.noalias() -= X_ * (X_.transpose() * (B_ * y));
-  }
-
- private:
-  ShiftInvert& op_;
-  const SparseMatrix& B_;
-  const Eigen::MatrixXd& X_;
-  double sigma_;
-  mutable Eigen::VectorXd t_;
 };
 
 // w -= V h with h = V^T w, repeated once when the first pass cancelled more than 30% of w
@@ -322,68 +290,19 @@ Spectrum laplacian_spectrum(const OperatorSet& ops, const SpectrumOptions& optio
         else z[v] = 0;
     }
   } else {
-    // Spectra from one start vector, like any single-vector Krylov method, meets further copies of
-    // a multiple eigenvalue only through round-off and often converges without them (cube_sphere(6),
-    // k = 4: two of the three copies of lambda_1). So solve again on the pencil deflated by every
-    // pair found so far (DeflatedShiftInvert), until a pass finds nothing below the k-th value found
-    // (the PETSc engine's rule): a converged pass returns the deflated pencil's smallest values, so a
-    // missed copy below the k-th value would be among them.
+    // Complete in the copies of multiple eigenvalues (complete_eigs.h).
     ShiftInvert op(A, B, options.reference);
     op.set_shift(result.shift);
-    Spectra::SparseSymMatProd<double> Bop(B);
-    Eigen::MatrixXd X(n, 0);  // B-orthonormal pairs found, ascending by value after each pass
-    std::vector<double> lambda;
     result.method = options.reference ? "Spectra SymGEigsShiftSolver + Eigen SimplicialLDLT (reference)"
                                       : "Spectra SymGEigsShiftSolver";
-    for (int pass = 0; pass <= options.k; ++pass) {
-      const int nev = std::min(options.k, n - int(X.cols()) - 1);
-      if (nev < 1) break;
-      const int pass_ncv = pass == 0 ? ncv : spectrum_krylov_size(nev, n - int(X.cols()));
-      DeflatedShiftInvert dop(op, B, X, result.shift);
-      Spectra::SymGEigsShiftSolver<DeflatedShiftInvert, Spectra::SparseSymMatProd<double>,
-                                   Spectra::GEigsMode::ShiftInvert>
-          solver(dop, Bop, nev, std::max(pass_ncv, nev + 1), result.shift);
-      solver.init();
-      const int converged = int(solver.compute(Spectra::SortRule::LargestMagn, options.max_iterations,
-                                               options.tolerance, Spectra::SortRule::SmallestAlge));
-      result.n_solves += int(solver.num_operations());
-      if (solver.info() != Spectra::CompInfo::Successful)
-        throw SolverError(fmt::format("spectrum: Spectra did not converge ({} of {} eigenpairs after {} restarts{})",
-                                      converged, nev, options.max_iterations,
-                                      pass > 0 ? fmt::format(", completeness pass {}", pass) : ""));
-      // The k-th smallest value found before this pass; new values below it are missed pairs.
-      std::vector<double> sorted = lambda;
-      std::sort(sorted.begin(), sorted.end());
-      const double bound = int(sorted.size()) >= options.k ? sorted[size_t(options.k) - 1]
-                                                          : std::numeric_limits<double>::infinity();
-      const Eigen::VectorXd values = solver.eigenvalues();
-      Eigen::MatrixXd U = solver.eigenvectors();
-      const double scale = std::max(std::abs(bound) < INFINITY ? std::abs(bound) : 0.0, values.cwiseAbs().maxCoeff());
-      int below = 0;
-      for (int i = 0; i < int(values.size()); ++i) {
-        if (values[i] < bound - 1e-9 * scale) ++below;
-        // B-orthogonal to the pairs found (twice, against rounding), B-normalized.
-        Eigen::VectorXd u = U.col(i);
-        for (int twice = 0; twice < 2 && X.cols() > 0; ++twice) u.noalias() -= X * (X.transpose() * (B * u));
-        u /= std::sqrt(u.dot(B * u));
-        X.conservativeResize(Eigen::NoChange, X.cols() + 1);
-        X.col(X.cols() - 1) = u;
-        lambda.push_back(values[i]);
-      }
-      result.n_converged = int(lambda.size());
-      if (below == 0) break;
-    }
-    if (int(lambda.size()) < options.k)
-      throw SolverError(fmt::format("spectrum: {} of {} eigenpairs found", lambda.size(), options.k));
-    std::vector<int> order(lambda.size());
-    std::iota(order.begin(), order.end(), 0);
-    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return lambda[size_t(a)] < lambda[size_t(b)]; });
-    result.eigenvalues.resize(options.k);
+    const complete_eigs_detail::Pairs pairs = complete_eigs_detail::smallest_pairs(
+        op, B, options.k, ncv, result.shift, options.max_iterations, options.tolerance, "spectrum");
+    result.n_converged = pairs.n_converged;
+    result.n_solves += pairs.n_solves;
+    result.eigenvalues = pairs.values;
     result.eigenvectors = Eigen::MatrixXd::Zero(nv, options.k);
-    for (int c = 0; c < options.k; ++c) {
-      result.eigenvalues[c] = lambda[size_t(order[size_t(c)])];
-      for (int i = 0; i < n; ++i) result.eigenvectors(keep[i], c) = X(i, order[size_t(c)]);
-    }
+    for (int c = 0; c < options.k; ++c)
+      for (int i = 0; i < n; ++i) result.eigenvectors(keep[i], c) = pairs.vectors(i, c);
   }
   return result;
 }
