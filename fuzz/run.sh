@@ -26,7 +26,7 @@ for part in dec operators apps; do ln -sfn "$ROOT/$part" "$OUT/include/polydec/$
 newest_header=$(ls -t "$ROOT"/dec/*.h "$ROOT"/operators/*.h | head -1)
 stale=()
 SOURCES=(dec/io.cpp dec/io_obj.cpp dec/io_off.cpp dec/io_ply.cpp dec/io_matrix_market.cpp dec/mesh.cpp
-         dec/virtual_vertex.cpp dec/refinement.cpp dec/complex.cpp dec/prolongation.cpp
+         dec/virtual_vertex.cpp dec/refinement.cpp dec/refinement_check.cpp dec/complex.cpp dec/prolongation.cpp
          operators/local_matrices.cpp operators/laplacian.cpp operators/gradient.cpp
          dec/volume_mesh.cpp dec/polyhedron_builder.cpp dec/volume_cells.cpp dec/io_volume.cpp dec/io_ovm.cpp
          dec/io_vtk.cpp dec/io_medit.cpp)
