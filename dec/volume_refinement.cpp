@@ -386,8 +386,10 @@ std::vector<RefinedTet> refined_tets(const VolumeMesh& mesh, const VolumeRefinem
 }
 
 Eigen::Vector3d refined_position(const VolumeMesh& mesh, const VolumeRefinement& refinement, int r) {
-  check_refined_vertex(mesh, refinement, r, "refined_position");
-  const int nV = mesh.n_vertices(), nF = mesh.n_faces();
+  const int nV = mesh.n_vertices(), nF = mesh.n_faces(), nC = mesh.n_cells();
+  // Called per sub-tetrahedron corner in the operators' loops: the message only on the failure path.
+  if (r < 0 || r >= nV + nF + nC || refinement.face_points.rows() != nF || refinement.cell_points.rows() != nC)
+    check_refined_vertex(mesh, refinement, r, "refined_position");
   if (r < nV) return mesh.position(r);
   if (r < nV + nF) return refinement.face_points.row(r - nV).transpose();
   return refinement.cell_points.row(r - nV - nF).transpose();

@@ -38,12 +38,15 @@ struct Builder {
     const int n = m.n_vertices() + m.n_faces() + m.n_cells();
     const Eigen::Vector3d nn = plane.normal.normalized();
     s.resize(n);
-    for (int r = 0; r < n; ++r) s[r] = nn.dot(refined_position(m, refinement, r) - plane.point);
+    double scale = plane.point.cwiseAbs().maxCoeff();
+    for (int r = 0; r < n; ++r) {
+      const Eigen::Vector3d x = refined_position(m, refinement, r);
+      s[r] = nn.dot(x - plane.point);
+      scale = std::max(scale, x.cwiseAbs().maxCoeff());
+    }
     // Refined vertices within round-off of the plane lie on it: a face point or cell point of a
     // face or cell in the plane misses it by ~eps times the coordinates, and the tetrahedra
     // around it would otherwise be cut into slivers of arbitrary orientation.
-    double scale = plane.point.cwiseAbs().maxCoeff();
-    for (int r = 0; r < n; ++r) scale = std::max(scale, refined_position(m, refinement, r).cwiseAbs().maxCoeff());
     const double on_plane = 64 * std::numeric_limits<double>::epsilon() * scale;
     for (int r = 0; r < n; ++r)
       if (std::abs(s[r]) <= on_plane) s[r] = 0;
