@@ -8,6 +8,7 @@
 #include <span>
 #include <vector>
 
+#include "polydec/dec/huge_pages.h"
 #include "polydec/dec/threads.h"
 
 namespace polydec {
@@ -36,6 +37,17 @@ SparseMatrix volume_prolongation(const VolumeMesh& mesh, const VolumeRefinement&
 namespace volume_laplacian_detail {
 namespace {
 
+// A vector of n value-initialized T whose storage is advised to take huge pages before it is
+// first written (advise_huge_pages()).
+template <class T>
+std::vector<T> fresh_vector(size_t n, T value = T()) {
+  std::vector<T> v;
+  v.reserve(n);
+  advise_huge_pages(v.data(), n * sizeof(T));
+  v.assign(n, value);
+  return v;
+}
+
 // Where each cell's local entries go: entry (a, b) of cell c (rows and columns in the order of
 // cell_vertices(c)) is row verts[a] of column verts[b], at slot[offset[c] + a + b m] past the
 // column's start, so the assembly adds without searching the column.
@@ -52,7 +64,8 @@ SparseMatrix pattern_and_slots(const VolumeMesh& mesh, CellSlots* slots) {
     for (int v : mesh.cell_vertices(c)) ++count[v + 1];
   for (int v = 0; v < nV; ++v) count[v + 1] += count[v];
   // The cells of each vertex, with the vertex's local index in the cell.
-  std::vector<int> cells(count[nV]), fill(count.begin(), count.end() - 1), local(slots ? count[nV] : 0);
+  std::vector<int> cells = fresh_vector<int>(size_t(count[nV])), fill(count.begin(), count.end() - 1),
+                   local = fresh_vector<int>(slots ? size_t(count[nV]) : 0);
   for (int c = 0; c < nC; ++c) {
     const auto verts = mesh.cell_vertices(c);
     for (size_t b = 0; b < verts.size(); ++b) {
@@ -68,6 +81,7 @@ SparseMatrix pattern_and_slots(const VolumeMesh& mesh, CellSlots* slots) {
   size_t bound = 0;
   for (int c = 0; c < nC; ++c) bound += mesh.cell_vertices(c).size() * mesh.cell_vertices(c).size();
   std::unique_ptr<int[]> unsorted(new int[bound]);
+  advise_huge_pages(unsorted.get(), sizeof(int) * bound);
   size_t n_unsorted = 0;
   int longest = 0;
   for (int v = 0; v < nV; ++v) {
@@ -91,6 +105,8 @@ SparseMatrix pattern_and_slots(const VolumeMesh& mesh, CellSlots* slots) {
   // appending v to column u for each row u of column v leaves every column's rows ascending.
   SparseMatrix pattern(nV, nV);
   pattern.resizeNonZeros(long(n_unsorted));
+  advise_huge_pages(pattern.innerIndexPtr(), sizeof(int) * n_unsorted);
+  advise_huge_pages(pattern.valuePtr(), sizeof(double) * n_unsorted);
   std::copy(outer.begin(), outer.end(), pattern.outerIndexPtr());
   int* inner = pattern.innerIndexPtr();
   std::copy(outer.begin(), outer.end() - 1, fill.begin());
@@ -104,7 +120,7 @@ SparseMatrix pattern_and_slots(const VolumeMesh& mesh, CellSlots* slots) {
     const long m = long(mesh.cell_vertices(c).size());
     slots->offset[c + 1] = slots->offset[c] + m * m;
   }
-  slots->slot.resize(size_t(slots->offset[nC]));
+  slots->slot = fresh_vector<std::uint16_t>(size_t(slots->offset[nC]));
   std::vector<int>& where = mark;  // row -> slot in the current column
   for (int v = 0; v < nV; ++v) {
     for (int k = outer[v]; k < outer[v + 1]; ++k) where[inner[k]] = k - outer[v];
@@ -361,7 +377,14 @@ VolumeLaplacian assemble_volume_laplacian(const VolumeMesh& mesh, const VolumeRe
     SparseMatrix built = pattern_and_slots(mesh, &slots);  // values already zero
     L.S.swap(built);  // Eigen's assignment from a returned matrix would copy it
   }
-  L.M = L.S;
+  // M: S's pattern, zero values (a copy by hand, so that its arrays take huge pages too).
+  L.M.resize(L.S.rows(), L.S.cols());
+  L.M.resizeNonZeros(L.S.nonZeros());
+  advise_huge_pages(L.M.innerIndexPtr(), sizeof(int) * size_t(L.S.nonZeros()));
+  advise_huge_pages(L.M.valuePtr(), sizeof(double) * size_t(L.S.nonZeros()));
+  std::copy_n(L.S.outerIndexPtr(), L.S.outerSize() + 1, L.M.outerIndexPtr());
+  std::copy_n(L.S.innerIndexPtr(), L.S.nonZeros(), L.M.innerIndexPtr());
+  std::fill_n(L.M.valuePtr(), L.S.nonZeros(), 0.0);
   const int nC = mesh.n_cells(), nV = mesh.n_vertices();
   const int* outer = L.S.outerIndexPtr();
   const int* inner = L.S.innerIndexPtr();
