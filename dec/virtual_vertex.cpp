@@ -145,7 +145,7 @@ inline bool least_norm_affine_weights(T* Y, int n_dyn, const T y[3], T* w, const
 // eigenvalue is certainly above the cut (sigma_2 kept, as the SVD would).
 struct PlaneFrame {
   double p[3], q[3];
-  double g00, g01, g11, det;     // G
+  double g00, g01, g11, det, inv_det;  // G
   double a00, a01, a11, b0, b1;  // the in-plane squared-area system (planar_squared_area_point())
 };
 
@@ -166,10 +166,23 @@ inline bool plane_frame(const double* Y, int n_dyn, const PlanarityCut& planarit
     v0 += a[1] * b[2] - a[2] * b[1], v1 += a[2] * b[0] - a[0] * b[2], v2 += a[0] * b[1] - a[1] * b[0];
     F2 += a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
   }
-  const double vn = std::sqrt(v0 * v0 + v1 * v1 + v2 * v2), F = std::sqrt(F2);
+  const double vn2 = v0 * v0 + v1 * v1 + v2 * v2, F = std::sqrt(F2);
   const double eps = std::numeric_limits<double>::epsilon();
-  if (!(vn > 0)) return false;
-  v0 /= vn, v1 /= vn, v2 /= vn;
+  if (!(vn2 > 0)) return false;
+  // p = e x v normalized, with e the z axis unless |v_z| >= 0.9 |v|, then the x axis (so
+  // |e x v| >= sqrt(0.19) |v|), and q = v x p / |v|. p needs no normalized v, so its square root
+  // and the one of |v| run side by side (the frame is on the weights' critical path).
+  double* p = fr.p;
+  if (v2 * v2 < 0.81 * vn2) {
+    const double s = 1 / std::sqrt(v0 * v0 + v1 * v1);
+    p[0] = -v1 * s, p[1] = v0 * s, p[2] = 0;
+  } else {
+    const double s = 1 / std::sqrt(v1 * v1 + v2 * v2);
+    p[0] = 0, p[1] = -v2 * s, p[2] = v1 * s;
+  }
+  const double inv = 1 / std::sqrt(vn2);
+  v0 *= inv, v1 *= inv, v2 *= inv;
+  fr.q[0] = v1 * p[2] - v2 * p[1], fr.q[1] = v2 * p[0] - v0 * p[2], fr.q[2] = v0 * p[1] - v1 * p[0];
   double h2 = 0;
   for (int k = 0; k < n; ++k) {
     const double h = Y[3 * k] * v0 + Y[3 * k + 1] * v1 + Y[3 * k + 2] * v2;
@@ -179,17 +192,6 @@ inline bool plane_frame(const double* Y, int n_dyn, const PlanarityCut& planarit
   const double h = std::sqrt(h2);
   if (!(h <= 64 * eps * F) || !(h + 16 * eps * F <= planarity_cut<double>(planarity, n, F / std::sqrt(3.0))))
     return false;
-  // p = e x v normalized, with e the z axis unless |v_z| >= 0.9, then the x axis (so
-  // |e x v| >= sqrt(0.19)), and q = v x p.
-  double* p = fr.p;
-  if (std::abs(v2) < 0.9) {
-    const double s = 1 / std::sqrt(v0 * v0 + v1 * v1);
-    p[0] = -v1 * s, p[1] = v0 * s, p[2] = 0;
-  } else {
-    const double s = 1 / std::sqrt(v1 * v1 + v2 * v2);
-    p[0] = 0, p[1] = -v2 * s, p[2] = v1 * s;
-  }
-  fr.q[0] = v1 * p[2] - v2 * p[1], fr.q[1] = v2 * p[0] - v0 * p[2], fr.q[2] = v0 * p[1] - v1 * p[0];
   // G and, from the edges e_k in plane coordinates turned by 90 degrees (e_k' = (-e_t, e_s)), the
   // in-plane squared-area system A = sum_k e_k' e_k'^T, b = sum_k e_k' (e_k' . y_k).
   fr.g00 = fr.g01 = fr.g11 = fr.a00 = fr.a01 = fr.a11 = fr.b0 = fr.b1 = 0;
@@ -206,6 +208,7 @@ inline bool plane_frame(const double* Y, int n_dyn, const PlanarityCut& planarit
   }
   const double tr = fr.g00 + fr.g11;
   fr.det = fr.g00 * fr.g11 - fr.g01 * fr.g01;
+  fr.inv_det = 1 / fr.det;
   // lambda_min(G) >= det / trace must clear (2 cut)^2, the cut taken at its largest (sigma_max <= |Y|_F).
   const double cut = planarity_cut<double>(planarity, n, F);
   return fr.det >= 1e-4 * tr * tr && fr.det > 4 * cut * cut * tr;
@@ -213,21 +216,22 @@ inline bool plane_frame(const double* Y, int n_dyn, const PlanarityCut& planarit
 
 // The squared-area minimizer (eq. 38) in the plane from the frame's system (the in-plane block of
 // squared_area_system(), whose normal direction decouples for a planar polygon). False (nothing
-// written) when a pivot is at most 1e-3 of the trace (nearly parallel edges).
+// written) when a pivot of its LDL^T is at most 1e-3 of the trace (nearly parallel edges); the
+// solution itself by the 2 x 2 inverse (one division instead of three in a row).
 inline bool planar_squared_area_point(const PlaneFrame& fr, double& ys, double& yt) {
   const double tau = 1e-3 * (fr.a00 + fr.a11);
-  if (!(fr.a00 > tau)) return false;
-  const double l10 = fr.a01 / fr.a00, d1 = fr.a11 - l10 * fr.a01;
-  if (!(d1 > tau)) return false;
-  yt = (fr.b1 - l10 * fr.b0) / d1;
-  ys = fr.b0 / fr.a00 - l10 * yt;
+  const double det = fr.a00 * fr.a11 - fr.a01 * fr.a01;  // a00 times the second pivot
+  if (!(fr.a00 > tau) || !(det > tau * fr.a00)) return false;
+  const double inv = 1 / det;
+  ys = (fr.a11 * fr.b0 - fr.a01 * fr.b1) * inv;
+  yt = (fr.a00 * fr.b1 - fr.a01 * fr.b0) * inv;
   return true;
 }
 
 // w_k = 1/n + Y_k . (c0 p + c1 q) with (c0, c1) = G^-1 (ys, yt): the least-norm affine weights of
 // the in-plane point (ys, yt).
 inline void planar_weights(const double* Y, int n, const PlaneFrame& fr, double ys, double yt, double* w) {
-  const double c0 = (fr.g11 * ys - fr.g01 * yt) / fr.det, c1 = (fr.g00 * yt - fr.g01 * ys) / fr.det;
+  const double c0 = (fr.g11 * ys - fr.g01 * yt) * fr.inv_det, c1 = (fr.g00 * yt - fr.g01 * ys) * fr.inv_det;
   const double z0 = c0 * fr.p[0] + c1 * fr.q[0], z1 = c0 * fr.p[1] + c1 * fr.q[1], z2 = c0 * fr.p[2] + c1 * fr.q[2];
   for (int k = 0; k < n; ++k) w[k] = Y[3 * k] * z0 + Y[3 * k + 1] * z1 + Y[3 * k + 2] * z2 + 1.0 / double(n);
 }

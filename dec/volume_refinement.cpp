@@ -70,13 +70,23 @@ Eigen::Matrix3d to_matrix(const Sym3& a) {
   return A;
 }
 
-// Solves A x = b (A positive semi-definite) by Cholesky when lambda_min > tau lambda_max; false
-// (x not written) otherwise. det A > tau trace(A)^3 implies the criterion without the
-// eigenvalues (the usual case); failing that, the closed-form eigenvalues decide.
+// Solves A x = b (A positive semi-definite) when lambda_min > tau lambda_max; false (x not
+// written) otherwise. det A > tau trace(A)^3 implies the criterion without the eigenvalues (the
+// usual case); failing that, the closed-form eigenvalues decide. When det A > 1e-6 trace(A)^3
+// (condition number below 1e6) by the adjugate, x = adj(A) b / det A (one division, no chain of
+// square roots), otherwise by Cholesky.
 bool well_conditioned_solve(const Sym3& a, const double* b, double tau, double* x) {
   const double tr = a[0] + a[3] + a[5];
-  const double det = a[0] * (a[3] * a[5] - a[4] * a[4]) - a[1] * (a[1] * a[5] - a[4] * a[2]) +
-                     a[2] * (a[1] * a[4] - a[3] * a[2]);
+  const double c00 = a[3] * a[5] - a[4] * a[4], c01 = a[4] * a[2] - a[1] * a[5], c02 = a[1] * a[4] - a[3] * a[2];
+  const double det = a[0] * c00 + a[1] * c01 + a[2] * c02;
+  if (det > 1e-6 * tr * tr * tr && det > tau * tr * tr * tr) {
+    const double c11 = a[0] * a[5] - a[2] * a[2], c12 = a[1] * a[2] - a[0] * a[4], c22 = a[0] * a[3] - a[1] * a[1];
+    const double inv = 1 / det;
+    x[0] = (c00 * b[0] + c01 * b[1] + c02 * b[2]) * inv;
+    x[1] = (c01 * b[0] + c11 * b[1] + c12 * b[2]) * inv;
+    x[2] = (c02 * b[0] + c12 * b[1] + c22 * b[2]) * inv;
+    return true;
+  }
   if (!(det > tau * tr * tr * tr)) {
     const Eigen::Matrix3d A = to_matrix(a);
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;

@@ -247,7 +247,7 @@ void add_face(const SubTet* flags, int n_dyn, const int* o, const double* w, con
       Dn2 = dot(Dn, Dn);
     }
     const double vol6 = std::abs(dot(pa, Dn));
-    F.mv[i] = vol6 / 120.0;
+    F.mv[i] = vol6 * (1.0 / 120.0);
     double kaa = 0, kab = 0, kaq = 0, kac = 0, kbb = 0, kbq = 0, kbc = 0;
     if (flags[i] != SubTet::Degenerate && vol6 > 0) {
       cross(pa, pb, E);
