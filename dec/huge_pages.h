@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
+#include <vector>
 
 #if defined(__linux__)
 #include <sys/mman.h>
@@ -28,6 +29,16 @@ inline void advise_huge_pages(const void* data, std::size_t bytes) {
   (void)data;
   (void)bytes;
 #endif
+}
+
+// v set to n copies of `value` in fresh storage advised as above before its first write (v's
+// previous storage is released first).
+template <class T>
+void assign_on_huge_pages(std::vector<T>& v, std::size_t n, const T& value = T()) {
+  std::vector<T>().swap(v);
+  v.reserve(n);
+  advise_huge_pages(v.data(), n * sizeof(T));
+  v.assign(n, value);
 }
 
 }  // namespace polydec

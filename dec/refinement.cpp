@@ -107,14 +107,10 @@ Refinement refine(const Mesh& mesh, const RefinementOptions& options) {
   Refinement r;
   r.options = options;
   // Large outputs on huge pages where available (first-touch faults dominate otherwise).
-  r.weights.reserve(mesh.n_halfedges());
-  advise_huge_pages(r.weights.data(), sizeof(double) * mesh.n_halfedges());
-  r.weights.resize(mesh.n_halfedges());
+  assign_on_huge_pages(r.weights, size_t(mesh.n_halfedges()));
   r.virtual_points.resize(mesh.n_faces(), 3);
   advise_huge_pages(r.virtual_points.data(), sizeof(double) * 3 * mesh.n_faces());
-  r.fan.reserve(mesh.n_halfedges());
-  advise_huge_pages(r.fan.data(), mesh.n_halfedges());
-  r.fan.assign(mesh.n_halfedges(), FanTriangle::Valid);
+  assign_on_huge_pages(r.fan, size_t(mesh.n_halfedges()), FanTriangle::Valid);
   // Faces are independent: T threads take contiguous face ranges, each with its own scratch
   // (sized once for the largest face: corner positions, centred positions, the weights' work
   // space; no allocation per face) and its own counts, summed at the end.

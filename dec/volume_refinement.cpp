@@ -51,16 +51,6 @@ std::string to_string(CellPointRule rule) {
 namespace volume_refinement_detail {
 namespace {
 
-// v resized to n value-initialized entries, its storage advised to take huge pages before it is
-// first written (advise_huge_pages()). v is empty or small on entry.
-template <class T>
-void fresh_resize(std::vector<T>& v, size_t n) {
-  std::vector<T>().swap(v);
-  v.reserve(n);
-  advise_huge_pages(v.data(), n * sizeof(T));
-  v.resize(n);
-}
-
 // A symmetric 3x3 matrix by its upper triangle (a00, a01, a02, a11, a12, a22).
 using Sym3 = std::array<double, 6>;
 
@@ -218,7 +208,7 @@ VolumeRefinement refine_volume(const VolumeMesh& mesh, const VolumeRefinementOpt
 
   // The large arrays are advised to take huge pages before they are first written (first-touch
   // page faults dominate large meshes; dec/huge_pages.h).
-  fresh_resize(R.face_weights, mesh.face_indices().size());
+  assign_on_huge_pages(R.face_weights, mesh.face_indices().size());
   R.face_points.resize(nF, 3);
   advise_huge_pages(R.face_points.data(), sizeof(double) * 3 * size_t(nF));
   // Each face's moment N_f = sum_i n_i n_i^T of its fan triangles' normals
@@ -226,7 +216,7 @@ VolumeRefinement refine_volume(const VolumeMesh& mesh, const VolumeRefinementOpt
   // that the face contributes (below), the same for both of its cells (n_i changes sign with the
   // orientation), so computed once here.
   std::vector<Sym3> moments;
-  fresh_resize(moments, size_t(nF));
+  assign_on_huge_pages(moments, size_t(nF));
   const double planarity =
       options.planarity_tolerance > 0 ? options.planarity_tolerance : mesh.precision().planarity_tolerance;
   const double noise = mesh.coordinate_noise();
@@ -265,16 +255,16 @@ VolumeRefinement refine_volume(const VolumeMesh& mesh, const VolumeRefinementOpt
 
   R.cell_points.resize(nC, 3);
   advise_huge_pages(R.cell_points.data(), sizeof(double) * 3 * size_t(nC));
-  fresh_resize(R.cell_weight_offsets, size_t(nC) + 1);
-  fresh_resize(R.tet_offsets, size_t(nC) + 1);
+  assign_on_huge_pages(R.cell_weight_offsets, size_t(nC) + 1);
+  assign_on_huge_pages(R.tet_offsets, size_t(nC) + 1);
   for (int c = 0; c < nC; ++c) {
     int n_tets = 0;
     for (int hf : mesh.cell(c)) n_tets += mesh.face_size(hf / 2);
     R.tet_offsets[c + 1] = R.tet_offsets[c] + n_tets;
     R.cell_weight_offsets[c + 1] = R.cell_weight_offsets[c] + int(mesh.cell_vertices(c).size());
   }
-  fresh_resize(R.cell_weights, size_t(R.cell_weight_offsets[nC]));
-  fresh_resize(R.tets, size_t(R.tet_offsets[nC]));
+  assign_on_huge_pages(R.cell_weights, size_t(R.cell_weight_offsets[nC]));
+  assign_on_huge_pages(R.tets, size_t(R.tet_offsets[nC]));
   std::vector<SubTetQuality> quality(T);
   // One cell, in coordinates relative to the mean o of its vertices. The squared-volume normal
   // equations are N x = r with N = sum_f N_f and r = sum_f N_f (x_f - o) (6 vol of a sub-tetrahedron

@@ -37,17 +37,6 @@ SparseMatrix volume_prolongation(const VolumeMesh& mesh, const VolumeRefinement&
 namespace volume_laplacian_detail {
 namespace {
 
-// A vector of n value-initialized T whose storage is advised to take huge pages before it is
-// first written (advise_huge_pages()).
-template <class T>
-std::vector<T> fresh_vector(size_t n, T value = T()) {
-  std::vector<T> v;
-  v.reserve(n);
-  advise_huge_pages(v.data(), n * sizeof(T));
-  v.assign(n, value);
-  return v;
-}
-
 // Where each cell's local entries go: entry (a, b) of cell c (rows and columns in the order of
 // cell_vertices(c)) is row verts[a] of column verts[b], at slot[offset[c] + a + b m] past the
 // column's start, so the assembly adds without searching the column.
@@ -64,8 +53,9 @@ SparseMatrix pattern_and_slots(const VolumeMesh& mesh, CellSlots* slots) {
     for (int v : mesh.cell_vertices(c)) ++count[v + 1];
   for (int v = 0; v < nV; ++v) count[v + 1] += count[v];
   // The cells of each vertex, with the vertex's local index in the cell.
-  std::vector<int> cells = fresh_vector<int>(size_t(count[nV])), fill(count.begin(), count.end() - 1),
-                   local = fresh_vector<int>(slots ? size_t(count[nV]) : 0);
+  std::vector<int> cells, local, fill(count.begin(), count.end() - 1);
+  assign_on_huge_pages(cells, size_t(count[nV]));
+  if (slots) assign_on_huge_pages(local, size_t(count[nV]));
   for (int c = 0; c < nC; ++c) {
     const auto verts = mesh.cell_vertices(c);
     for (size_t b = 0; b < verts.size(); ++b) {
@@ -120,7 +110,7 @@ SparseMatrix pattern_and_slots(const VolumeMesh& mesh, CellSlots* slots) {
     const long m = long(mesh.cell_vertices(c).size());
     slots->offset[c + 1] = slots->offset[c] + m * m;
   }
-  slots->slot = fresh_vector<std::uint16_t>(size_t(slots->offset[nC]));
+  assign_on_huge_pages(slots->slot, size_t(slots->offset[nC]));
   std::vector<int>& where = mark;  // row -> slot in the current column
   for (int v = 0; v < nV; ++v) {
     for (int k = outer[v]; k < outer[v + 1]; ++k) where[inner[k]] = k - outer[v];
