@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
+#include <memory>
 #include <vector>
 
 #if defined(__linux__)
@@ -39,6 +40,15 @@ void assign_on_huge_pages(std::vector<T>& v, std::size_t n, const T& value = T()
   v.reserve(n);
   advise_huge_pages(v.data(), n * sizeof(T));
   v.assign(n, value);
+}
+
+// An array of n default-initialized T (trivial T: not written, so no zeroing pass) advised as
+// above, for scratch that the caller fills completely before reading it.
+template <class T>
+std::unique_ptr<T[]> uninitialized_on_huge_pages(std::size_t n) {
+  std::unique_ptr<T[]> a(new T[n]);
+  advise_huge_pages(a.get(), n * sizeof(T));
+  return a;
 }
 
 }  // namespace polydec

@@ -215,8 +215,7 @@ VolumeRefinement refine_volume(const VolumeMesh& mesh, const VolumeRefinementOpt
   // n_i = (x_i - x_f) x (x_{i+1} - x_f): the part of the cells' squared-volume normal equations
   // that the face contributes (below), the same for both of its cells (n_i changes sign with the
   // orientation), so computed once here.
-  std::vector<Sym3> moments;
-  assign_on_huge_pages(moments, size_t(nF));
+  const auto moments = uninitialized_on_huge_pages<Sym3>(size_t(nF));  // every face's is written below
   const double planarity =
       options.planarity_tolerance > 0 ? options.planarity_tolerance : mesh.precision().planarity_tolerance;
   const double noise = mesh.coordinate_noise();
@@ -355,18 +354,22 @@ VolumeRefinement refine_volume(const VolumeMesh& mesh, const VolumeRefinementOpt
           const double ub0 = b[0] - q0, ub1 = b[1] - q1, ub2 = b[2] - q2;
           const double m0 = ua1 * ub2 - ua2 * ub1, m1 = ua2 * ub0 - ua0 * ub2, m2 = ua0 * ub1 - ua1 * ub0;
           const double vol6 = m0 * h0 + m1 * h1 + m2 * h2;
-          if (vol6 * vol6 > clear) {
-            *flag = vol6 < 0 ? SubTet::Valid : SubTet::Inverted;
+          if (vol6 < 0 && vol6 * vol6 > clear) {  // the usual case: valid, nothing to count
+            *flag = SubTet::Valid;
           } else {
-            auto d2 = [](double e0, double e1, double e2) { return e0 * e0 + e1 * e1 + e2 * e2; };
-            const double longest2 =
-                std::max({d2(b[0] - a[0], b[1] - a[1], b[2] - a[2]), d2(ua0, ua1, ua2), d2(ub0, ub1, ub2),
-                          d2(x0 - a[0], x1 - a[1], x2 - a[2]), d2(x0 - b[0], x1 - b[1], x2 - b[2]), d2(h0, h1, h2)});
-            *flag = classify(vol6, longest2, tol2);
+            if (vol6 * vol6 > clear) {
+              *flag = SubTet::Inverted;
+            } else {
+              auto d2 = [](double e0, double e1, double e2) { return e0 * e0 + e1 * e1 + e2 * e2; };
+              const double longest2 = std::max({d2(b[0] - a[0], b[1] - a[1], b[2] - a[2]), d2(ua0, ua1, ua2),
+                                                d2(ub0, ub1, ub2), d2(x0 - a[0], x1 - a[1], x2 - a[2]),
+                                                d2(x0 - b[0], x1 - b[1], x2 - b[2]), d2(h0, h1, h2)});
+              *flag = classify(vol6, longest2, tol2);
+            }
+            if (*flag == SubTet::Degenerate) ++Q.n_degenerate;
+            if (*flag == SubTet::Inverted) ++Q.n_inverted;
+            affected = affected || *flag != SubTet::Valid;
           }
-          if (*flag == SubTet::Degenerate) ++Q.n_degenerate;
-          if (*flag == SubTet::Inverted) ++Q.n_inverted;
-          affected = affected || *flag != SubTet::Valid;
           a[0] = b[0], a[1] = b[1], a[2] = b[2];
           ua0 = ub0, ua1 = ub1, ua2 = ub2;
         }

@@ -41,8 +41,8 @@ namespace {
 // cell_vertices(c)) is row verts[a] of column verts[b], at slot[offset[c] + a + b m] past the
 // column's start, so the assembly adds without searching the column.
 struct CellSlots {
-  std::vector<long> offset;          // |C| + 1: prefix sums of m_c^2
-  std::vector<std::uint16_t> slot;  // empty when a column has more than 65535 entries
+  std::vector<long> offset;                // |C| + 1: prefix sums of m_c^2
+  std::unique_ptr<std::uint16_t[]> slot;  // null when a column has more than 65535 entries
 };
 
 // cell_pattern(), and the cells' slots when `slots` is given.
@@ -53,9 +53,10 @@ SparseMatrix pattern_and_slots(const VolumeMesh& mesh, CellSlots* slots) {
     for (int v : mesh.cell_vertices(c)) ++count[v + 1];
   for (int v = 0; v < nV; ++v) count[v + 1] += count[v];
   // The cells of each vertex, with the vertex's local index in the cell.
-  std::vector<int> cells, local, fill(count.begin(), count.end() - 1);
-  assign_on_huge_pages(cells, size_t(count[nV]));
-  if (slots) assign_on_huge_pages(local, size_t(count[nV]));
+  // (Every entry of cells and local is written here, so they are not zeroed first.)
+  std::vector<int> fill(count.begin(), count.end() - 1);
+  const auto cells = uninitialized_on_huge_pages<int>(size_t(count[nV]));
+  const auto local = uninitialized_on_huge_pages<int>(slots ? size_t(count[nV]) : 0);
   for (int c = 0; c < nC; ++c) {
     const auto verts = mesh.cell_vertices(c);
     for (size_t b = 0; b < verts.size(); ++b) {
@@ -70,8 +71,7 @@ SparseMatrix pattern_and_slots(const VolumeMesh& mesh, CellSlots* slots) {
   std::vector<int> outer(nV + 1, 0), mark(nV, -1);
   size_t bound = 0;
   for (int c = 0; c < nC; ++c) bound += mesh.cell_vertices(c).size() * mesh.cell_vertices(c).size();
-  std::unique_ptr<int[]> unsorted(new int[bound]);
-  advise_huge_pages(unsorted.get(), sizeof(int) * bound);
+  auto unsorted = uninitialized_on_huge_pages<int>(bound);
   size_t n_unsorted = 0;
   int longest = 0;
   for (int v = 0; v < nV; ++v) {
@@ -110,7 +110,7 @@ SparseMatrix pattern_and_slots(const VolumeMesh& mesh, CellSlots* slots) {
     const long m = long(mesh.cell_vertices(c).size());
     slots->offset[c + 1] = slots->offset[c] + m * m;
   }
-  assign_on_huge_pages(slots->slot, size_t(slots->offset[nC]));
+  slots->slot = uninitialized_on_huge_pages<std::uint16_t>(size_t(slots->offset[nC]));  // all written below
   std::vector<int>& where = mark;  // row -> slot in the current column
   for (int v = 0; v < nV; ++v) {
     for (int k = outer[v]; k < outer[v + 1]; ++k) where[inner[k]] = k - outer[v];
@@ -118,7 +118,7 @@ SparseMatrix pattern_and_slots(const VolumeMesh& mesh, CellSlots* slots) {
       const int c = cells[k];
       const auto verts = mesh.cell_vertices(c);
       const long m = long(verts.size());
-      std::uint16_t* out = slots->slot.data() + slots->offset[c] + local[k] * m;
+      std::uint16_t* out = slots->slot.get() + slots->offset[c] + local[k] * m;
       if (m == 8)  // hexahedra: unrolled
         for (int a = 0; a < 8; ++a) out[a] = std::uint16_t(where[verts[a]]);
       else
@@ -383,12 +383,12 @@ VolumeLaplacian assemble_volume_laplacian(const VolumeMesh& mesh, const VolumeRe
   // Adds cell c's local matrices (column-major m x m, upper triangles) to the columns v0 <= v < v1:
   // by the cells' slots, or (a pattern given by the caller) by one forward walk per column, the
   // cell's vertices being ascending, as are a column's rows.
-  const bool by_slots = !slots.slot.empty();
+  const bool by_slots = slots.slot != nullptr;
   auto scatter = [&](int c, const double* Sc, const double* Mc, int v0, int v1) {
     const auto verts = mesh.cell_vertices(c);
     const int m = int(verts.size());
     if (by_slots) {
-      const std::uint16_t* slot = slots.slot.data() + slots.offset[c];
+      const std::uint16_t* slot = slots.slot.get() + slots.offset[c];
       for (int b = 0; b < m; ++b, slot += m) {
         if (verts[b] < v0 || verts[b] >= v1) continue;
         double *cs = sv + outer[verts[b]], *cm = mv + outer[verts[b]];
