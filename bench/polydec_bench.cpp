@@ -42,6 +42,7 @@
 #include <ctime>
 #include <malloc.h>
 #include <signal.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 #include <set>
@@ -488,6 +489,46 @@ int volume_memory(int n) {
   return 0;
 }
 
+// `--volume-phases N [R]`: R (default 2) repetitions of refine_volume, cell_pattern alone and
+// assemble_volume_laplacian (pattern included) on hex_grid_volume(N^3), each with its wall, user
+// and system time and page faults (getrusage), to see what first-touch page faults cost
+// (POLYDEC_NO_HUGE_PAGES=1 for the comparison without huge pages).
+int volume_phases(int n, int reps) {
+  struct Stamp {
+    double wall, user, sys;
+    long faults;
+  };
+  auto now = [] {
+    rusage r{};
+    getrusage(RUSAGE_SELF, &r);
+    return Stamp{std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(),
+                 double(r.ru_utime.tv_sec) + 1e-6 * double(r.ru_utime.tv_usec),
+                 double(r.ru_stime.tv_sec) + 1e-6 * double(r.ru_stime.tv_usec), r.ru_minflt};
+  };
+  auto print = [](const char* what, const Stamp& a, const Stamp& b) {
+    std::printf("  %-40s wall %8.1f ms  user %8.1f ms  system %7.1f ms  page faults %ld\n", what,
+                1e3 * (b.wall - a.wall), 1e3 * (b.user - a.user), 1e3 * (b.sys - a.sys), b.faults - a.faults);
+  };
+  const VolumeMesh mesh = hex_grid_volume(n, n, n);
+  std::printf("hex_grid_volume(%d^3): %d cells; huge pages %s\n", n, mesh.n_cells(),
+              std::getenv("POLYDEC_NO_HUGE_PAGES") ? "off (POLYDEC_NO_HUGE_PAGES)" : "advised");
+  for (int r = 0; r < reps; ++r) {
+    std::printf("repetition %d\n", r + 1);
+    const Stamp a = now();
+    const VolumeRefinement R = refine_volume(mesh);
+    const Stamp b = now();
+    const SparseMatrix pattern = cell_pattern(mesh);
+    const Stamp c = now();
+    const VolumeLaplacian L = assemble_volume_laplacian(mesh, R);
+    const Stamp d = now();
+    print("refine_volume", a, b);
+    print("cell_pattern (alone)", b, c);
+    print("assemble_volume_laplacian (pattern included)", c, d);
+    if (L.S.nonZeros() != pattern.nonZeros()) return 1;
+  }
+  return 0;
+}
+
 void bench_volumes(int big, int reps) {
   std::fprintf(stderr, "volume assembly vs plain volume reference...\n");
   try {
@@ -605,6 +646,8 @@ int main(int argc, char** argv) {
     const std::string a = argv[i];
     if (a == "--memory-child" && i + 1 < argc) return memory_child(std::stoi(argv[i + 1]));
     if (a == "--volume-memory" && i + 1 < argc) return volume_memory(std::stoi(argv[i + 1]));
+    if (a == "--volume-phases" && i + 1 < argc)
+      return volume_phases(std::stoi(argv[i + 1]), i + 2 < argc ? std::stoi(argv[i + 2]) : 2);
     if (a == "--profile" && i + 1 < argc && std::string(argv[i + 1]) == "volume") {
       // one volume assembly of hex_grid_volume(16^3), or with `cube` of cube_hexahedron_4 (with
       // `plain`: also the plain volume reference)
