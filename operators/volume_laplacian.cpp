@@ -422,8 +422,8 @@ VolumeLaplacian assemble_volume_laplacian(const VolumeMesh& mesh, const VolumeRe
     // entry receives its terms in cell order, as with one thread (bitwise identical results).
     const int block = 4096;
     std::vector<size_t> offset(size_t(block) + 1);
-    // The blocks' local matrices, 1 KB per hexahedron: one buffer of the largest block's size on
-    // huge pages, allocated once (4 KB pages cost ~1000 first-touch faults per block of hexahedra).
+    // The blocks' local matrices (1 KB per hexahedron, 4 MB per block of hexahedra): one buffer of
+    // the largest block's size, allocated once and advised for huge pages.
     size_t largest = 0;
     for (int c0 = 0; c0 < nC; c0 += block) {
       size_t size = 0;
