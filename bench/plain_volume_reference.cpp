@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "polydec/dec/volume_mesh.h"
+#include "polydec/dec/mesh/volume_mesh.h"
 
 namespace plain_volume_reference {
 

@@ -20,15 +20,15 @@
 #include "polydec/apps/applications/spectrum.h"
 #include "bench/plain_reference.h"
 #include "bench/plain_volume_reference.h"
-#include "polydec/dec/complex.h"
-#include "polydec/dec/generators.h"
-#include "polydec/dec/hodge_star.h"
-#include "polydec/dec/io.h"
-#include "polydec/dec/io_volume.h"
-#include "polydec/dec/volume_generators.h"
-#include "polydec/operators/cholesky.h"
-#include "polydec/operators/laplacian.h"
-#include "polydec/operators/volume_laplacian.h"
+#include "polydec/dec/surface/complex.h"
+#include "polydec/dec/mesh/generators.h"
+#include "polydec/dec/surface/hodge_star.h"
+#include "polydec/dec/io/mesh_io.h"
+#include "polydec/dec/io/volume_io.h"
+#include "polydec/dec/mesh/volume_generators.h"
+#include "polydec/operators/solvers/cholesky.h"
+#include "polydec/operators/surface/laplacian.h"
+#include "polydec/operators/volume/laplacian.h"
 
 #include <Eigen/SparseCholesky>
 #include <algorithm>
@@ -327,7 +327,7 @@ void bench_geodesics(const std::string& name, const Mesh& mesh, int n_sources) {
   add(r);
 }
 
-// FEEC: the coarse Hodge star star1 (dec/hodge_star.h) against the stiffness S, both from the
+// FEEC: the coarse Hodge star star1 (dec/surface/hodge_star.h) against the stiffness S, both from the
 // same refinement, each including its own sparsity structure (the cell complex, like the
 // refinement, is built once outside the timing).
 void bench_feec(const std::string& name, const Mesh& mesh, int reps) {
@@ -570,7 +570,7 @@ double cli_wall_ms(const std::string& cli, const std::string& env, const std::st
   return -1;
 }
 
-// The CLI's default BLAS policy (operators/cholesky.h: one thread) against a run forced to one
+// The CLI's default BLAS policy (operators/solvers/cholesky.h: one thread) against a run forced to one
 // BLAS thread, with two busy processes beside it: `polydec geodesics` on a 100k-vertex quad torus
 // (CHOLMOD's supernodes large enough for BLAS-3 work), three runs each, interleaved, medians of
 // wall time; one more run with OpenBLAS's own default (one thread per core) is reported.
@@ -692,7 +692,7 @@ int main(int argc, char** argv) {
   const auto t_start = Clock::now();
   // One BLAS thread by default: Eigen's factorization it is compared with is single-threaded,
   // and on a shared 2-core machine OpenBLAS's spinning worker threads lose to other processes.
-  const int blas_in_effect = polydec::set_blas_threads(blas_threads).threads;  // the library's policy (operators/cholesky.h)
+  const int blas_in_effect = polydec::set_blas_threads(blas_threads).threads;  // the library's policy (operators/solvers/cholesky.h)
   if (only == "blas-load") {
     std::fprintf(stderr, "CLI geodesics under load (%s)...\n", cli.c_str());
     bench_blas_load(cli);

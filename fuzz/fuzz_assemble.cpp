@@ -5,11 +5,11 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "polydec/dec/io.h"
-#include "polydec/dec/prolongation.h"
-#include "polydec/dec/refinement.h"
-#include "polydec/operators/gradient.h"
-#include "polydec/operators/laplacian.h"
+#include "polydec/dec/io/mesh_io.h"
+#include "polydec/dec/surface/prolongation.h"
+#include "polydec/dec/surface/refinement.h"
+#include "polydec/operators/surface/gradient.h"
+#include "polydec/operators/surface/laplacian.h"
 
 namespace {
 

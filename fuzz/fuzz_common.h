@@ -10,7 +10,7 @@
 #include <cstdlib>
 #include <string_view>
 
-#include "polydec/dec/io.h"
+#include "polydec/dec/io/mesh_io.h"
 
 namespace polydec::fuzz {
 

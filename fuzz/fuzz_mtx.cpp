@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <cstdlib>
 
-#include "polydec/dec/io.h"
+#include "polydec/dec/io/mesh_io.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {

@@ -11,7 +11,7 @@
 #include <cstdlib>
 #include <string_view>
 
-#include "polydec/dec/io_volume.h"
+#include "polydec/dec/io/volume_io.h"
 
 namespace polydec::fuzz_volume {
 

@@ -10,7 +10,7 @@ import struct
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
-# VTK's outward faces of its linear cells (local vertex numbers), as dec/polyhedron_builder.cpp.
+# VTK's outward faces of its linear cells (local vertex numbers), as dec/mesh/polyhedron_builder.cpp.
 FACES = {
     10: [[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]],
     12: [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]],

@@ -18,18 +18,18 @@ EIGEN=$(pkg-config --cflags-only-I eigen3 2>/dev/null || echo -I/usr/include/eig
 CFLAGS=(-std=c++20 -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all
         -I"$ROOT" -I"$OUT/include" ${EIGEN//-I/-isystem } -include Eigen/Dense -include Eigen/Sparse)
 mkdir -p "$OUT/objects" "$OUT/artifacts" "$OUT/include/polydec"
-# The library's include layout <polydec/dec/...> (CMakeLists.txt): links to the source folders.
+# The installed include layout <polydec/dec/...> (one root for every layer): links to the source folders.
 for part in dec operators apps; do ln -sfn "$ROOT/$part" "$OUT/include/polydec/$part"; done
 
 # The library sources the targets need, compiled with coverage instrumentation; a source is
 # rebuilt when it or any library header is newer than its object.
-newest_header=$(ls -t "$ROOT"/dec/*.h "$ROOT"/operators/*.h | head -1)
+newest_header=$(ls -t $(find "$ROOT"/dec "$ROOT"/operators -name "*.h") | head -1)
 stale=()
-SOURCES=(dec/io.cpp dec/io_obj.cpp dec/io_off.cpp dec/io_ply.cpp dec/io_matrix_market.cpp dec/mesh.cpp
-         dec/virtual_vertex.cpp dec/refinement.cpp dec/refinement_check.cpp dec/complex.cpp dec/prolongation.cpp
-         operators/local_matrices.cpp operators/laplacian.cpp operators/gradient.cpp
-         dec/volume_mesh.cpp dec/polyhedron_builder.cpp dec/volume_cells.cpp dec/io_volume.cpp dec/io_ovm.cpp
-         dec/io_vtk.cpp dec/io_medit.cpp)
+SOURCES=(dec/io/mesh_io.cpp dec/io/obj.cpp dec/io/off.cpp dec/io/ply.cpp dec/io/matrix_market.cpp dec/mesh/mesh.cpp
+         dec/surface/virtual_vertex.cpp dec/surface/refinement.cpp dec/surface/refinement_check.cpp dec/volume/refinement_check.cpp dec/surface/complex.cpp dec/surface/prolongation.cpp
+         operators/surface/local_matrices.cpp operators/surface/laplacian.cpp operators/surface/gradient.cpp
+         dec/mesh/volume_mesh.cpp dec/mesh/polyhedron_builder.cpp dec/mesh/volume_cells.cpp dec/io/volume_io.cpp dec/io/ovm.cpp
+         dec/io/vtk.cpp dec/io/medit.cpp)
 for rel in "${SOURCES[@]}"; do
   src=$ROOT/$rel
   obj="$OUT/objects/$(basename "$(dirname "$src")")_$(basename "${src%.cpp}").o"

@@ -62,8 +62,8 @@ test -s "$work/distance.ply"
 
 # pkg-config: a consumer of the operators alone compiles and links with polydec-operators.pc.
 cat > "$work/pc.cpp" <<'CPP'
-#include <polydec/dec/generators.h>
-#include <polydec/operators/laplacian.h>
+#include <polydec/dec/mesh/generators.h>
+#include <polydec/operators/surface/laplacian.h>
 int main() {
   const polydec::Mesh mesh = polydec::quad_grid(4, 4);
   const polydec::Laplacian L = polydec::assemble_laplacian(mesh, polydec::refine(mesh));

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "polydec/operators/cholesky.h"
+#include "polydec/operators/solvers/cholesky.h"
 
 namespace polydec {
 

@@ -6,7 +6,7 @@
 // H = 1/r > 0 (the sign convention of eq. 29 read for our negative semi-definite S).
 #pragma once
 
-#include "polydec/operators/laplacians.h"
+#include "polydec/operators/registry/laplacians.h"
 
 namespace polydec {
 

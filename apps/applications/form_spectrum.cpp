@@ -9,15 +9,15 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "polydec/apps/applications/complete_eigs.h"
+#include "polydec/apps/applications/detail/complete_eigs.h"
 #include "polydec/apps/applications/hodge_decomposition.h"
 #include "polydec/apps/applications/spectrum.h"
-#include "polydec/dec/complex.h"
-#include "polydec/dec/form_span.h"
-#include "polydec/dec/hodge_star.h"
-#include "polydec/dec/prolongation.h"
-#include "polydec/operators/cholesky.h"
-#include "polydec/operators/span_solver.h"
+#include "polydec/dec/surface/complex.h"
+#include "polydec/dec/surface/form_span.h"
+#include "polydec/dec/surface/hodge_star.h"
+#include "polydec/dec/surface/prolongation.h"
+#include "polydec/operators/solvers/cholesky.h"
+#include "polydec/operators/solvers/span_solver.h"
 
 namespace polydec {
 namespace form_spectrum_detail {

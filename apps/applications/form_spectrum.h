@@ -5,8 +5,8 @@
 // 1-forms: K1 w = lambda star1 w with K1 = d1^T star2 d1 + star1 d0 M0^-1 d0^T star1, M0 the
 //   0-form mass: the lumped star0 by default, or the Galerkin star0 (lumped_mass = false).
 // 2-forms: K2 u = lambda star2 u with K2 = star2 d1 star1^+ d1^T star2 (star1^+ on the span of
-//   the Whitney 1-forms, operators/span_solver.h).
-// Both are posed on the reduced basis of dec/form_span.h (w = R y), so that the mass R^T star R
+//   the Whitney 1-forms, operators/solvers/span_solver.h).
+// Both are posed on the reduced basis of dec/surface/form_span.h (w = R y), so that the mass R^T star R
 // is positive definite. The shift-inverted operator (K - sigma B)^-1 is applied without forming
 // K (M0^-1 and star1^-1 make it dense-ish): the symmetric quasi-definite system
 //   1-forms: [R1^T d1^T star2 d1 R1 - sigma B1,  R1^T star1 d0;  d0^T star1 R1,  -M0]
@@ -27,8 +27,8 @@
 #include <string>
 #include <vector>
 
-#include "polydec/dec/mesh.h"
-#include "polydec/dec/refinement.h"
+#include "polydec/dec/mesh/mesh.h"
+#include "polydec/dec/surface/refinement.h"
 
 namespace polydec {
 

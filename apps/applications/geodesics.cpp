@@ -6,7 +6,7 @@
 #include <limits>
 #include <numeric>
 
-#include "polydec/dec/huge_pages.h"
+#include "polydec/dec/detail/huge_pages.h"
 
 namespace polydec {
 
@@ -68,7 +68,7 @@ HeatGeodesics::HeatGeodesics(const Mesh& mesh, const HeatGeodesicsOptions& optio
 HeatGeodesics::HeatGeodesics(OperatorSet operators, double mean_edge_length, const HeatGeodesicsOptions& options)
     : ops_(take(operators)), options_(options) {
   // By shape, not by emptiness: a mesh without faces has a 0 x |V| gradient. |V| is S's size, so
-  // that an operator set without a surface domain (a volume mesh's, operators/volume_laplacians.h)
+  // that an operator set without a surface domain (a volume mesh's, operators/registry/volume_laplacians.h)
   // works the same way.
   const int nv = int(ops_.S.rows());
   if (ops_.G.cols() != nv || ops_.D.rows() != nv)

@@ -4,8 +4,8 @@
 // Time step t = factor * (mean edge length of the input mesh)^2 (factor 1 by default, as in the
 // paper). The constructor factors (M - t S) and the pinned Poisson matrix -S once; every
 // distance() call then costs two back-substitutions and linear work. Works with any
-// OperatorSet that has G and D (operators/laplacians.h), including the volume ones of
-// operators/volume_laplacians.h (pass the volume mesh's mean edge length); sources and results are
+// OperatorSet that has G and D (operators/registry/laplacians.h), including the volume ones of
+// operators/registry/volume_laplacians.h (pass the volume mesh's mean edge length); sources and results are
 // indexed by the input mesh's vertices.
 // Distances are shifted so that their minimum over each connected component that contains a
 // source is 0; vertices that no source reaches get +infinity: other components, unreferenced
@@ -13,8 +13,8 @@
 // pattern, so a strip of zero-area faces separates, as it does for the heat flow).
 #pragma once
 
-#include "polydec/operators/cholesky.h"
-#include "polydec/operators/laplacians.h"
+#include "polydec/operators/solvers/cholesky.h"
+#include "polydec/operators/registry/laplacians.h"
 
 #include <limits>
 #include <span>

@@ -9,7 +9,7 @@
 #include <stdexcept>
 
 #include "polydec/apps/applications/curvature.h"
-#include "polydec/operators/cholesky.h"
+#include "polydec/operators/solvers/cholesky.h"
 
 namespace polydec {
 

@@ -10,7 +10,7 @@
 
 #include <vector>
 
-#include "polydec/operators/laplacians.h"
+#include "polydec/operators/registry/laplacians.h"
 
 namespace polydec {
 

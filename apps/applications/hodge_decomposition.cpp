@@ -7,7 +7,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "polydec/dec/hodge_star.h"
+#include "polydec/dec/surface/hodge_star.h"
 
 namespace polydec {
 

@@ -22,9 +22,9 @@
 #include <Eigen/Sparse>
 #include <memory>
 
-#include "polydec/dec/complex.h"
-#include "polydec/dec/refinement.h"
-#include "polydec/operators/cholesky.h"
+#include "polydec/dec/surface/complex.h"
+#include "polydec/dec/surface/refinement.h"
+#include "polydec/operators/solvers/cholesky.h"
 
 namespace polydec {
 

@@ -3,8 +3,8 @@
 // faces, and the fan quality of the paper's refinement.
 #pragma once
 
-#include "polydec/dec/mesh.h"
-#include "polydec/dec/refinement.h"
+#include "polydec/dec/mesh/mesh.h"
+#include "polydec/dec/surface/refinement.h"
 
 #include <map>
 

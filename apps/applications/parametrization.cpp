@@ -9,8 +9,8 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "polydec/dec/io.h"
-#include "polydec/operators/cholesky.h"
+#include "polydec/dec/io/mesh_io.h"
+#include "polydec/operators/solvers/cholesky.h"
 
 namespace polydec {
 

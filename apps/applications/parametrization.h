@@ -14,8 +14,8 @@
 
 #include <string>
 
-#include "polydec/dec/refinement.h"
-#include "polydec/operators/laplacians.h"
+#include "polydec/dec/surface/refinement.h"
+#include "polydec/operators/registry/laplacians.h"
 
 namespace polydec {
 

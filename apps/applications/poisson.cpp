@@ -6,9 +6,9 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "polydec/apps/pictures/plot.h"
-#include "polydec/dec/generators.h"
-#include "polydec/operators/cholesky.h"
+#include "polydec/apps/applications/convergence.h"
+#include "polydec/dec/mesh/generators.h"
+#include "polydec/operators/solvers/cholesky.h"
 
 namespace polydec {
 

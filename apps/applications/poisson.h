@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "polydec/operators/laplacians.h"
+#include "polydec/operators/registry/laplacians.h"
 
 namespace polydec {
 
@@ -56,12 +56,12 @@ struct ConvergenceSeries {
 };
 
 struct ConvergenceOptions {
-  std::vector<int> resolutions{8, 16, 32, 64};  // n x n cells of dec/generators.h's grids
+  std::vector<int> resolutions{8, 16, 32, 64};  // n x n cells of dec/mesh/generators.h's grids
   bool lumped_mass = true;
   LaplacianChoice laplacian = parse_laplacian("ours");
 };
 
-// The study of Figure 9 on triangle_grid, quad_grid and hex_grid (dec/generators.h), all on
+// The study of Figure 9 on triangle_grid, quad_grid and hex_grid (dec/mesh/generators.h), all on
 // [0,1]^2 with the square as boundary.
 std::vector<ConvergenceSeries> franke_convergence(const ConvergenceOptions& options = {});
 

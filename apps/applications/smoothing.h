@@ -8,8 +8,8 @@
 
 #include <memory>
 
-#include "polydec/operators/cholesky.h"
-#include "polydec/operators/laplacians.h"
+#include "polydec/operators/solvers/cholesky.h"
+#include "polydec/operators/registry/laplacians.h"
 
 namespace polydec {
 

@@ -13,9 +13,9 @@
 #include <memory>
 #include <stdexcept>
 
-#include "polydec/apps/applications/complete_eigs.h"
-#include "polydec/dec/huge_pages.h"
-#include "polydec/operators/cholesky.h"
+#include "polydec/apps/applications/detail/complete_eigs.h"
+#include "polydec/dec/detail/huge_pages.h"
+#include "polydec/operators/solvers/cholesky.h"
 
 namespace polydec {
 

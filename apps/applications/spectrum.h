@@ -1,19 +1,19 @@
 // apps/applications/spectrum.h — the k smallest eigenpairs of the generalized problem -S x = lambda M x
 // (manifold harmonics, paper section 5.4) by shift-invert Lanczos, using our SparseCholesky
-// (operators/cholesky.h) to apply (-S - sigma M)^-1.
+// (operators/solvers/cholesky.h) to apply (-S - sigma M)^-1.
 // Lumped (diagonal) M: the equivalent standard problem for z = M^1/2 x, whose shift-inverted
 // operator M^1/2 (-S - sigma M)^-1 M^1/2 is symmetric, by our thick-restart Lanczos (full
 // reorthogonalization, restarts by one matrix product): Spectra's SymEigsSolver on the same
 // operator measured no faster than its generalized solver (docs/benchmarks.md, Spectrum), ours
 // 1.6x. Galerkin M: Spectra's generalized shift-invert solver (SymGEigsShiftSolver).
 //
-// Conventions: S negative semi-definite (operators/laplacian.h), so the eigenvalues are
+// Conventions: S negative semi-definite (operators/surface/laplacian.h), so the eigenvalues are
 // lambda >= 0 (0 once per connected component); eigenvectors are M-orthonormal
 // (U^T M U = I) and satisfy S U + M U diag(lambda) = 0. Unreferenced vertices (no face, zero
 // mass) are left out of the problem and get 0 in every eigenvector.
 #pragma once
 
-#include "polydec/operators/laplacians.h"
+#include "polydec/operators/registry/laplacians.h"
 
 namespace polydec {
 

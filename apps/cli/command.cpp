@@ -4,9 +4,9 @@
 
 #include <fmt/format.h>
 
-#include "polydec/dec/io.h"
-#include "polydec/dec/io_volume.h"
-#include "polydec/dec/repair.h"
+#include "polydec/dec/io/mesh_io.h"
+#include "polydec/dec/io/volume_io.h"
+#include "polydec/dec/mesh/repair.h"
 
 namespace polydec::cli {
 

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "polydec/dec/mesh.h"
-#include "polydec/dec/volume_mesh.h"
+#include "polydec/dec/mesh/mesh.h"
+#include "polydec/dec/mesh/volume_mesh.h"
 
 namespace polydec::cli {
 
@@ -37,12 +37,12 @@ struct RegisterCommand {
 void print_json(const nlohmann::json& j);
 
 // Reads the mesh at `path` (with the --planarity-tolerance of global_options() applied). With `repair_first`,
-// the opt-in repair steps of dec/repair.h run on the file's polygons before validation (coincident vertices
+// the opt-in repair steps of dec/mesh/repair.h run on the file's polygons before validation (coincident vertices
 // merged exactly, invalid and duplicate faces dropped, unreferenced vertices removed), one stderr line per
 // step that changed something; `vertex_map` (if given) receives file vertex -> mesh vertex (-1 when removed).
 Mesh load_mesh(const std::string& path, bool repair_first, std::vector<int>* vertex_map = nullptr);
 
-// Reads the volume mesh at `path` (.ovm, .vtk or .mesh by extension; dec/io_volume.h), with the
+// Reads the volume mesh at `path` (.ovm, .vtk or .mesh by extension; dec/io/volume_io.h), with the
 // global --planarity-tolerance as its precision's planarity_tolerance when one is given. Throws
 // FileError (exit code 3) for an unreadable or invalid file.
 VolumeMesh load_volume_mesh(const std::string& path);

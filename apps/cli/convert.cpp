@@ -7,9 +7,9 @@
 // --binary writes OUT in its binary form: VTK legacy BINARY (.vtk), PLY binary_little_endian
 // (.ply), OFF BINARY (.off, float32 positions).
 #include "polydec/apps/cli/command.h"
-#include "polydec/dec/generators.h"
-#include "polydec/dec/io.h"
-#include "polydec/dec/io_volume.h"
+#include "polydec/dec/mesh/generators.h"
+#include "polydec/dec/io/mesh_io.h"
+#include "polydec/dec/io/volume_io.h"
 
 #include <fmt/format.h>
 

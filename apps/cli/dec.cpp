@@ -2,9 +2,9 @@
 // in Matrix Market: d0, d1, star0, star1, star2, P0, P1, P2, plus the coarse cell lists
 // edges.txt (vertex pairs) and triangles.txt (vertex triples), 0-based, one per line, in
 // matrix order. Volume meshes (.ovm, .vtk, .mesh, or --volume): d0, d1, d2, star0..star3,
-// P0..P3 of the polyhedral refinement (dec/volume_hodge_star.h) and the coarse cell lists
+// P0..P3 of the polyhedral refinement (dec/volume/hodge_star.h) and the coarse cell lists
 // edges.txt, triangles.txt, tetrahedra.txt (vertex pairs, triples, quadruples sharing a cell), up
-// to the degree the cells' sizes allow (--max-degree; dec/volume_complex.h).
+// to the degree the cells' sizes allow (--max-degree; dec/volume/complex.h).
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
@@ -13,12 +13,12 @@
 #include <iostream>
 
 #include "polydec/apps/cli/command.h"
-#include "polydec/dec/form_span.h"
-#include "polydec/dec/hodge_star.h"
-#include "polydec/dec/io.h"
-#include "polydec/dec/io_volume.h"
-#include "polydec/dec/volume_hodge_star.h"
-#include "polydec/dec/prolongation.h"
+#include "polydec/dec/surface/form_span.h"
+#include "polydec/dec/surface/hodge_star.h"
+#include "polydec/dec/io/mesh_io.h"
+#include "polydec/dec/io/volume_io.h"
+#include "polydec/dec/volume/hodge_star.h"
+#include "polydec/dec/surface/prolongation.h"
 
 namespace polydec::cli::dec_command {
 namespace {

@@ -4,9 +4,9 @@
 #include "polydec/apps/cli/command.h"
 #include "polydec/apps/applications/geodesics.h"
 #include "polydec/apps/pictures/render.h"
-#include "polydec/dec/generators.h"
-#include "polydec/dec/io.h"
-#include "polydec/operators/laplacian.h"
+#include "polydec/dec/mesh/generators.h"
+#include "polydec/dec/io/mesh_io.h"
+#include "polydec/operators/surface/laplacian.h"
 
 #include <chrono>
 #include <cmath>

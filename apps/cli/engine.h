@@ -15,8 +15,8 @@
 
 #include "polydec/apps/applications/geodesics.h"
 #include "polydec/apps/applications/spectrum.h"
-#include "polydec/dec/mesh.h"
-#include "polydec/dec/refinement.h"
+#include "polydec/dec/mesh/mesh.h"
+#include "polydec/dec/surface/refinement.h"
 
 namespace polydec::cli {
 

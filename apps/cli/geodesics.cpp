@@ -1,6 +1,6 @@
 // apps/cli/geodesics.cpp — `polydec geodesics MESH --source V [...] --out FILE.ply`: heat-method
 // distances (paper section 5.5) written as a per-vertex PLY property and/or a picture (--png); on a
-// volume mesh (.ovm, .vtk, .mesh or --volume) with the volume operators (operators/volume_laplacians.h),
+// volume mesh (.ovm, .vtk, .mesh or --volume) with the volume operators (operators/registry/volume_laplacians.h),
 // written as VTK point data and pictured on a planar cut (apps/pictures/volume_cut.h).
 #include "polydec/apps/applications/geodesics.h"
 
@@ -12,9 +12,9 @@
 #include "polydec/apps/cli/engine.h"
 #include "polydec/apps/pictures/render.h"
 #include "polydec/apps/pictures/volume_cut.h"
-#include "polydec/dec/io.h"
-#include "polydec/dec/io_volume.h"
-#include "polydec/operators/volume_laplacians.h"
+#include "polydec/dec/io/mesh_io.h"
+#include "polydec/dec/io/volume_io.h"
+#include "polydec/operators/registry/volume_laplacians.h"
 
 namespace polydec::cli::geodesics_command {
 namespace {

@@ -6,8 +6,8 @@
 
 #include "polydec/apps/cli/command.h"
 #include "polydec/apps/pictures/render.h"
-#include "polydec/dec/generators.h"
-#include "polydec/dec/io.h"
+#include "polydec/dec/mesh/generators.h"
+#include "polydec/dec/io/mesh_io.h"
 
 namespace polydec::cli::harmonics_command {
 namespace {

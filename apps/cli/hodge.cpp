@@ -10,8 +10,8 @@
 
 #include "polydec/apps/cli/command.h"
 #include "polydec/apps/applications/hodge_decomposition.h"
-#include "polydec/dec/hodge_star.h"
-#include "polydec/dec/io.h"
+#include "polydec/dec/surface/hodge_star.h"
+#include "polydec/dec/io/mesh_io.h"
 
 namespace polydec::cli::hodge_command {
 namespace {

@@ -3,9 +3,9 @@
 // (.ovm, .vtk, .mesh or --volume) counts, cell shapes, volumes, boundary and face planarity.
 #include "polydec/apps/cli/command.h"
 #include "polydec/apps/applications/mesh_statistics.h"
-#include "polydec/dec/io.h"
-#include "polydec/dec/io_volume.h"
-#include "polydec/dec/volume_cells.h"
+#include "polydec/dec/io/mesh_io.h"
+#include "polydec/dec/io/volume_io.h"
+#include "polydec/dec/mesh/volume_cells.h"
 
 #include <Eigen/SVD>
 #include <algorithm>

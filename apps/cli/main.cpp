@@ -1,8 +1,8 @@
 // apps/cli/main.cpp — the polydec command-line program: subcommand dispatch and the mapping
 // of failures to exit codes (0 ok, 1 internal error, 2 usage, 3 bad input, 4 solver failure).
 #include "polydec/apps/cli/command.h"
-#include "polydec/dec/io.h"
-#include "polydec/operators/cholesky.h"
+#include "polydec/dec/io/mesh_io.h"
+#include "polydec/operators/solvers/cholesky.h"
 
 #include <algorithm>
 #include <fmt/format.h>

@@ -2,14 +2,14 @@
 // in Matrix Market, rows and columns in the file's vertex order. With `--repeat N` it instead
 // times N assemblies of S, M and lumped M from the loaded mesh (virtual vertices, sparsity
 // pattern and values; load time excluded) and writes no files. Volume meshes (.ovm, .vtk, .mesh,
-// or --volume) get S, M, M_lumped and P of the polyhedral refinement (operators/volume_laplacian.h).
+// or --volume) get S, M, M_lumped and P of the polyhedral refinement (operators/volume/laplacian.h).
 #include "polydec/apps/cli/command.h"
-#include "polydec/dec/io.h"
-#include "polydec/dec/io_volume.h"
-#include "polydec/dec/threads.h"
-#include "polydec/dec/prolongation.h"
-#include "polydec/operators/gradient.h"
-#include "polydec/operators/volume_laplacian.h"
+#include "polydec/dec/io/mesh_io.h"
+#include "polydec/dec/io/volume_io.h"
+#include "polydec/dec/detail/threads.h"
+#include "polydec/dec/surface/prolongation.h"
+#include "polydec/operators/surface/gradient.h"
+#include "polydec/operators/volume/laplacian.h"
 
 #include <algorithm>
 #include <chrono>

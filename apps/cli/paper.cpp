@@ -12,7 +12,7 @@
 #include "polydec/apps/cli/command.h"
 #include "polydec/apps/pictures/image.h"
 #include "polydec/apps/paper/paper.h"
-#include "polydec/dec/io.h"
+#include "polydec/dec/io/mesh_io.h"
 
 namespace polydec::cli::paper_command {
 namespace {

@@ -5,7 +5,7 @@
 #include "polydec/apps/cli/command.h"
 #include "polydec/apps/applications/parametrization.h"
 #include "polydec/apps/pictures/render.h"
-#include "polydec/dec/io.h"
+#include "polydec/dec/io/mesh_io.h"
 
 namespace polydec::cli::parametrize_command {
 namespace {

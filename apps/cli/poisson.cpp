@@ -8,13 +8,13 @@
 #include <cmath>
 #include <map>
 
-#include "polydec/apps/applications/volume_poisson.h"
+#include "polydec/apps/applications/volume/poisson.h"
 #include "polydec/apps/cli/command.h"
 #include "polydec/apps/pictures/plot.h"
 #include "polydec/apps/pictures/render.h"
-#include "polydec/dec/generators.h"
-#include "polydec/dec/volume_generators.h"
-#include "polydec/operators/volume_laplacians.h"
+#include "polydec/dec/mesh/generators.h"
+#include "polydec/dec/mesh/volume_generators.h"
+#include "polydec/operators/registry/volume_laplacians.h"
 
 namespace polydec::cli::poisson_command {
 namespace {

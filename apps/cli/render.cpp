@@ -10,9 +10,9 @@
 #include "polydec/apps/applications/geodesics.h"
 #include "polydec/apps/cli/command.h"
 #include "polydec/apps/pictures/volume_cut.h"
-#include "polydec/dec/io.h"
-#include "polydec/dec/io_volume.h"
-#include "polydec/operators/volume_laplacians.h"
+#include "polydec/dec/io/mesh_io.h"
+#include "polydec/dec/io/volume_io.h"
+#include "polydec/operators/registry/volume_laplacians.h"
 
 namespace polydec::cli::render_command {
 namespace {

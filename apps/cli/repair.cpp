@@ -1,15 +1,15 @@
 // apps/cli/repair.cpp — `polydec repair IN OUT [--merge-tolerance R]`: the opt-in repair steps of
-// dec/repair.h (merge coincident vertices, drop invalid faces, remove duplicate faces and
+// dec/mesh/repair.h (merge coincident vertices, drop invalid faces, remove duplicate faces and
 // unreferenced vertices), printing what each changed, then the diagnostics of the result.
-#include "polydec/dec/repair.h"
+#include "polydec/dec/mesh/repair.h"
 
 #include <fmt/format.h>
 
 #include <cmath>
 
 #include "polydec/apps/cli/command.h"
-#include "polydec/dec/io.h"
-#include "polydec/dec/mesh_checks.h"
+#include "polydec/dec/io/mesh_io.h"
+#include "polydec/dec/mesh/mesh_checks.h"
 
 namespace polydec::cli::repair_command {
 namespace {

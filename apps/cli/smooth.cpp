@@ -8,7 +8,7 @@
 #include "polydec/apps/applications/curvature.h"
 #include "polydec/apps/pictures/render.h"
 #include "polydec/apps/applications/smoothing.h"
-#include "polydec/dec/io.h"
+#include "polydec/dec/io/mesh_io.h"
 
 namespace polydec::cli::smooth_command {
 namespace {

@@ -8,7 +8,7 @@
 #include "polydec/apps/applications/spectral_tools.h"
 #include "polydec/apps/cli/command.h"
 #include "polydec/apps/pictures/render.h"
-#include "polydec/dec/io.h"
+#include "polydec/dec/io/mesh_io.h"
 
 namespace polydec::cli::spectral_command {
 namespace {

@@ -1,7 +1,7 @@
 // apps/cli/spectrum.cpp — `polydec spectrum MESH --k K --out DIR`: the k smallest eigenpairs of
 // -S x = lambda M x (manifold harmonics) with Spectra's shift-invert solver; with --form 1|2 those
 // of the Hodge Laplacian on Whitney 1- or 2-forms (apps/applications/form_spectrum.h). On a volume mesh
-// (.ovm, .vtk, .mesh or --volume): the volume operators (operators/volume_laplacians.h), Neumann,
+// (.ovm, .vtk, .mesh or --volume): the volume operators (operators/registry/volume_laplacians.h), Neumann,
 // eigenvectors as VTK point data, the picture on a planar cut (apps/pictures/volume_cut.h).
 #include "polydec/apps/applications/spectrum.h"
 
@@ -16,11 +16,11 @@
 #include "polydec/apps/pictures/render.h"
 #include "polydec/apps/pictures/vector_field.h"
 #include "polydec/apps/pictures/volume_cut.h"
-#include "polydec/dec/complex.h"
-#include "polydec/dec/io.h"
-#include "polydec/dec/io_volume.h"
-#include "polydec/dec/prolongation.h"
-#include "polydec/operators/volume_laplacians.h"
+#include "polydec/dec/surface/complex.h"
+#include "polydec/dec/io/mesh_io.h"
+#include "polydec/dec/io/volume_io.h"
+#include "polydec/dec/surface/prolongation.h"
+#include "polydec/operators/registry/volume_laplacians.h"
 
 namespace polydec::cli::spectrum_command {
 namespace {

@@ -1,6 +1,6 @@
 // apps/cli/volume_spectrum.cpp — `polydec volume-spectrum`: the smallest eigenvalues of the volume Laplacian
 // on a generated hexahedral unit ball against the analytic ones (zeros of spherical Bessel functions).
-#include "polydec/apps/applications/volume_spectrum.h"
+#include "polydec/apps/applications/volume/spectrum.h"
 
 #include <fmt/format.h>
 

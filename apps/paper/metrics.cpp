@@ -5,7 +5,7 @@
 #include <random>
 #include <stdexcept>
 
-#include "polydec/operators/cholesky.h"
+#include "polydec/operators/solvers/cholesky.h"
 
 namespace polydec {
 

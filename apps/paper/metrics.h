@@ -7,8 +7,8 @@
 // copy (apps/applications/parametrization.h).
 #pragma once
 
-#include "polydec/dec/mesh.h"
-#include "polydec/operators/laplacian.h"
+#include "polydec/dec/mesh/mesh.h"
+#include "polydec/operators/surface/laplacian.h"
 
 namespace polydec {
 

@@ -23,10 +23,10 @@
 #include "polydec/apps/applications/poisson.h"
 #include "polydec/apps/pictures/render.h"
 #include "polydec/apps/applications/smoothing.h"
-#include "polydec/dec/generators.h"
-#include "polydec/dec/io.h"
-#include "polydec/operators/cholesky.h"
-#include "polydec/operators/laplacians.h"
+#include "polydec/dec/mesh/generators.h"
+#include "polydec/dec/io/mesh_io.h"
+#include "polydec/operators/solvers/cholesky.h"
+#include "polydec/operators/registry/laplacians.h"
 
 namespace polydec {
 namespace {
@@ -34,7 +34,7 @@ namespace {
 using json = nlohmann::json;
 using Clock = std::chrono::steady_clock;
 
-// Every operator of operators/laplacians.h, with the parameters the paper uses.
+// Every operator of operators/registry/laplacians.h, with the parameters the paper uses.
 const std::vector<std::string> kAllMethods = {"ours",
                                               "centroid",
                                               "abs-area",

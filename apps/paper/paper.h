@@ -1,6 +1,6 @@
 // apps/paper/paper.h — the whole evaluation of "Polygon Laplacian Made Simple" (section 5: Tables 1-6,
 // Figure 9, the negative off-diagonal ratios of section 5.5 and Figure 7/8-style pictures) with
-// every Laplacian of operators/laplacians.h, run on the paper's meshes (../shared/data, set-up as
+// every Laplacian of operators/registry/laplacians.h, run on the paper's meshes (../shared/data, set-up as
 // its README describes). `polydec paper` (apps/cli/paper.cpp) writes what this returns.
 //
 // Results are JSON: table ("table1" ... "table6", "figure9", "figure7") -> mesh (the paper's name,

@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "polydec/apps/applications/spectrum.h"
-#include "polydec/operators/cholesky.h"
+#include "polydec/operators/solvers/cholesky.h"
 
 namespace polydec {
 

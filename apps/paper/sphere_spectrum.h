@@ -8,12 +8,12 @@
 #include <string>
 #include <vector>
 
-#include "polydec/dec/mesh.h"
+#include "polydec/dec/mesh/mesh.h"
 
 namespace polydec {
 
 // Relative errors |lambda_i / (l(l+1)) - 1| over i = 1..99 for the operator `method` (a name of
-// operators/laplacians.h) on `mesh`: {"mean": ..., "max": ..., "per_band": [l = 1..9 maxima]}.
+// operators/registry/laplacians.h) on `mesh`: {"mean": ..., "max": ..., "per_band": [l = 1..9 maxima]}.
 // Values are null when the solver fails (the message under "error").
 nlohmann::json sphere_spectrum_errors(const Mesh& mesh, const std::string& method);
 

@@ -8,10 +8,10 @@
 #include <cmath>
 #include <vector>
 
-#include "polydec/apps/applications/volume_poisson.h"
-#include "polydec/apps/applications/volume_spectrum.h"
-#include "polydec/dec/io_volume.h"
-#include "polydec/operators/laplacians.h"
+#include "polydec/apps/applications/volume/poisson.h"
+#include "polydec/apps/applications/volume/spectrum.h"
+#include "polydec/dec/io/volume_io.h"
+#include "polydec/operators/registry/laplacians.h"
 
 namespace polydec {
 
@@ -95,7 +95,7 @@ std::string volume_tables_markdown(const nlohmann::json& results) {
        "'Galerkin', the authors' set-up, and that mass's row sums as 'lumped').\n\n";
   s += "### Franke Poisson problem on the shared cube families\n\n"
        "Delta f = b in the unit cube, f = f* at the boundary vertices, S f = M b at the interior ones "
-       "(apps/applications/volume_poisson.h). Errors at the vertices: L2 = sqrt(e^T M e), RMS = polyLaplace's "
+       "(apps/applications/volume/poisson.h). Errors at the vertices: L2 = sqrt(e^T M e), RMS = polyLaplace's "
        "sqrt(sum_v e_v^2 / |V|) over all vertices; h = mean edge length; slopes log(e_{i+1}/e_i) / log(h_{i+1}/h_i) "
        "per refinement step (2 expected asymptotically). The `truncated` files hold, per cube of a grid, a "
        "cuboctahedron and its 8 corner tetrahedra (docs/volumes.md). Command: `" +

@@ -1,8 +1,8 @@
 // apps/paper/volume_tables.h — the "Volumes" section of `polydec paper` (issue 17): the 3D Franke
-// Poisson convergence on the shared polyLaplace cube families (apps/applications/volume_poisson.h)
+// Poisson convergence on the shared polyLaplace cube families (apps/applications/volume/poisson.h)
 // with the mass-weighted L2 and polyLaplace's RMS error and their slopes per refinement step, and
 // the unit ball's eigenvalue errors, Dirichlet and Neumann, against the zeros of the spherical
-// Bessel functions (apps/applications/volume_spectrum.h).
+// Bessel functions (apps/applications/volume/spectrum.h).
 #pragma once
 
 #include <nlohmann/json.hpp>

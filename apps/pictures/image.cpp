@@ -8,7 +8,7 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "polydec/dec/io.h"
+#include "polydec/dec/io/mesh_io.h"
 
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #include <stb_image_write.h>

@@ -40,7 +40,7 @@ void draw_disc(Image& img, const Eigen::Vector2d& centre, double radius, const C
 // PNG bytes (8-bit RGB) of the image.
 std::vector<unsigned char> encode_png(const Image& img);
 // Writes the PNG to `path` through a temporary file in the same folder renamed into place,
-// so a reader never sees a half-written file. Throws FileError (dec/io.h) naming the path.
+// so a reader never sees a half-written file. Throws FileError (dec/io/mesh_io.h) naming the path.
 void write_png(const std::string& path, const Image& img);
 
 // Writes `bytes` to `path` the same way (temporary file `path`.tmp, then rename).

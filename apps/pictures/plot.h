@@ -34,10 +34,6 @@ struct PlotOptions {
   bool lines = true, markers = true;
 };
 
-// Least-squares slope of log(y) against log(x) over the points with x, y > 0 (the convergence
-// order when x is the mesh size); NaN with fewer than two such points or no spread in x.
-double loglog_slope(const std::vector<double>& x, const std::vector<double>& y);
-
 // The plot as SVG text. Throws std::invalid_argument for series with x and y of different
 // lengths or invalid sizes.
 std::string plot_svg(const std::vector<PlotSeries>& series, const PlotOptions& options);

@@ -28,7 +28,7 @@
 
 #include "polydec/apps/pictures/colormap.h"
 #include "polydec/apps/pictures/image.h"
-#include "polydec/dec/mesh.h"
+#include "polydec/dec/mesh/mesh.h"
 
 namespace polydec {
 
@@ -90,7 +90,7 @@ struct RenderOptions {
 Image render(const Mesh& mesh, const Eigen::VectorXd& vertex_scalar, const RenderOptions& options);
 
 // render() written as PNG to `path` (atomically: temporary file, then rename). Throws
-// FileError (dec/io.h) naming the path when it cannot be written.
+// FileError (dec/io/mesh_io.h) naming the path when it cannot be written.
 void render_png(const std::string& path, const Mesh& mesh, const Eigen::VectorXd& vertex_scalar,
                 const RenderOptions& options);
 

@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <unordered_map>
 
-#include "polydec/operators/volume_laplacian.h"
+#include "polydec/operators/volume/laplacian.h"
 
 namespace polydec {
 

@@ -4,9 +4,9 @@
 //
 // The plane {x : n . (x - p) = 0} (n need not be unit) splits space into the front half n . (x - p) > 0,
 // which is removed, and the kept half n . (x - p) <= 0. The section is computed on the sub-tetrahedra
-// of the virtual refinement (dec/volume_refinement.h): each one crossed by the plane gives a triangle
+// of the virtual refinement (dec/volume/refinement.h): each one crossed by the plane gives a triangle
 // or a quadrilateral (a sub-tetrahedron face lying in the plane is counted once, from the kept side).
-// Vertex values u are extended to face and cell points by the prolongation P (operators/volume_laplacian.h)
+// Vertex values u are extended to face and cell points by the prolongation P (operators/volume/laplacian.h)
 // and interpolated linearly along the refined edges, so a field that is linear on every sub-tetrahedron
 // (e.g. a linear function of the position) is reproduced exactly on the cut. Section vertices are
 // shared between neighbouring pieces (keyed by the refined edge they lie on, or the refined vertex),
@@ -18,9 +18,9 @@
 #include <vector>
 
 #include "polydec/apps/pictures/render.h"
-#include "polydec/dec/mesh.h"
-#include "polydec/dec/volume_mesh.h"
-#include "polydec/dec/volume_refinement.h"
+#include "polydec/dec/mesh/mesh.h"
+#include "polydec/dec/mesh/volume_mesh.h"
+#include "polydec/dec/volume/refinement.h"
 
 namespace polydec {
 

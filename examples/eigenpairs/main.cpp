@@ -3,8 +3,8 @@
 // eigenvalue, then the eigenvector's |V| values (M-orthonormal). Without a mesh file ("-") a
 // generated hexagon sphere of radius 1 is used, whose eigenvalues approach l(l+1).
 #include <polydec/apps/applications/spectrum.h>
-#include <polydec/dec/generators.h>
-#include <polydec/dec/io.h>
+#include <polydec/dec/mesh/generators.h>
+#include <polydec/dec/io/mesh_io.h>
 
 #include <cstdio>
 #include <exception>

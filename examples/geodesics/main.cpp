@@ -3,7 +3,7 @@
 // call is two back-substitutions. Writes the distance to the nearest source as a PLY vertex
 // property and prints the farthest vertex.
 #include <polydec/apps/applications/geodesics.h>
-#include <polydec/dec/io.h>
+#include <polydec/dec/io/mesh_io.h>
 
 #include <cstdio>
 #include <exception>

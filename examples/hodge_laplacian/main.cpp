@@ -5,12 +5,12 @@
 // composition must satisfy and exits 1 when one fails:
 //   K d0 f = star1 d0 M0^-1 (-S f)     (d1 d0 = 0, and -d0^T star1 d0 = -S: paper eq. 19, 27),
 //   the energy (d0 f)^T K (d0 f) = (S f)^T M0^-1 (S f).
-#include <polydec/dec/complex.h>
-#include <polydec/dec/generators.h>
-#include <polydec/dec/hodge_star.h>
-#include <polydec/dec/io.h>
-#include <polydec/dec/refinement.h>
-#include <polydec/operators/laplacian.h>
+#include <polydec/dec/surface/complex.h>
+#include <polydec/dec/mesh/generators.h>
+#include <polydec/dec/surface/hodge_star.h>
+#include <polydec/dec/io/mesh_io.h>
+#include <polydec/dec/surface/refinement.h>
+#include <polydec/operators/surface/laplacian.h>
 
 #include <cstdio>
 #include <exception>

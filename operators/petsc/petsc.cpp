@@ -15,11 +15,11 @@
 #include <stdexcept>
 #include <string>
 
-#include "polydec/dec/io.h"
-#include "polydec/dec/union_find.h"
-#include "polydec/operators/cholesky.h"
-#include "polydec/operators/gradient.h"
-#include "polydec/operators/laplacians.h"
+#include "polydec/dec/io/mesh_io.h"
+#include "polydec/dec/detail/union_find.h"
+#include "polydec/operators/solvers/cholesky.h"
+#include "polydec/operators/surface/gradient.h"
+#include "polydec/operators/registry/laplacians.h"
 #include "polydec/operators/petsc/petsc_check.h"
 
 namespace polydec::petsc {

@@ -13,7 +13,7 @@
 // curve's faces first touch them), builds the operators of its faces with build_operators on the
 // sub-mesh of those faces (the serial kernels and assembly), and hands the entries to PETSc with
 // MatSetValuesCOO, which sums the contributions to the vertices shared between ranks.
-// Unreferenced vertices take no part (no global index). Conventions as operators/laplacian.h: S
+// Unreferenced vertices take no part (no global index). Conventions as operators/surface/laplacian.h: S
 // negative semi-definite. Results come back to rank 0 in the mesh's vertex order.
 #pragma once
 
@@ -28,8 +28,8 @@
 #include <string>
 #include <vector>
 
-#include "polydec/dec/mesh.h"
-#include "polydec/dec/refinement.h"
+#include "polydec/dec/mesh/mesh.h"
+#include "polydec/dec/surface/refinement.h"
 
 namespace polydec::petsc {
 
@@ -135,7 +135,7 @@ class Handle {
 
 // The operators of "ours" on the distributed mesh, in the global vertex numbering: S, M (N x N,
 // MPIAIJ, rows owned as in the partition), lumped M (Vec); with_gradient, this rank's gradient G
-// (3 rows per fan triangle of its faces, operators/gradient.h) as a local Eigen matrix of its
+// (3 rows per fan triangle of its faces, operators/surface/gradient.h) as a local Eigen matrix of its
 // sub-mesh (local vertex numbering, local_to_global) and the fan triangles' areas W, so that the
 // divergence is D = -G^T W (no copy of D); applied by divergence_of_gradient.
 struct DistributedOperators {

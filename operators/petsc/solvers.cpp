@@ -9,7 +9,7 @@
 #include <numeric>
 #include <stdexcept>
 
-#include "polydec/operators/cholesky.h"
+#include "polydec/operators/solvers/cholesky.h"
 #include "polydec/operators/petsc/petsc.h"
 #include "polydec/operators/petsc/petsc_check.h"
 

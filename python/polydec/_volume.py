@@ -47,7 +47,7 @@ def _flat_cells(cells, n_vertices):
 
 
 class VolumeMesh:
-    """A validated polyhedral volume mesh (dec/volume_mesh.h): positions, polygonal faces (each
+    """A validated polyhedral volume mesh (dec/mesh/volume_mesh.h): positions, polygonal faces (each
     stored once) and cells as cycles of oriented faces; immutable.
 
     Build one with VolumeMesh(V, cells) (= VolumeMesh.from_cells), VolumeMesh.from_soup(V, faces,
@@ -82,7 +82,7 @@ class VolumeMesh:
 
     @classmethod
     def from_soup(cls, V, faces, cells):
-        """The library's soup form (dec/volume_mesh.h, PolyhedronSoup): faces as vertex lists (each
+        """The library's soup form (dec/mesh/volume_mesh.h, PolyhedronSoup): faces as vertex lists (each
         face once; any form polydec accepts for surface faces), cells as lists of half-faces
         (2f: face f as listed, 2f+1: reversed), lists of lists, an (n, k) array or the flat tuple
         (indices, offsets)."""
@@ -261,12 +261,12 @@ def volume_divergence(mesh, laplacian="ours"):
 
 
 def volume_dec_max_degree(mesh):
-    """The largest form degree (0..3) whose Hodge star every cell's size allows (dec/volume_complex.h)."""
+    """The largest form degree (0..3) whose Hodge star every cell's size allows (dec/volume/complex.h)."""
     return _polydec.volume_dec_max_degree(_mesh(mesh))
 
 
 def volume_dec(mesh, max_degree=None, cell_point="squared-volume"):
-    """DEC on a volume mesh from one refinement (dec/volume_hodge_star.h) -> dict with d0, d1, d2
+    """DEC on a volume mesh from one refinement (dec/volume/hodge_star.h) -> dict with d0, d1, d2
     (d_k for k < max_degree; integer-valued, d_{k+1} @ d_k = 0 exactly), P0..P3 and star0..star3
     (for k <= max_degree; star0 is the Galerkin mass, S = -d0.T @ star1 @ d0), all csc_matrix,
     the coarse cell lists pairs, triples, quads ((n, k+1) int32, increasing indices,
@@ -353,14 +353,14 @@ def volume_poisson(mesh, exact, laplacian_of_exact, laplacian="ours", mass="gale
 
 
 def volume_franke_poisson(mesh, laplacian="ours", mass="galerkin"):
-    """The 3D Franke Poisson problem on a mesh of the unit cube (apps/applications/volume_poisson.h,
+    """The 3D Franke Poisson problem on a mesh of the unit cube (apps/applications/volume/poisson.h,
     as `polydec poisson` on a volume) -> the dict of volume_poisson."""
     return _polydec.volume_franke_poisson(_mesh(mesh), str(laplacian), _convert.lumped_flag(mass))
 
 
 class VolumeHodgeDecomposer:
     """Hodge decomposition of coarse 1-cochains on a volume mesh, omega = d0 alpha + co-exact +
-    harmonic, orthogonal in star1 (apps/applications/volume_hodge_decomposition.h; dense harmonic
+    harmonic, orthogonal in star1 (apps/applications/volume/hodge_decomposition.h; dense harmonic
     part: meshes of up to a few thousand coarse pairs, cells of at most 16 vertices).
 
     decompose(omega) with omega (|C1|,) on the pairs -> HodgeParts. Attributes pairs, d0, star1,

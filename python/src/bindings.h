@@ -11,7 +11,7 @@
 #include <pybind11/stl.h>
 
 #include "polydec/apps/applications/spectrum.h"
-#include "polydec/dec/mesh.h"
+#include "polydec/dec/mesh/mesh.h"
 
 namespace polydec::python {
 

@@ -1,8 +1,8 @@
 // python/src/meshes.cpp — bindings of reading, writing, generating and transforming meshes
-// (dec/io.h, dec/generators.h). Meshes travel as (positions, indices, offsets).
+// (dec/io/mesh_io.h, dec/mesh/generators.h). Meshes travel as (positions, indices, offsets).
 #include "bindings.h"
-#include "polydec/dec/generators.h"
-#include "polydec/dec/io.h"
+#include "polydec/dec/mesh/generators.h"
+#include "polydec/dec/io/mesh_io.h"
 
 namespace polydec::python {
 namespace {

@@ -2,8 +2,8 @@
 // (FileError is both OSError and ValueError; InvalidMeshError a ValueError naming the element;
 // SolverError a RuntimeError), the array <-> mesh helpers and the registration of the bindings.
 #include "bindings.h"
-#include "polydec/dec/io.h"
-#include "polydec/operators/cholesky.h"
+#include "polydec/dec/io/mesh_io.h"
+#include "polydec/operators/solvers/cholesky.h"
 
 namespace polydec::python {
 

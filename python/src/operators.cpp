@@ -1,15 +1,15 @@
-// python/src/operators.cpp — bindings of the assembled operators (operators/laplacian.h,
-// operators/gradient.h, operators/laplacians.h) and of the DEC pieces (dec/complex.h,
-// dec/hodge_star.h, dec/prolongation.h). Sparse results are Eigen column-major matrices, which
+// python/src/operators.cpp — bindings of the assembled operators (operators/surface/laplacian.h,
+// operators/surface/gradient.h, operators/registry/laplacians.h) and of the DEC pieces (dec/surface/complex.h,
+// dec/surface/hodge_star.h, dec/surface/prolongation.h). Sparse results are Eigen column-major matrices, which
 // pybind11 hands over as scipy.sparse.csc_matrix.
 #include <set>
 
 #include "bindings.h"
-#include "polydec/dec/complex.h"
-#include "polydec/dec/hodge_star.h"
-#include "polydec/dec/prolongation.h"
-#include "polydec/operators/gradient.h"
-#include "polydec/operators/laplacians.h"
+#include "polydec/dec/surface/complex.h"
+#include "polydec/dec/surface/hodge_star.h"
+#include "polydec/dec/surface/prolongation.h"
+#include "polydec/operators/surface/gradient.h"
+#include "polydec/operators/registry/laplacians.h"
 
 namespace polydec::python {
 namespace {

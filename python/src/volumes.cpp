@@ -1,6 +1,6 @@
 // python/src/volumes.cpp — bindings of polyhedral volume meshes (issue 17): the VolumeMesh class
-// (dec/volume_mesh.h, dec/io_volume.h, dec/volume_generators.h), the volume operators
-// (operators/volume_laplacians.h), volume DEC (dec/volume_hodge_star.h) and the volume applications
+// (dec/mesh/volume_mesh.h, dec/io/volume_io.h, dec/mesh/volume_generators.h), the volume operators
+// (operators/registry/volume_laplacians.h), volume DEC (dec/volume/hodge_star.h) and the volume applications
 // (heat geodesics, spectrum, Poisson, Hodge decomposition). The Python package (polydec/_volume.py)
 // checks the array inputs and carries the docstrings.
 #include <algorithm>
@@ -8,14 +8,14 @@
 
 #include "bindings.h"
 #include "polydec/apps/applications/geodesics.h"
-#include "polydec/apps/applications/volume_hodge_decomposition.h"
-#include "polydec/apps/applications/volume_poisson.h"
-#include "polydec/apps/applications/volume_spectrum.h"
-#include "polydec/dec/io_volume.h"
-#include "polydec/dec/polyhedron_builder.h"
-#include "polydec/dec/volume_generators.h"
-#include "polydec/dec/volume_hodge_star.h"
-#include "polydec/operators/volume_laplacians.h"
+#include "polydec/apps/applications/volume/hodge_decomposition.h"
+#include "polydec/apps/applications/volume/poisson.h"
+#include "polydec/apps/applications/volume/spectrum.h"
+#include "polydec/dec/io/volume_io.h"
+#include "polydec/dec/mesh/polyhedron_builder.h"
+#include "polydec/dec/mesh/volume_generators.h"
+#include "polydec/dec/volume/hodge_star.h"
+#include "polydec/operators/registry/volume_laplacians.h"
 
 namespace polydec::python {
 namespace {

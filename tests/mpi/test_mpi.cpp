@@ -16,10 +16,10 @@
 
 #include "polydec/apps/applications/geodesics.h"
 #include "polydec/apps/applications/spectrum.h"
-#include "polydec/dec/generators.h"
-#include "polydec/dec/io.h"
-#include "polydec/operators/cholesky.h"
-#include "polydec/operators/laplacians.h"
+#include "polydec/dec/mesh/generators.h"
+#include "polydec/dec/io/mesh_io.h"
+#include "polydec/operators/solvers/cholesky.h"
+#include "polydec/operators/registry/laplacians.h"
 #include "polydec/operators/petsc/petsc.h"
 #include "polydec/operators/petsc/petsc_check.h"
 

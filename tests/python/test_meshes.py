@@ -141,7 +141,7 @@ def test_bad_files_raise_oserror_and_valueerror_with_file_and_line(tmp_path):
     nm.write_text("OFF\n5 3 0\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n3 0 1 2\n3 1 0 3\n3 0 1 4\n")
     with pytest.raises(polydec.FileError, match="nonmanifold.off"):
         polydec.read_mesh(nm)
-    # Files of the C++ hostile-file corpus (tests/dec/test_io_bad.cpp gives the same lines).
+    # Files of the C++ hostile-file corpus (tests/dec/io/test_mesh_io_bad.cpp gives the same lines).
     for name, line, reason in [("obj/nan.obj", 5, "vertex 4 has a non-finite coordinate"),
                                ("obj/face_2.obj", 6, "face 1 has 2 vertices"),
                                ("obj/repeated_vertex.obj", 5, "face 0 repeats vertex 1"),

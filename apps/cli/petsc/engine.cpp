@@ -14,8 +14,8 @@
 
 #include "polydec/apps/cli/command.h"
 #include "polydec/apps/cli/engine.h"
-#include "polydec/dec/generators.h"
-#include "polydec/dec/io.h"
+#include "polydec/dec/mesh/generators.h"
+#include "polydec/dec/io/mesh_io.h"
 #include "polydec/operators/petsc/petsc.h"
 
 namespace polydec::cli {

@@ -3,10 +3,10 @@
 #include <cmath>
 
 #include "polydec/apps/applications/curvature.h"
-#include "polydec/dec/generators.h"
-#include "polydec/dec/io.h"
-#include "tests/apps/paper_spheres.h"
-#include "tests/support.h"
+#include "polydec/dec/mesh/generators.h"
+#include "polydec/dec/io/mesh_io.h"
+#include "tests/support/paper_spheres.h"
+#include "tests/support/support.h"
 
 using namespace polydec;
 

@@ -9,11 +9,11 @@
 
 #include "polydec/apps/applications/form_spectrum.h"
 #include "polydec/apps/applications/spectrum.h"
-#include "polydec/dec/complex.h"
-#include "polydec/dec/form_span.h"
-#include "polydec/dec/generators.h"
-#include "polydec/dec/hodge_star.h"
-#include "tests/dec/feec_meshes.h"
+#include "polydec/dec/surface/complex.h"
+#include "polydec/dec/surface/form_span.h"
+#include "polydec/dec/mesh/generators.h"
+#include "polydec/dec/surface/hodge_star.h"
+#include "tests/support/feec_meshes.h"
 
 using namespace polydec;
 

@@ -3,10 +3,10 @@
 // several sources, reuse of the factorizations, unreachable vertices, the heat step's reach and the
 // suggested time factor from any starting factor.
 #include "polydec/apps/applications/geodesics.h"
-#include "polydec/dec/generators.h"
-#include "polydec/dec/io.h"
-#include "polydec/operators/gradient.h"
-#include "tests/support.h"
+#include "polydec/dec/mesh/generators.h"
+#include "polydec/dec/io/mesh_io.h"
+#include "polydec/operators/surface/gradient.h"
+#include "tests/support/support.h"
 
 #include <catch2/catch.hpp>
 #include <cmath>

@@ -4,10 +4,10 @@
 #include <numbers>
 
 #include "polydec/apps/applications/harmonics.h"
-#include "polydec/dec/generators.h"
-#include "polydec/dec/io.h"
-#include "tests/apps/paper_spheres.h"
-#include "tests/support.h"
+#include "polydec/dec/mesh/generators.h"
+#include "polydec/dec/io/mesh_io.h"
+#include "tests/support/paper_spheres.h"
+#include "tests/support/support.h"
 
 using namespace polydec;
 

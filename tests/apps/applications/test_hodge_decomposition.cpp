@@ -8,12 +8,12 @@
 #include <random>
 
 #include "polydec/apps/applications/hodge_decomposition.h"
-#include "polydec/dec/form_span.h"
-#include "polydec/dec/hodge_star.h"
-#include "polydec/dec/prolongation.h"
-#include "polydec/operators/laplacian.h"
-#include "polydec/operators/span_solver.h"
-#include "tests/dec/feec_meshes.h"
+#include "polydec/dec/surface/form_span.h"
+#include "polydec/dec/surface/hodge_star.h"
+#include "polydec/dec/surface/prolongation.h"
+#include "polydec/operators/surface/laplacian.h"
+#include "polydec/operators/solvers/span_solver.h"
+#include "tests/support/feec_meshes.h"
 
 using namespace polydec;
 

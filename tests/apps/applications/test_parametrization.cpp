@@ -4,9 +4,9 @@
 #include <fstream>
 
 #include "polydec/apps/applications/parametrization.h"
-#include "polydec/dec/generators.h"
-#include "polydec/dec/io.h"
-#include "tests/support.h"
+#include "polydec/dec/mesh/generators.h"
+#include "polydec/dec/io/mesh_io.h"
+#include "tests/support/support.h"
 
 using namespace polydec;
 

@@ -5,8 +5,8 @@
 #include <stdexcept>
 
 #include "polydec/apps/applications/poisson.h"
-#include "polydec/dec/generators.h"
-#include "tests/support.h"
+#include "polydec/dec/mesh/generators.h"
+#include "tests/support/support.h"
 
 using namespace polydec;
 

@@ -2,9 +2,9 @@
 // becomes round, the area and the centroid are kept, the flow commutes with scaling.
 #include "polydec/apps/applications/curvature.h"
 #include "polydec/apps/applications/smoothing.h"
-#include "polydec/dec/generators.h"
-#include "polydec/dec/io.h"
-#include "tests/support.h"
+#include "polydec/dec/mesh/generators.h"
+#include "polydec/dec/io/mesh_io.h"
+#include "tests/support/support.h"
 
 using namespace polydec;
 

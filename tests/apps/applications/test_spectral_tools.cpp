@@ -5,9 +5,9 @@
 #include <random>
 
 #include "polydec/apps/applications/spectral_tools.h"
-#include "polydec/dec/generators.h"
-#include "polydec/operators/cholesky.h"
-#include "tests/dec/feec_meshes.h"
+#include "polydec/dec/mesh/generators.h"
+#include "polydec/operators/solvers/cholesky.h"
+#include "tests/support/feec_meshes.h"
 
 using namespace polydec;
 

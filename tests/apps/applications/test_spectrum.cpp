@@ -10,11 +10,11 @@
 #include <nlohmann/json.hpp>
 
 #include "polydec/apps/applications/spectrum.h"
-#include "polydec/dec/generators.h"
-#include "polydec/dec/io.h"
-#include "polydec/operators/laplacians.h"
-#include "tests/apps/paper_spheres.h"
-#include "tests/support.h"
+#include "polydec/dec/mesh/generators.h"
+#include "polydec/dec/io/mesh_io.h"
+#include "polydec/operators/registry/laplacians.h"
+#include "tests/support/paper_spheres.h"
+#include "tests/support/support.h"
 
 using namespace polydec;
 

@@ -1,5 +1,5 @@
 // tests/apps/cli/cli_run.h — the CLI tests' way to run the built `polydec` program: exit code,
-// stdout and stderr (through files in a scratch folder: test::ScratchDir of tests/support.h).
+// stdout and stderr (through files in a scratch folder: test::ScratchDir of tests/support/support.h).
 #pragma once
 
 #include <sys/wait.h>
@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "tests/support.h"
+#include "tests/support/support.h"
 
 namespace polydec::test {
 

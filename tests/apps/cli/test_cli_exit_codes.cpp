@@ -10,10 +10,10 @@
 #include <fstream>
 #include <sstream>
 
-#include "polydec/dec/generators.h"
-#include "polydec/dec/io.h"
+#include "polydec/dec/mesh/generators.h"
+#include "polydec/dec/io/mesh_io.h"
 #include "tests/apps/cli/cli_run.h"
-#include "tests/support.h"
+#include "tests/support/support.h"
 
 using namespace polydec;
 namespace fs = std::filesystem;

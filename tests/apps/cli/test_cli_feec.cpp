@@ -8,10 +8,10 @@
 #include <nlohmann/json.hpp>
 
 #include "polydec/apps/applications/hodge_decomposition.h"
-#include "polydec/dec/hodge_star.h"
-#include "polydec/dec/io.h"
+#include "polydec/dec/surface/hodge_star.h"
+#include "polydec/dec/io/mesh_io.h"
 #include "tests/apps/cli/cli_run.h"
-#include "tests/dec/feec_meshes.h"
+#include "tests/support/feec_meshes.h"
 
 using namespace polydec;
 

@@ -15,12 +15,12 @@
 
 #include "polydec/apps/applications/form_spectrum.h"
 #include "polydec/apps/applications/spectral_tools.h"
-#include "polydec/dec/complex.h"
-#include "polydec/dec/generators.h"
-#include "polydec/dec/io.h"
-#include "polydec/dec/refinement.h"
+#include "polydec/dec/surface/complex.h"
+#include "polydec/dec/mesh/generators.h"
+#include "polydec/dec/io/mesh_io.h"
+#include "polydec/dec/surface/refinement.h"
 #include "tests/apps/cli/cli_run.h"
-#include "tests/dec/feec_meshes.h"
+#include "tests/support/feec_meshes.h"
 
 using namespace polydec;
 

@@ -11,9 +11,9 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "polydec/dec/generators.h"
-#include "polydec/dec/io.h"
-#include "tests/support.h"
+#include "polydec/dec/mesh/generators.h"
+#include "polydec/dec/io/mesh_io.h"
+#include "tests/support/support.h"
 
 using namespace polydec;
 

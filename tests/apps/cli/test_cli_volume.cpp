@@ -11,11 +11,11 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "polydec/dec/io.h"
-#include "polydec/dec/io_volume.h"
-#include "polydec/dec/volume_generators.h"
+#include "polydec/dec/io/mesh_io.h"
+#include "polydec/dec/io/volume_io.h"
+#include "polydec/dec/mesh/volume_generators.h"
 #include "tests/apps/cli/cli_run.h"
-#include "tests/support.h"
+#include "tests/support/support.h"
 
 using namespace polydec;
 namespace fs = std::filesystem;

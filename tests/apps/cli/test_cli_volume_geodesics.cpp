@@ -10,12 +10,12 @@
 
 #include "polydec/apps/applications/geodesics.h"
 #include "polydec/apps/applications/spectrum.h"
-#include "polydec/apps/applications/volume_poisson.h"
-#include "polydec/dec/io_volume.h"
-#include "polydec/dec/volume_generators.h"
-#include "polydec/operators/volume_laplacians.h"
+#include "polydec/apps/applications/volume/poisson.h"
+#include "polydec/dec/io/volume_io.h"
+#include "polydec/dec/mesh/volume_generators.h"
+#include "polydec/operators/registry/volume_laplacians.h"
 #include "tests/apps/cli/cli_run.h"
-#include "tests/support.h"
+#include "tests/support/support.h"
 
 using namespace polydec;
 namespace fs = std::filesystem;

@@ -12,14 +12,14 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "polydec/dec/io.h"
-#include "polydec/dec/io_volume.h"
-#include "polydec/dec/volume_generators.h"
-#include "polydec/dec/volume_hodge_star.h"
-#include "polydec/operators/volume_laplacian.h"
-#include "tests/dec/volume_test_meshes.h"
+#include "polydec/dec/io/mesh_io.h"
+#include "polydec/dec/io/volume_io.h"
+#include "polydec/dec/mesh/volume_generators.h"
+#include "polydec/dec/volume/hodge_star.h"
+#include "polydec/operators/volume/laplacian.h"
+#include "tests/support/volume_meshes.h"
 #include "tests/apps/cli/cli_run.h"
-#include "tests/support.h"
+#include "tests/support/support.h"
 
 using namespace polydec;
 namespace fs = std::filesystem;

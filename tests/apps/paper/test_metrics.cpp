@@ -6,8 +6,8 @@
 
 #include "polydec/apps/paper/metrics.h"
 #include "polydec/apps/applications/parametrization.h"
-#include "polydec/dec/generators.h"
-#include "polydec/operators/laplacians.h"
+#include "polydec/dec/mesh/generators.h"
+#include "polydec/operators/registry/laplacians.h"
 
 using namespace polydec;
 

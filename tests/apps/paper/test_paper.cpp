@@ -15,10 +15,10 @@
 #include "polydec/apps/applications/curvature.h"
 #include "polydec/apps/applications/geodesics.h"
 #include "polydec/apps/paper/paper.h"
-#include "polydec/dec/generators.h"
-#include "polydec/dec/io.h"
-#include "polydec/operators/laplacians.h"
-#include "tests/support.h"
+#include "polydec/dec/mesh/generators.h"
+#include "polydec/dec/io/mesh_io.h"
+#include "polydec/operators/registry/laplacians.h"
+#include "tests/support/support.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;

@@ -4,7 +4,7 @@
 
 #include "polydec/apps/applications/spectrum.h"
 #include "polydec/apps/paper/sphere_spectrum.h"
-#include "polydec/dec/generators.h"
+#include "polydec/dec/mesh/generators.h"
 
 using namespace polydec;
 

@@ -6,7 +6,7 @@
 #include <filesystem>
 
 #include "polydec/apps/paper/volume_tables.h"
-#include "tests/support.h"
+#include "tests/support/support.h"
 
 using namespace polydec;
 

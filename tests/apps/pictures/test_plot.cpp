@@ -8,9 +8,10 @@
 #include <fstream>
 #include <sstream>
 
+#include "polydec/apps/applications/convergence.h"
 #include "polydec/apps/pictures/plot.h"
-#include "polydec/dec/io.h"
-#include "tests/support.h"
+#include "polydec/dec/io/mesh_io.h"
+#include "tests/support/support.h"
 
 using namespace polydec;
 

@@ -10,9 +10,9 @@
 #include "polydec/apps/pictures/colormap.h"
 #include "polydec/apps/pictures/font.h"
 #include "polydec/apps/pictures/render.h"
-#include "polydec/dec/generators.h"
-#include "polydec/dec/io.h"
-#include "tests/support.h"
+#include "polydec/dec/mesh/generators.h"
+#include "polydec/dec/io/mesh_io.h"
+#include "tests/support/support.h"
 
 #define STB_IMAGE_IMPLEMENTATION
 #include <stb_image.h>

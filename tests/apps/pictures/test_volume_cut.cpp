@@ -11,10 +11,10 @@
 #include <sstream>
 
 #include "polydec/apps/pictures/volume_cut.h"
-#include "polydec/dec/io_volume.h"
-#include "polydec/dec/volume_generators.h"
-#include "polydec/operators/volume_laplacians.h"
-#include "tests/support.h"
+#include "polydec/dec/io/volume_io.h"
+#include "polydec/dec/mesh/volume_generators.h"
+#include "polydec/operators/registry/volume_laplacians.h"
+#include "tests/support/support.h"
 
 using namespace polydec;
 

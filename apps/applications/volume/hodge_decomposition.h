@@ -1,0 +1,53 @@
+// apps/applications/volume/hodge_decomposition.h — Hodge decomposition of a coarse 1-cochain on a
+// polyhedral mesh, omega = d0 alpha + co-exact + harmonic, orthogonal in the star1 inner product of
+// the coarsened Whitney 1-forms (issue 17; the volume counterpart of hodge_decomposition.h).
+//
+//   exact:    d0 alpha, with d0^T star1 d0 alpha = d0^T star1 omega (one vertex pinned per
+//             connected component);
+//   harmonic: the star1-orthogonal projection onto H = closed forms modulo exact ones: the
+//             Whitney-closed forms (star2-null d1, i.e. P2 d1 x = 0) of the reduced basis
+//             (volume_form_span), minus their exact parts, star1-orthonormalised; dim H is the
+//             first Betti number of the mesh (0 on a ball, 1 on a solid torus);
+//   co-exact: the rest, star1-orthogonal to every closed form.
+// The closed forms are found by a dense eigen-decomposition on the span of the 1-forms, so the
+// constructor is meant for meshes of up to a few thousand coarse pairs (it throws
+// std::invalid_argument above volume_form_span's limit). It builds DEC up to degree 2 (no 3-forms),
+// so cells of up to max_dec_cell_vertices(2) = 16 vertices.
+#pragma once
+
+#include <Eigen/Dense>
+#include <Eigen/Sparse>
+#include <memory>
+
+#include "polydec/dec/volume/hodge_star.h"
+#include "polydec/operators/solvers/cholesky.h"
+
+namespace polydec {
+
+struct VolumeHodgeParts {
+  Eigen::VectorXd exact, coexact, harmonic;  // |C1| each; exact + coexact + harmonic = omega
+  Eigen::VectorXd potential;                 // alpha, |V|
+  double norm = 0, norm_exact = 0, norm_coexact = 0, norm_harmonic = 0;  // sqrt(x^T star1 x)
+};
+
+class VolumeHodgeDecomposer {
+ public:
+  explicit VolumeHodgeDecomposer(const VolumeMesh& mesh, const VolumeRefinementOptions& options = {});
+
+  // omega: one value per coarse pair (std::invalid_argument on a size mismatch or non-finite values).
+  VolumeHodgeParts decompose(const Eigen::VectorXd& omega) const;
+
+  const VolumeDec& dec() const { return dec_; }
+  const Eigen::MatrixXd& harmonic_basis() const { return H_; }  // star1-orthonormal, |C1| x dim
+  int harmonic_dimension() const { return int(H_.cols()); }
+
+ private:
+  Eigen::VectorXd exact_potential(const Eigen::VectorXd& rhs) const;
+
+  VolumeDec dec_;
+  std::vector<unsigned char> pinned_;
+  std::unique_ptr<SparseCholesky> poisson_;
+  Eigen::MatrixXd H_;
+};
+
+}  // namespace polydec

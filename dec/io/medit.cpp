@@ -1,0 +1,174 @@
+// dec/io/medit.cpp — MEDIT ASCII .mesh (INRIA): MeshVersionFormatted, Dimension 3, then sections
+// in any order: Vertices (x y z ref), Tetrahedra (4 indices + ref), Hexahedra (8 indices + ref;
+// both in VTK's vertex order), 1-based; reference numbers ignored. The surface sections
+// (Edges, Triangles, Quadrilaterals, Corners, Ridges, Required*, Normals, Tangents ...) are
+// skipped; "End" or the end of the file ends it; '#' starts a comment.
+#include <array>
+#include <climits>
+
+#include "polydec/dec/detail/io_common.h"
+#include "polydec/dec/detail/volume_io_common.h"
+#include "polydec/dec/mesh/polyhedron_builder.h"
+#include "polydec/dec/mesh/volume_cells.h"
+
+namespace polydec {
+namespace io_medit_detail {
+namespace {
+
+using namespace io_detail;
+
+// Numbers per record of the sections that are skipped (lower-case keyword).
+int skipped_record_size(const std::string& k) {
+  if (k == "edges") return 3;
+  if (k == "triangles") return 4;
+  if (k == "quadrilaterals") return 5;
+  if (k == "corners" || k == "ridges" || k == "requiredvertices" || k == "requirededges" ||
+      k == "requiredtriangles" || k == "requiredquadrilaterals")
+    return 1;
+  if (k == "normals" || k == "tangents") return 3;
+  if (k == "normalatvertices" || k == "tangentatvertices") return 2;
+  return 0;
+}
+
+}  // namespace
+}  // namespace io_medit_detail
+
+namespace io_detail {
+
+PolyhedronRead read_medit(std::string_view bytes, const std::string& name) {
+  VolumeTokens in(strip_bom(bytes), name, true);
+  std::string_view t;
+  if (!in.next(t)) in.fail(0, "empty file (no MeshVersionFormatted)");
+  if (lower(t) != "meshversionformatted")
+    in.fail(in.line(), fmt::format("expected 'MeshVersionFormatted', found {}", quote(t)));
+  const long long version = in.integer("version");
+  if (version < 1 || version > 4) in.fail(in.line(), fmt::format("unknown MEDIT version {}", version));
+
+  PolyhedronRead r;
+  bool have_vertices = false, have_dimension = false;
+  long long nv = 0;
+  struct CellBlock {
+    int type;
+    long long count;
+    std::vector<int> ids;
+    std::vector<long> lines;
+  };
+  std::vector<CellBlock> blocks;
+  while (in.next(t)) {
+    const std::string k = lower(t);
+    const long kline = in.line();
+    if (k == "end") break;
+    if (k == "dimension") {
+      const long long d = in.integer("dimension");
+      if (d != 3) in.fail(in.line(), fmt::format("dimension {} is not supported (volume meshes need 3)", d));
+      have_dimension = true;
+    } else if (k == "vertices") {
+      if (!have_dimension) in.fail(kline, "Vertices before 'Dimension 3'");
+      if (have_vertices) in.fail(kline, "a second Vertices section");
+      have_vertices = true;
+      nv = in.count("Vertices count", 8);
+      r.soup.positions.resize(nv, 3);
+      r.vertex_where.resize(nv);
+      DigitCounter digits;
+      for (long long v = 0; v < nv; ++v) {
+        for (int c = 0; c < 3; ++c) {
+          const std::string_view x = in.expect("a vertex coordinate");
+          if (c == 0) r.vertex_where[v] = in.line();
+          if (!parse_double(x, r.soup.positions(v, c)))
+            in.fail(in.line(), "bad vertex coordinate " + quote(x));
+          digits.see(x, r.soup.positions(v, c));
+        }
+        in.integer("vertex reference");
+      }
+      r.soup.precision = digits.precision(r.soup.positions);
+    } else if (k == "tetrahedra" || k == "hexahedra") {
+      if (!have_vertices) in.fail(kline, fmt::format("{} before Vertices", t));
+      const int type = k == "tetrahedra" ? kVtkTetra : kVtkHexahedron;
+      const int n = vtk_cell_size(type);
+      const std::string section(t);
+      const long long count = in.count(section + " count", 2LL * (n + 1));
+      CellBlock b{type, count, {}, {}};
+      b.ids.reserve(count * n);
+      b.lines.reserve(count);
+      for (long long c = 0; c < count; ++c) {
+        for (int i = 0; i < n; ++i) {
+          const long long x = in.integer("vertex index");
+          if (i == 0) b.lines.push_back(in.line());
+          if (x < 1 || x > nv)
+            in.fail(in.line(),
+                    fmt::format("vertex index {} out of range [1, {}] (MEDIT counts from 1)", x, nv));
+          b.ids.push_back(int(x - 1));
+        }
+        in.integer("element reference");
+      }
+      blocks.push_back(std::move(b));
+    } else if (k == "prisms" || k == "pyramids") {
+      in.fail(kline,
+              fmt::format("the MEDIT section '{}' is not supported (Tetrahedra and Hexahedra are read)", t));
+    } else if (const int m = io_medit_detail::skipped_record_size(k); m > 0) {
+      const long long count = in.count(std::string(t) + " count", 2LL * m);
+      for (long long i = 0; i < count * m; ++i) in.expect("a number");
+    } else {
+      in.fail(kline, fmt::format("unknown MEDIT keyword {}", quote(t)));
+    }
+  }
+  if (!have_vertices) in.fail(0, "no Vertices section");
+
+  const CoordinatePrecision precision = r.soup.precision;
+  PolyhedronSoupBuilder builder(std::move(r.soup.positions));
+  for (const auto& b : blocks) {
+    const int n = vtk_cell_size(b.type);
+    for (long long c = 0; c < b.count; ++c) {
+      const std::span<const int> cell(b.ids.data() + c * n, size_t(n));
+      if (!builder.add_vtk_cell(b.type, cell))
+        in.fail(b.lines[c],
+                fmt::format("a face of this element has the vertices of face {} in another cyclic order",
+                            builder.last_face()));
+      while (int(r.face_where.size()) < builder.n_faces()) r.face_where.push_back(b.lines[c]);
+      r.cell_where.push_back(b.lines[c]);
+    }
+  }
+  r.soup = builder.take();
+  r.soup.precision = precision;
+  return r;
+}
+
+std::string write_medit(const VolumeMesh& mesh, const std::string& name) {
+  std::vector<std::array<int, 8>> tets, hexes;
+  for (int c = 0; c < mesh.n_cells(); ++c) {
+    std::array<int, 8> o;
+    const CellShape s = cell_shape(mesh, c, &o);
+    if (s == CellShape::tetrahedron)
+      tets.push_back(o);
+    else if (s == CellShape::hexahedron)
+      hexes.push_back(o);
+    else
+      throw FileError(name, 0, -1,
+                      fmt::format("cell {} is {} with {} faces: MEDIT holds tetrahedra and hexahedra only (use "
+                                  ".vtk or .ovm)",
+                                  c, s == CellShape::other ? std::string("a general polyhedron")
+                                                           : std::string("a ") + cell_shape_name(s),
+                                  mesh.cell_size(c)));
+  }
+  const auto& X = mesh.positions();
+  fmt::memory_buffer b;
+  auto out = std::back_inserter(b);
+  fmt::format_to(out, "MeshVersionFormatted 2\nDimension 3\nVertices\n{}\n", mesh.n_vertices());
+  for (int v = 0; v < mesh.n_vertices(); ++v)
+    fmt::format_to(out, "{} {} {} 0\n", num(X(v, 0)), num(X(v, 1)), num(X(v, 2)));
+  auto block = [&](const char* keyword, const std::vector<std::array<int, 8>>& cells, int n) {
+    if (cells.empty()) return;
+    fmt::format_to(out, "{}\n{}\n", keyword, cells.size());
+    for (const auto& o : cells) {
+      for (int i = 0; i < n; ++i) fmt::format_to(out, "{} ", o[i] + 1);
+      fmt::format_to(out, "0\n");
+    }
+  };
+  block("Tetrahedra", tets, 4);
+  block("Hexahedra", hexes, 8);
+  fmt::format_to(out, "End\n");
+  return fmt::to_string(b);
+}
+
+}  // namespace io_detail
+}  // namespace polydec

@@ -1,0 +1,139 @@
+// dec/io/volume_io.cpp — volume format dispatch by extension, read_volume_mesh (validation errors
+// mapped back to file lines) and write_volume_mesh. The formats live in io_ovm.cpp, io_vtk.cpp
+// and io_medit.cpp.
+#include "polydec/dec/io/volume_io.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+
+#include "polydec/dec/detail/io_common.h"
+#include "polydec/dec/detail/volume_io_common.h"
+
+namespace polydec {
+namespace io_volume_detail {
+namespace {
+
+using namespace io_detail;
+
+constexpr const char* kFormats = "ovm, vtk, mesh";
+
+bool known(const std::string& f) { return f == "ovm" || f == "vtk" || f == "mesh"; }
+
+void write_bytes(const std::string& path, const std::string& data) {
+  std::ofstream out(path, std::ios::binary);
+  if (!out) throw FileError(path, 0, -1, "cannot open file for writing");
+  out.write(data.data(), std::streamsize(data.size()));
+  out.close();
+  if (!out) throw FileError(path, 0, -1, "write failed");
+}
+
+// The format by extension; for another extension, by the file's first word ("OVM", "# vtk",
+// "MeshVersionFormatted"), so that `--volume` can read a file of any name.
+std::string checked_format(const std::string& path, std::string_view bytes) {
+  const std::string ext = extension(path);
+  if (known(ext)) return ext;
+  std::string_view t = strip_bom(bytes);
+  while (!t.empty() && (is_space(t.front()) || t.front() == '\n')) t.remove_prefix(1);
+  const std::string head = lower(t.substr(0, 20));
+  if (head.rfind("ovm", 0) == 0) return "ovm";
+  if (head.rfind("# vtk", 0) == 0 || head.rfind("#vtk", 0) == 0) return "vtk";
+  if (head.rfind("meshversionformatted", 0) == 0) return "mesh";
+  throw FileError(
+      path, 0, -1,
+      fmt::format("unknown volume mesh format '.{}' ({}; nor does the file start like one)", ext, kFormats));
+}
+
+PolyhedronRead read_any(std::string_view bytes, std::string_view format, const std::string& name) {
+  const std::string f = lower(format);
+  if (f == "ovm") return read_ovm(bytes, name);
+  if (f == "vtk") return read_vtk(bytes, name);
+  if (f == "mesh") return read_medit(bytes, name);
+  throw FileError(name, 0, -1, fmt::format("unknown volume mesh format '{}' ({})", f, kFormats));
+}
+
+VolumeMesh validate(PolyhedronRead r, const std::string& name) {
+  const auto vertex_where = std::move(r.vertex_where);
+  const auto face_where = std::move(r.face_where);
+  const auto cell_where = std::move(r.cell_where);
+  const bool byte_offsets = r.where_is_byte_offset;
+  try {
+    return VolumeMesh(std::move(r.soup));
+  } catch (const InvalidMeshError& e) {
+    const std::vector<long>* where = e.element == "vertex" ? &vertex_where
+                                     : e.element == "face" ? &face_where
+                                     : e.element == "cell" ? &cell_where
+                                                           : nullptr;
+    long at = 0;
+    if (where && e.index >= 0 && e.index < long(where->size())) at = (*where)[e.index];
+    if (byte_offsets) throw FileError(name, 0, at, e.what());
+    throw FileError(name, std::max(at, 0L), -1, e.what());
+  }
+}
+
+}  // namespace
+}  // namespace io_volume_detail
+
+using namespace io_volume_detail;
+
+bool is_volume_mesh_path(const std::string& path) { return known(extension(path)); }
+
+PolyhedronSoup read_polyhedron_soup(const std::string& path) {
+  const std::string bytes = slurp(path);
+  return read_any(bytes, checked_format(path, bytes), path).soup;
+}
+
+PolyhedronSoup read_polyhedron_soup_from_memory(std::string_view bytes, std::string_view format,
+                                                const std::string& name) {
+  return read_any(bytes, format, name).soup;
+}
+
+VolumeMesh read_volume_mesh(const std::string& path) {
+  const std::string bytes = slurp(path);
+  return validate(read_any(bytes, checked_format(path, bytes), path), path);
+}
+
+VolumeMesh read_volume_mesh_from_memory(std::string_view bytes, std::string_view format,
+                                        const std::string& name) {
+  return validate(read_any(bytes, format, name), name);
+}
+
+std::string write_volume_mesh_to_string(const VolumeMesh& mesh, std::string_view format,
+                                        const WriteOptions& options) {
+  const std::string f = io_detail::lower(format);
+  if (f == "ovm") return io_detail::write_ovm(mesh);
+  if (f == "vtk") return io_detail::write_vtk(mesh, "(memory)", options.binary);
+  if (f == "mesh") return io_detail::write_medit(mesh, "(memory)");
+  throw FileError("(memory)", 0, -1, fmt::format("unknown volume mesh format '{}' ({})", f, kFormats));
+}
+
+void write_volume_mesh(const VolumeMesh& mesh, const std::string& path, const WriteOptions& options) {
+  const std::string f = extension(path);
+  if (!known(f))
+    throw FileError(path, 0, -1, fmt::format("unknown volume mesh format '.{}' ({})", f, kFormats));
+  const std::string data = f == "mesh" ? io_detail::write_medit(mesh, path)
+                           : f == "vtk" ? io_detail::write_vtk(mesh, path, options.binary)
+                                        : write_volume_mesh_to_string(mesh, f, options);
+  write_bytes(path, data);
+}
+
+void write_volume_vtk_with_point_data(const VolumeMesh& mesh, const std::string& path,
+                                      const VertexScalars& scalars) {
+  if (extension(path) != "vtk") throw FileError(path, 0, -1, "point data needs a VTK file (.vtk)");
+  std::string data = io_detail::write_vtk(mesh, path);
+  if (!scalars.empty()) data += fmt::format("POINT_DATA {}\n", mesh.n_vertices());
+  for (const auto& [name, values] : scalars) {
+    if (values.size() != mesh.n_vertices())
+      throw std::invalid_argument(
+          fmt::format("point data '{}': {} values for {} vertices", name, values.size(), mesh.n_vertices()));
+    if (name.empty() || name.find_first_of(" \t\n") != std::string::npos)
+      throw std::invalid_argument(fmt::format("point data name '{}' is empty or has white space", name));
+    data += fmt::format("SCALARS {} double 1\nLOOKUP_TABLE default\n", name);
+    for (double v : values) data += fmt::format("{:.17g}\n", v);
+  }
+  write_bytes(path, data);
+}
+
+}  // namespace polydec

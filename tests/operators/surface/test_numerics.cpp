@@ -1,0 +1,189 @@
+// tests/operators/surface/test_numerics.cpp — floating-point robustness: S and M do not depend on where
+// a mesh sits or how large it is; the virtual-vertex weights equal a direct least-squares
+// solution of eq. (38) and, unlike a literal port of it, keep their digits far from the origin;
+// failed factorizations raise SolverError naming the operator.
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
+#include <Eigen/QR>
+#include <catch2/catch.hpp>
+#include <random>
+
+#include "polydec/dec/mesh/generators.h"
+#include "polydec/dec/io/mesh_io.h"
+#include "polydec/dec/surface/refinement.h"
+#include "polydec/operators/solvers/cholesky.h"
+#include "polydec/operators/surface/laplacian.h"
+#include "tests/support/support.h"
+
+using namespace polydec;
+
+namespace test_numerics {
+
+namespace {
+
+// The mesh moved to the origin and scaled to bounding-box diagonal 1.
+Mesh unit_size(const Mesh& m) {
+  const Eigen::RowVector3d lo = m.positions().colwise().minCoeff(), hi = m.positions().colwise().maxCoeff();
+  return m.with_positions((m.positions().rowwise() - 0.5 * (lo + hi)) / (hi - lo).norm());
+}
+
+struct NamedMesh {
+  std::string name;
+  Mesh mesh;
+};
+
+std::vector<NamedMesh> test_meshes() {
+  std::vector<NamedMesh> v = {{"hex_sphere(2)", hex_sphere(2)},
+                              {"noisy quad grid", add_noise(quad_grid(6, 6), 0.2, 5)},
+                              {"torus", torus(12, 8)},
+                              {"hex_grid", hex_grid(5, 5)}};
+  for (const char* name : {"noisy-sphere.off", "L-plane.obj", "tetris.obj"}) {
+    const std::string p = test::shared_path(name);
+    if (!p.empty()) v.push_back({name, read_mesh(p)});
+  }
+  for (auto& m : v) m.mesh = unit_size(m.mesh);
+  return v;
+}
+
+// Eq. (37)-(38) as printed: A and b from cross products with the raw positions, the (n+1) x n
+// system solved in the least-squares, least-norm sense by a complete orthogonal decomposition.
+// Its rank threshold is relative to the largest pivot (1e-10), generous enough that unit-size
+// polygons at the origin get the exact rank (3 planar, 4 non-planar).
+Eigen::VectorXd eq38_weights(const PolygonPositions& X) {
+  const int n = int(X.rows());
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n + 1, n);
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n + 1);
+  for (int k = 0; k < n; ++k) {
+    const Eigen::Vector3d xk = X.row(k).transpose(), e = (X.row((k + 1) % n) - X.row(k)).transpose();
+    for (int i = 0; i < n; ++i) {
+      const Eigen::Vector3d ci = X.row(i).transpose().cross(e);
+      for (int j = 0; j < n; ++j) A(i, j) += 2 * X.row(j).transpose().cross(e).dot(ci);
+      rhs[i] -= 2 * ci.dot(e.cross(xk));
+    }
+  }
+  A.row(n).setOnes();
+  rhs[n] = 1;
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;
+  cod.setThreshold(1e-10);
+  cod.compute(A);
+  return cod.solve(rhs);
+}
+
+// Random polygons: corner k at angle 2 pi (k + 0.6 u) / n (u uniform in [0, 1): jittered but
+// never collapsing into a sliver), radius from [r_min, 1] (convex for r_min = 1, non-convex star
+// shapes for small r_min), out-of-plane height `bump`, then a random rotation.
+PolygonPositions random_polygon(std::mt19937& rng, int n, double r_min, double bump) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<double> angles(n);
+  for (int k = 0; k < n; ++k) angles[k] = 2 * M_PI * (k + 0.6 * u(rng)) / n;
+  PolygonPositions X(n, 3);
+  for (int k = 0; k < n; ++k) {
+    const double r = r_min + (1 - r_min) * u(rng);
+    X.row(k) << r * std::cos(angles[k]), r * std::sin(angles[k]), bump * (2 * u(rng) - 1);
+  }
+  const Eigen::Matrix3d R =
+      Eigen::Quaterniond(Eigen::Vector4d(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5).normalized())
+          .toRotationMatrix();
+  return X * R.transpose();
+}
+
+double rel(const Eigen::VectorXd& a, const Eigen::VectorXd& b) { return (a - b).norm() / b.norm(); }
+
+}  // namespace
+
+TEST_CASE("S and M are invariant under translation and scaling", "[robust][numerics]") {
+  for (const auto& [name, mesh] : test_meshes()) {
+    INFO(name);
+    const Refinement r = refine(mesh);
+    const Laplacian L = assemble_laplacian(mesh, r);
+    auto moved = [&](const Eigen::MatrixX3d& P) {
+      const Mesh m = mesh.with_positions(P);
+      return assemble_laplacian(m, refine(m));
+    };
+    for (double offset : {1e3, 1e6}) {
+      INFO("offset " << offset);
+      const Laplacian T = moved(mesh.positions().rowwise() + Eigen::RowVector3d::Constant(offset));
+      const double tol = offset <= 1e3 ? 1e-11 : 1e-8;
+      CHECK(test::relative_difference(T.S, L.S) <= tol);
+      CHECK(test::relative_difference(T.M, L.M) <= tol);
+    }
+    for (double s : {1e-8, 1e8}) {
+      INFO("scale " << s);
+      const Laplacian T = moved(s * mesh.positions());
+      CHECK(test::relative_difference(T.S, L.S) <= 1e-9);
+      CHECK(test::relative_difference(SparseMatrix(T.M / (s * s)), L.M) <= 1e-9);
+    }
+  }
+}
+
+TEST_CASE("squared-area weights equal the least-norm solution of eq. (38)", "[robust][numerics]") {
+  std::mt19937 rng(11);
+  int n_tested = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const int n = 3 + trial % 8;
+    const double r_min =
+        trial % 3 == 0 ? 1.0 : (trial % 3 == 1 ? 0.7 : 0.2);  // convex .. strongly non-convex
+    const double bump = trial % 2 == 0 ? 0.0 : 0.3;           // planar (rotated) or not
+    const PolygonPositions X = random_polygon(rng, n, r_min, bump);
+    const Eigen::VectorXd w = squared_area_weights(X), ref = eq38_weights(X);
+    INFO("trial " << trial << " n " << n << " r_min " << r_min << " bump " << bump << " rel "
+                  << fmt::format("{:.3e}", rel(w, ref)));
+    CHECK(std::abs(w.sum() - 1) <= 1e-14);
+    CHECK(rel(w, ref) <= 1e-12);
+    ++n_tested;
+  }
+  CHECK(n_tested == 200);
+}
+
+TEST_CASE("squared-area weights do not depend on position or size, eq. (38) does", "[robust][numerics]") {
+  std::mt19937 rng(12);
+  double worst_ours = 0, worst_direct_1e4 = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    const int n = 4 + trial % 6;
+    const PolygonPositions X = random_polygon(rng, n, trial % 2 ? 0.3 : 1.0, trial % 4 < 2 ? 0.0 : 0.3);
+    const Eigen::VectorXd w = squared_area_weights(X);
+    INFO("trial " << trial);
+    for (double s : {1e-8, 1e8}) {
+      const double e = rel(squared_area_weights(s * X), w);
+      CHECK(e <= 1e-12);
+      worst_ours = std::max(worst_ours, e);
+    }
+    for (double offset : {1e3, 1e4}) {
+      const PolygonPositions Y = X.rowwise() + Eigen::RowVector3d(offset, -offset, offset);
+      // Rounding the translated corners alone moves them by ~offset * 1e-16 relative to the size.
+      const double e = rel(squared_area_weights(Y), w);
+      CHECK(e <= 1e-9);
+      worst_ours = std::max(worst_ours, e);
+      if (offset == 1e4) worst_direct_1e4 = std::max(worst_direct_1e4, rel(eq38_weights(Y), w));
+    }
+  }
+  // A literal port of eq. (38) loses about (offset / size)^2 in accuracy: at offset 1e4 its
+  // weights are off by orders of magnitude more than ours.
+  CHECK(worst_ours <= 1e-9);
+  CHECK(worst_direct_1e4 >= 1e-3);
+}
+
+TEST_CASE("failed factorizations raise SolverError naming the operator", "[robust][numerics]") {
+  const Mesh mesh = quad_grid(4, 4);
+  const SparseMatrix S = stiffness(mesh, refine(mesh));
+  // -S is positive semi-definite with the constants in its kernel: singular.
+  CHECK_THROWS_WITH(SparseCholesky(SparseMatrix(-S), "Poisson operator -S"),
+                    Catch::Contains("Poisson operator -S"));
+  CHECK_THROWS_AS(SparseCholesky(SparseMatrix(-S), "Poisson operator -S"), SolverError);
+  // S itself is negative semi-definite: not positive definite.
+  CHECK_THROWS_AS(SparseCholesky(S, "stiffness S"), SolverError);
+  CHECK_THROWS_WITH(SparseCholesky(S, "stiffness S"), Catch::Contains("stiffness S"));
+  // An all-zero matrix.
+  SparseMatrix Z(5, 5);
+  CHECK_THROWS_WITH(SparseCholesky(Z, "zero matrix"), Catch::Contains("zero matrix"));
+  // A good factorization that is refactored with singular values.
+  SparseMatrix A = SparseMatrix(-S);
+  for (int v = 0; v < A.rows(); ++v) A.coeffRef(v, v) += 1.0;
+  SparseCholesky chol(A, "shifted -S");
+  const Eigen::VectorXd b = Eigen::VectorXd::Ones(A.rows());
+  CHECK((A * chol.solve(b) - b).norm() <= 1e-12 * b.norm());
+  CHECK_THROWS_WITH(chol.refactor(SparseMatrix(-S)), Catch::Contains("shifted -S"));
+}
+
+}  // namespace test_numerics
