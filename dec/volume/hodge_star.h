@@ -1,5 +1,5 @@
 // dec/volume/hodge_star.h — prolongations P0..P3 and Hodge stars star0..star3 of the coarsened
-// Whitney forms on a polyhedral mesh (issue 17; paper eq. 23-27 in 3D).
+// Whitney forms on a polyhedral mesh (paper eq. 23-27 in 3D).
 //
 // With the coarse hats phi_i = sum_r P_ri phi^tet_r (P = P0, operators/volume/laplacian.h), the
 // coarse Whitney k-form of a sorted coarse simplex (i_0 < .. < i_k) is, by multilinearity,

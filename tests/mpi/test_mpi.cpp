@@ -50,8 +50,8 @@ struct NamedMesh {
   Mesh mesh;
 };
 
-// The meshes: a sphere with degenerate eigenvalues (icosahedral symmetry: multiplicities
-// 1, 3, 5 exactly), a torus (pairs), a scanned mesh with boundary, a noisy hexagon grid.
+// The distributed engine's test meshes: a sphere with degenerate eigenvalues (icosahedral
+// symmetry: multiplicities 1, 3, 5 exactly), a torus (pairs), a scanned mesh with boundary, a noisy hexagon grid.
 std::vector<NamedMesh> meshes() {
   std::vector<NamedMesh> out;
   out.push_back({"hex_sphere(3)", polydec::hex_sphere(3)});
