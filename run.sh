@@ -7,7 +7,7 @@
 #                 backend) and runs the whole test suite through ctest: C++, Python and MPI tests
 #   run.sh build  the same build as `test`, without running the tests
 # POLYDEC_PYTHON selects the Python interpreter for the module (default /usr/bin/python3, the one
-# that has Debian's numpy and scipy).
+# that has Debian's numpy and scipy); CI=true adds -Werror (POLYDEC_WERROR) to polydec's own code.
 set -euo pipefail
 cd "$(dirname "$0")"
 what=${1:-demo}
@@ -47,6 +47,8 @@ else
            -DPython_EXECUTABLE="${POLYDEC_PYTHON:-/usr/bin/python3}")
   targets=()
 fi
+# CI (CI=true) builds with -Werror on polydec's own targets: a new warning fails it.
+if [ "${CI:-}" = true ]; then options+=(-DPOLYDEC_WERROR=ON); else options+=(-DPOLYDEC_WERROR=OFF); fi
 echo "run.sh: configuring build/ (Release) and building ${targets[*]:-everything} on $jobs cores"
 # Shared libraries (symbol table: namespace polydec only), as installed; .ci/run installs this build.
 # Unity build (batches of 8 sources): a clean build of everything took 14.6 CPU-minutes here against

@@ -522,8 +522,11 @@ std::string table(const json& r, const std::string& t, const std::vector<std::st
   s += "\n";
   for (const auto& [mesh, row] : r[t].items()) {
     s += "| " + mesh + " |";
-    for (const std::string& c : cols)
-      s += " " + (row.contains(c) ? cell(row[c], find(r["paper"], t, mesh, c), tolerance) : "–") + " |";
+    for (const std::string& c : cols) {
+      s += ' ';
+      s += row.contains(c) ? cell(row[c], find(r["paper"], t, mesh, c), tolerance) : "–";
+      s += " |";
+    }
     s += "\n";
   }
   return s + "\n";

@@ -13,8 +13,6 @@
 
 namespace polydec {
 
-using namespace io_detail;
-
 FileError::FileError(std::string file_, long line_, long byte_offset_, std::string reason_)
     : std::runtime_error(line_ > 0           ? fmt::format("{}:{}: {}", file_, line_, reason_)
                          : byte_offset_ >= 0 ? fmt::format("{}: byte {}: {}", file_, byte_offset_, reason_)
@@ -87,10 +85,10 @@ Mesh validate(SoupRead r, const std::string& name) {
 
 
 PolygonSoup read_polygon_soup(const std::string& path) {
-  const std::string ext = extension(path);
+  const std::string ext = io_detail::extension(path);
   if (ext != "obj" && ext != "off" && ext != "ply")
     throw FileError(path, 0, -1, fmt::format("unknown mesh format '.{}' (obj, off, ply)", ext));
-  return mesh_io_detail::read_any(slurp(path), ext, path).soup;
+  return mesh_io_detail::read_any(io_detail::slurp(path), ext, path).soup;
 }
 
 PolygonSoup read_polygon_soup_from_memory(std::string_view bytes, std::string_view format,
@@ -99,10 +97,10 @@ PolygonSoup read_polygon_soup_from_memory(std::string_view bytes, std::string_vi
 }
 
 Mesh read_mesh(const std::string& path) {
-  const std::string ext = extension(path);
+  const std::string ext = io_detail::extension(path);
   if (ext != "obj" && ext != "off" && ext != "ply")
     throw FileError(path, 0, -1, fmt::format("unknown mesh format '.{}' (obj, off, ply)", ext));
-  return mesh_io_detail::validate(mesh_io_detail::read_any(slurp(path), ext, path), path);
+  return mesh_io_detail::validate(mesh_io_detail::read_any(io_detail::slurp(path), ext, path), path);
 }
 
 Mesh read_mesh_from_memory(std::string_view bytes, std::string_view format, const std::string& name) {
@@ -111,23 +109,23 @@ Mesh read_mesh_from_memory(std::string_view bytes, std::string_view format, cons
 
 void write_mesh(const std::string& path, const Mesh& mesh, const VertexScalars& scalars,
                 const WriteOptions& options) {
-  const std::string ext = extension(path);
+  const std::string ext = io_detail::extension(path);
   std::string data;
   if (ext == "obj") {
-    data = write_obj(mesh);
+    data = io_detail::write_obj(mesh);
   } else if (ext == "off") {
-    data = write_off(mesh, options.binary);
+    data = io_detail::write_off(mesh, options.binary);
   } else if (ext == "ply") {
     for (const auto& [name, values] : scalars) {
       if (name.empty() || std::any_of(name.begin(), name.end(), [](char c) { return c <= ' ' || c == 127; }))
         throw FileError(path, 0, -1,
-                        fmt::format("scalar property name {} is empty or has whitespace", quote(name)));
+                        fmt::format("scalar property name {} is empty or has whitespace", io_detail::quote(name)));
       if (values.size() != mesh.n_vertices())
         throw FileError(path, 0, -1,
                         fmt::format("scalar property '{}' has {} values for {} vertices", name, values.size(),
                                     mesh.n_vertices()));
     }
-    data = write_ply(mesh, scalars, options.binary);
+    data = io_detail::write_ply(mesh, scalars, options.binary);
   } else {
     throw FileError(path, 0, -1, fmt::format("unknown mesh format '.{}' (obj, off, ply)", ext));
   }

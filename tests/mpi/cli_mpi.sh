@@ -4,13 +4,35 @@
 # a non-manifold mesh whose bad edge joins faces of different ranks) ends every rank with the same
 # one-line error and exit code 3, without a hang;
 # a good run gives the serial command's numbers (distances 1e-8 of the largest, eigenvalues 1e-8).
+# The meshes: SHARED_DATA/suzanne-half.obj (and quad-plane.obj as the other mesh), or on a clone
+# without that folder two generated saddle grids; a missing file fails when
+# POLYDEC_REQUIRE_SHARED_DATA=1.
 set -u
 MPIEXEC=$1 POLYDEC=$2 N=$3 DATA=$4
-GOOD=$DATA/suzanne-half.obj
 TMP=$(mktemp -d)
 trap 'rm -rf "$TMP"' EXIT
 fail() { echo "FAIL: $*"; exit 1; }
 mpi() { timeout 90 "$MPIEXEC" --oversubscribe --mca mpi_yield_when_idle 1 "$@"; }
+
+# An OBJ of NX x NY quads over [0,1]^2 bent into the saddle z = (x - 1/2)^2 - (y - 1/2)^2 (open,
+# curved, non-planar quads).
+saddle_obj() {
+  awk -v nx="$1" -v ny="$2" 'BEGIN {
+    for (j = 0; j <= ny; ++j) for (i = 0; i <= nx; ++i) {
+      x = i / nx; y = j / ny; printf "v %.17g %.17g %.17g\n", x, y, (x - 0.5)^2 - (y - 0.5)^2 }
+    for (j = 0; j < ny; ++j) for (i = 0; i < nx; ++i) {
+      a = j * (nx + 1) + i + 1; printf "f %d %d %d %d\n", a, a + 1, a + nx + 2, a + nx + 1 } }'
+}
+if [ -f "$DATA/suzanne-half.obj" ] && [ -f "$DATA/quad-plane.obj" ]; then
+  GOOD=$DATA/suzanne-half.obj OTHER=$DATA/quad-plane.obj
+elif [ "${POLYDEC_REQUIRE_SHARED_DATA:-}" = 1 ]; then
+  fail "required test meshes missing: $DATA/suzanne-half.obj, $DATA/quad-plane.obj"
+else
+  echo "note: $DATA/suzanne-half.obj not found (clone without shared data): generated saddle grids instead"
+  GOOD=$TMP/saddle.obj OTHER=$TMP/saddle-small.obj
+  saddle_obj 16 12 > "$GOOD"
+  saddle_obj 6 5 > "$OTHER"
+fi
 
 # A non-manifold mesh: edge (0, 1) shared by three triangles.
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n' > "$TMP/nonmanifold.obj"
@@ -43,7 +65,7 @@ bad_last_rank() {
 }
 bad_last_rank "$TMP/missing.obj" "missing.obj"
 bad_last_rank "$TMP/nonmanifold.obj" "non-manifold" "$TMP/nonmanifold.obj"  # every rank reads it
-bad_last_rank "$DATA/quad-plane.obj" "different meshes"
+bad_last_rank "$OTHER" "different meshes"
 
 # Good runs against the serial command.
 json_number() { grep "\"$1\":" "$2" | head -1 | sed 's/.*: *//; s/,$//'; }

@@ -11,6 +11,8 @@
 #include <Eigen/SVD>
 #include <fmt/format.h>
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -50,15 +52,39 @@ struct NamedMesh {
   Mesh mesh;
 };
 
-// The distributed engine's test meshes: a sphere with degenerate eigenvalues (icosahedral
-// symmetry: multiplicities 1, 3, 5 exactly), a torus (pairs), a scanned mesh with boundary, a noisy hexagon grid.
+// quad_grid(16, 12) bent into the saddle z = (x - 1/2)^2 - (y - 1/2)^2: an open curved mesh whose
+// quads are not planar.
+Mesh saddle() {
+  const Mesh grid = polydec::quad_grid(16, 12);
+  polydec::PolygonSoup soup;
+  soup.positions = grid.positions();
+  for (Eigen::Index v = 0; v < soup.positions.rows(); ++v) {
+    const double x = soup.positions(v, 0) - 0.5, y = soup.positions(v, 1) - 0.5;
+    soup.positions(v, 2) = x * x - y * y;
+  }
+  soup.face_offsets = grid.face_offsets();
+  soup.face_indices = grid.face_indices();
+  return Mesh(std::move(soup));
+}
+
+// A curved mesh with boundary: the scanned ../shared/data/suzanne-half.obj, or where a clone has no
+// such folder the generated saddle; a missing file fails when POLYDEC_REQUIRE_SHARED_DATA=1.
+NamedMesh open_mesh() {
+  const std::string suzanne = std::string(POLYDEC_SHARED_DATA) + "/suzanne-half.obj";
+  if (std::filesystem::exists(suzanne)) return {"suzanne-half.obj (boundary)", polydec::read_mesh(suzanne)};
+  const char* required = std::getenv("POLYDEC_REQUIRE_SHARED_DATA");
+  if (required && std::string(required) == "1") FAIL("required test mesh missing: " << suzanne);
+  return {"saddle quad_grid(16, 12) (boundary; " + suzanne + " not found)", saddle()};
+}
+
+// The meshes: a sphere with degenerate eigenvalues (icosahedral symmetry: multiplicities
+// 1, 3, 5 exactly), a torus (pairs), a curved mesh with boundary, a noisy hexagon grid.
 std::vector<NamedMesh> meshes() {
   std::vector<NamedMesh> out;
   out.push_back({"hex_sphere(3)", polydec::hex_sphere(3)});
   out.push_back({"torus(24, 12)", polydec::torus(24, 12)});
   out.push_back({"noisy hex_grid(10, 10)", polydec::add_noise(polydec::hex_grid(10, 10), 0.01, 7)});
-  const std::string suzanne = std::string(POLYDEC_SHARED_DATA) + "/suzanne-half.obj";
-  out.push_back({"suzanne-half.obj (boundary)", polydec::read_mesh(suzanne)});
+  out.push_back(open_mesh());
   return out;
 }
 

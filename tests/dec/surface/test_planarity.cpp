@@ -103,7 +103,10 @@ std::string off_text(const PolygonPositions& X, const char* number_format) {
       s.push_back(d == 2 ? '\n' : ' ');
     }
   s += std::to_string(X.rows());
-  for (int k = 0; k < X.rows(); ++k) s += " " + std::to_string(k);
+  for (int k = 0; k < X.rows(); ++k) {
+    s += ' ';
+    s += std::to_string(k);
+  }
   return s + "\n";
 }
 
