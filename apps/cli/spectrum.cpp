@@ -16,11 +16,12 @@
 #include "polydec/apps/pictures/render.h"
 #include "polydec/apps/pictures/vector_field.h"
 #include "polydec/apps/pictures/volume_cut.h"
-#include "polydec/dec/surface/complex.h"
 #include "polydec/dec/io/mesh_io.h"
 #include "polydec/dec/io/volume_io.h"
+#include "polydec/dec/surface/complex.h"
 #include "polydec/dec/surface/prolongation.h"
 #include "polydec/operators/registry/volume_laplacians.h"
+#include "polydec/operators/surface/face_to_vertex.h"
 
 namespace polydec::cli::spectrum_command {
 namespace {
@@ -32,16 +33,6 @@ struct Options {
   bool json = false, volume = false;
   EngineOptions engine;  // --engine, --solver, --petsc-options
 };
-
-// Dense Matrix Market ("array real general", column by column), 17 significant digits.
-void write_dense_matrix_market(const std::string& path, const Eigen::MatrixXd& A) {
-  std::ofstream out(path);
-  if (!out) throw FileError(path, 0, -1, "cannot open file for writing");
-  out << "%%MatrixMarket matrix array real general\n" << A.rows() << ' ' << A.cols() << '\n';
-  for (Eigen::Index j = 0; j < A.cols(); ++j)
-    for (Eigen::Index i = 0; i < A.rows(); ++i) out << fmt::format("{:.17g}\n", A(i, j));
-  if (!out) throw FileError(path, 0, -1, "write failed");
-}
 
 void report(const Options& o, const LazyMesh& mesh, const std::string& laplacian, int n_in, const Spectrum& sp,
             const nlohmann::json* engine);
@@ -191,15 +182,6 @@ void report(const Options& o, const LazyMesh& mesh, const std::string& laplacian
   if (!o.out.empty())
     fmt::print("wrote eigenvalues.txt, eigenvectors.mtx (|V| x k) and eigenvectors.ply (u000..) to {}\n",
                o.out);
-}
-
-// Per-vertex mean of per-face values (for drawing).
-Eigen::VectorXd face_to_vertex(const Mesh& mesh, const Eigen::VectorXd& face_values) {
-  Eigen::VectorXd v = Eigen::VectorXd::Zero(mesh.n_vertices()), c = v;
-  for (int f = 0; f < mesh.n_faces(); ++f)
-    for (int i : mesh.face(f)) v[i] += face_values[f], c[i] += 1;
-  for (int i = 0; i < mesh.n_vertices(); ++i) v[i] = c[i] > 0 ? v[i] / c[i] : 0;
-  return v;
 }
 
 // The Whitney 2-form's density per face: its integral over the face (fan triangles, oriented as
