@@ -69,9 +69,9 @@ void run_volume(const Options& o) {
   if (!o.png.empty() && (o.png_index < 0 || o.png_index >= o.k))
     throw UsageError("--png-index must lie in [0, k)");
   const VolumeMesh mesh = load_volume_mesh(o.mesh);
-  VolumeRefinement refinement;  // the operators' own, for the picture (kept only with --png)
-  const OperatorSet ops = build_volume_operators(mesh, parse_volume_laplacian(o.laplacian), false, nullptr, 1,
-                                                 o.png.empty() ? nullptr : &refinement);
+  // The operators keep their refinement for the picture (only with --png).
+  const OperatorSet ops = build_volume_operators(mesh, parse_volume_laplacian(o.laplacian),
+                                                 {.with_gradient = false, .keep_refinement = !o.png.empty()});
   SpectrumOptions sopt;
   sopt.k = o.k;
   sopt.lumped_mass = o.mass == "lumped";
@@ -92,7 +92,7 @@ void run_volume(const Options& o) {
     j["files"] = {"eigenvalues.txt", "eigenvectors.mtx", "eigenvectors.vtk"};
   }
   if (!o.png.empty()) {
-    render_volume_cut_png(o.png, mesh, refinement, sp.eigenvectors.col(o.png_index),
+    render_volume_cut_png(o.png, mesh, *ops.volume_refinement, sp.eigenvectors.col(o.png_index),
                           centre_plane(mesh, Eigen::Vector3d::UnitZ()),
                           eigenfunction_picture(o, ev, ops.name));
     j["png"] = o.png;
