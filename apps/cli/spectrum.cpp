@@ -19,7 +19,6 @@
 #include "polydec/dec/io/mesh_io.h"
 #include "polydec/dec/io/volume_io.h"
 #include "polydec/dec/surface/complex.h"
-#include "polydec/dec/surface/prolongation.h"
 #include "polydec/operators/registry/volume_laplacians.h"
 #include "polydec/operators/surface/face_to_vertex.h"
 
@@ -184,24 +183,6 @@ void report(const Options& o, const LazyMesh& mesh, const std::string& laplacian
                o.out);
 }
 
-// The Whitney 2-form's density per face: its integral over the face (fan triangles, oriented as
-// the face) divided by the face's area.
-Eigen::VectorXd two_form_density(const Mesh& mesh, const Refinement& ref, const CoarseComplex& cx,
-                                 const Eigen::VectorXd& u) {
-  const Eigen::VectorXd t = prolongation2(mesh, ref, cx) * u;
-  Eigen::VectorXd integral = Eigen::VectorXd::Zero(mesh.n_faces()), area = integral;
-  for (int h = 0; h < mesh.n_halfedges(); ++h) {
-    const int f = mesh.halfedge_face(h);
-    const Eigen::Vector3d a = mesh.position(mesh.halfedge_source(h)),
-                          b = mesh.position(mesh.halfedge_target(h));
-    const Eigen::Vector3d x = ref.virtual_points.row(f).transpose();
-    integral[f] += refined_triangle_sign(mesh, h) * t[h];
-    area[f] += 0.5 * (b - a).cross(x - a).norm();
-  }
-  for (int f = 0; f < mesh.n_faces(); ++f) integral[f] = area[f] > 0 ? integral[f] / area[f] : 0;
-  return integral;
-}
-
 void run_form(const Options& o) {
   if (o.form != 1 && o.form != 2) throw UsageError("--form must be 0, 1 or 2");
   if (o.engine.engine != "serial") throw UsageError("--form: only the serial engine computes form spectra");
@@ -288,7 +269,7 @@ void run_form(const Options& o) {
       ropt.scalar_label = "density";
       ropt.isolines = 10;
       render_png(o.png, mesh,
-                 face_to_vertex(mesh, two_form_density(mesh, ref, cx, sp.eigenvectors.col(o.png_index))),
+                 face_to_vertex(mesh, whitney2_face_densities(mesh, ref, sp.eigenvectors.col(o.png_index))),
                  ropt);
     }
     j["png"] = o.png;
