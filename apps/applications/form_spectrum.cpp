@@ -240,4 +240,26 @@ Eigen::MatrixX3d whitney_vectors_at_virtual_vertices(const Mesh& mesh, const Ref
   return U;
 }
 
+Eigen::VectorXd whitney2_face_densities(const Mesh& mesh, const Refinement& refinement,
+                                        const Eigen::VectorXd& cochain) {
+  check_refinement(mesh, refinement, "whitney2_face_densities");
+  const CoarseComplex cx(mesh);
+  if (cochain.size() != cx.n_triples())
+    throw std::invalid_argument(
+        fmt::format("whitney 2-form densities: the cochain has {} values, the mesh {} triples",
+                    cochain.size(), cx.n_triples()));
+  const Eigen::VectorXd t = prolongation2(mesh, refinement, cx) * cochain;
+  Eigen::VectorXd integral = Eigen::VectorXd::Zero(mesh.n_faces()), area = integral;
+  for (int h = 0; h < mesh.n_halfedges(); ++h) {
+    const int f = mesh.halfedge_face(h);
+    const Eigen::Vector3d a = mesh.position(mesh.halfedge_source(h)),
+                          b = mesh.position(mesh.halfedge_target(h));
+    const Eigen::Vector3d x = refinement.virtual_points.row(f).transpose();
+    integral[f] += refined_triangle_sign(mesh, h) * t[h];
+    area[f] += 0.5 * (b - a).cross(x - a).norm();
+  }
+  for (int f = 0; f < mesh.n_faces(); ++f) integral[f] = area[f] > 0 ? integral[f] / area[f] : 0;
+  return integral;
+}
+
 }  // namespace polydec

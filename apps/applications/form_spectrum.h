@@ -79,4 +79,10 @@ FormSpectrum form_spectrum(const Mesh& mesh, const FormSpectrumOptions& options 
 Eigen::MatrixX3d whitney_vectors_at_virtual_vertices(const Mesh& mesh, const Refinement& refinement,
                                                      const Eigen::VectorXd& cochain);
 
+// The density of Whitney 2-form `cochain` (values on triples()) per face: its integral over the
+// face's fan triangles (P2 cochain, eq. 26, oriented as the face) divided by their total area, |F|.
+// The area cochain of a plane (signed areas of the triples) has density 1 on every face of it.
+Eigen::VectorXd whitney2_face_densities(const Mesh& mesh, const Refinement& refinement,
+                                        const Eigen::VectorXd& cochain);
+
 }  // namespace polydec

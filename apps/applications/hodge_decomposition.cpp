@@ -201,19 +201,7 @@ HodgeParts HodgeDecomposer::decompose(const Eigen::VectorXd& omega) const {
     if (!std::isfinite(omega[p]))
       throw std::invalid_argument(fmt::format("hodge decomposition: value {} (1-cell {} {}) is not finite", p,
                                               complex_.pairs()(p, 0), complex_.pairs()(p, 1)));
-  HodgeParts parts;
-  const Eigen::VectorXd s_omega = star1_ * omega;
-  parts.potential = exact_potential(d0_.transpose() * s_omega);
-  parts.exact = d0_ * parts.potential;
-  // H^T star1 d0 = 0, so projecting omega or omega - exact onto H is the same.
-  parts.harmonic = H_ * (H_.transpose() * s_omega);
-  parts.coexact = omega - parts.exact - parts.harmonic;
-  auto norm = [&](const Eigen::VectorXd& x) { return std::sqrt(std::max(0.0, x.dot(star1_ * x))); };
-  parts.norm = norm(omega);
-  parts.norm_exact = norm(parts.exact);
-  parts.norm_coexact = norm(parts.coexact);
-  parts.norm_harmonic = norm(parts.harmonic);
-  return parts;
+  return hodge_parts(omega, exact_potential(d0_.transpose() * (star1_ * omega)), d0_, star1_, H_);
 }
 
 HodgeParts hodge_decomposition(const Mesh& mesh, const Eigen::VectorXd& omega) {

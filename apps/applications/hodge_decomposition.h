@@ -22,17 +22,12 @@
 #include <Eigen/Sparse>
 #include <memory>
 
+#include "polydec/apps/applications/hodge_parts.h"
 #include "polydec/dec/surface/complex.h"
 #include "polydec/dec/surface/refinement.h"
 #include "polydec/operators/solvers/cholesky.h"
 
 namespace polydec {
-
-struct HodgeParts {
-  Eigen::VectorXd exact, coexact, harmonic;  // |C1| each; exact + coexact + harmonic = omega
-  Eigen::VectorXd potential;                 // alpha, |V|, exact = d0 alpha
-  double norm = 0, norm_exact = 0, norm_coexact = 0, norm_harmonic = 0;  // sqrt(x^T star1 x)
-};
 
 class HodgeDecomposer {
  public:

@@ -109,11 +109,11 @@ void run_volume(const Options& o) {
   hopt.lumped_mass = o.mass == "lumped";
   hopt.mass_weighted_source = !o.delta_source;
   hopt.time_step_factor = o.time_factor;
-  SubTetQuality quality;
-  VolumeRefinement refinement;  // the operators' own, for the picture (kept only with --png)
-  const HeatGeodesics heat(build_volume_operators(mesh, parse_volume_laplacian(o.laplacian), true, &quality,
-                                                  1, o.png.empty() ? nullptr : &refinement),
-                           mesh.mean_edge_length(), hopt);
+  // The operators keep their refinement for the picture (only with --png).
+  const HeatGeodesics heat(
+      build_volume_operators(mesh, parse_volume_laplacian(o.laplacian), {.keep_refinement = !o.png.empty()}),
+      mesh.mean_edge_length(), hopt);
+  const SubTetQuality& quality = heat.operators().sub_tet_quality;
   HeatDiagnostics diagnostics;
   const Eigen::VectorXd d = heat.distance(o.sources, &diagnostics);
   const Stats st = stats(d);
@@ -140,7 +140,8 @@ void run_volume(const Options& o) {
     ropt.isolines = 15;
     ropt.scalar_label = "distance";
     ropt.title = fmt::format("heat geodesics in the volume ({})", heat.operators().name);
-    render_volume_cut_png(o.png, mesh, refinement, d, centre_plane(mesh, Eigen::Vector3d::UnitZ()), ropt);
+    render_volume_cut_png(o.png, mesh, *heat.operators().volume_refinement, d,
+                          centre_plane(mesh, Eigen::Vector3d::UnitZ()), ropt);
     j["png"] = o.png;
   }
   if (o.json) {

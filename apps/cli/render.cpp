@@ -87,10 +87,11 @@ void run_volume(const Options& o) {
     if (o.source >= mesh.n_vertices())
       throw std::out_of_range(fmt::format("source vertex {} is out of range (the mesh has {} vertices)",
                                           o.source, mesh.n_vertices()));
-    s = HeatGeodesics(
-            build_volume_operators(mesh, parse_volume_laplacian(o.laplacian), true, nullptr, 1, &refinement),
-            mesh.mean_edge_length())
-            .distance(o.source);
+    const HeatGeodesics heat(
+        build_volume_operators(mesh, parse_volume_laplacian(o.laplacian), {.keep_refinement = true}),
+        mesh.mean_edge_length());
+    s = heat.distance(o.source);
+    refinement = *heat.operators().volume_refinement;
     r.scalar_label = "distance";
     r.isolines = 15;
   } else {

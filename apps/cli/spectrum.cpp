@@ -16,11 +16,11 @@
 #include "polydec/apps/pictures/render.h"
 #include "polydec/apps/pictures/vector_field.h"
 #include "polydec/apps/pictures/volume_cut.h"
-#include "polydec/dec/surface/complex.h"
 #include "polydec/dec/io/mesh_io.h"
 #include "polydec/dec/io/volume_io.h"
-#include "polydec/dec/surface/prolongation.h"
+#include "polydec/dec/surface/complex.h"
 #include "polydec/operators/registry/volume_laplacians.h"
+#include "polydec/operators/surface/face_to_vertex.h"
 
 namespace polydec::cli::spectrum_command {
 namespace {
@@ -32,16 +32,6 @@ struct Options {
   bool json = false, volume = false;
   EngineOptions engine;  // --engine, --solver, --petsc-options
 };
-
-// Dense Matrix Market ("array real general", column by column), 17 significant digits.
-void write_dense_matrix_market(const std::string& path, const Eigen::MatrixXd& A) {
-  std::ofstream out(path);
-  if (!out) throw FileError(path, 0, -1, "cannot open file for writing");
-  out << "%%MatrixMarket matrix array real general\n" << A.rows() << ' ' << A.cols() << '\n';
-  for (Eigen::Index j = 0; j < A.cols(); ++j)
-    for (Eigen::Index i = 0; i < A.rows(); ++i) out << fmt::format("{:.17g}\n", A(i, j));
-  if (!out) throw FileError(path, 0, -1, "write failed");
-}
 
 void report(const Options& o, const LazyMesh& mesh, const std::string& laplacian, int n_in, const Spectrum& sp,
             const nlohmann::json* engine);
@@ -78,9 +68,9 @@ void run_volume(const Options& o) {
   if (!o.png.empty() && (o.png_index < 0 || o.png_index >= o.k))
     throw UsageError("--png-index must lie in [0, k)");
   const VolumeMesh mesh = load_volume_mesh(o.mesh);
-  VolumeRefinement refinement;  // the operators' own, for the picture (kept only with --png)
-  const OperatorSet ops = build_volume_operators(mesh, parse_volume_laplacian(o.laplacian), false, nullptr, 1,
-                                                 o.png.empty() ? nullptr : &refinement);
+  // The operators keep their refinement for the picture (only with --png).
+  const OperatorSet ops = build_volume_operators(mesh, parse_volume_laplacian(o.laplacian),
+                                                 {.with_gradient = false, .keep_refinement = !o.png.empty()});
   SpectrumOptions sopt;
   sopt.k = o.k;
   sopt.lumped_mass = o.mass == "lumped";
@@ -101,7 +91,7 @@ void run_volume(const Options& o) {
     j["files"] = {"eigenvalues.txt", "eigenvectors.mtx", "eigenvectors.vtk"};
   }
   if (!o.png.empty()) {
-    render_volume_cut_png(o.png, mesh, refinement, sp.eigenvectors.col(o.png_index),
+    render_volume_cut_png(o.png, mesh, *ops.volume_refinement, sp.eigenvectors.col(o.png_index),
                           centre_plane(mesh, Eigen::Vector3d::UnitZ()),
                           eigenfunction_picture(o, ev, ops.name));
     j["png"] = o.png;
@@ -193,33 +183,6 @@ void report(const Options& o, const LazyMesh& mesh, const std::string& laplacian
                o.out);
 }
 
-// Per-vertex mean of per-face values (for drawing).
-Eigen::VectorXd face_to_vertex(const Mesh& mesh, const Eigen::VectorXd& face_values) {
-  Eigen::VectorXd v = Eigen::VectorXd::Zero(mesh.n_vertices()), c = v;
-  for (int f = 0; f < mesh.n_faces(); ++f)
-    for (int i : mesh.face(f)) v[i] += face_values[f], c[i] += 1;
-  for (int i = 0; i < mesh.n_vertices(); ++i) v[i] = c[i] > 0 ? v[i] / c[i] : 0;
-  return v;
-}
-
-// The Whitney 2-form's density per face: its integral over the face (fan triangles, oriented as
-// the face) divided by the face's area.
-Eigen::VectorXd two_form_density(const Mesh& mesh, const Refinement& ref, const CoarseComplex& cx,
-                                 const Eigen::VectorXd& u) {
-  const Eigen::VectorXd t = prolongation2(mesh, ref, cx) * u;
-  Eigen::VectorXd integral = Eigen::VectorXd::Zero(mesh.n_faces()), area = integral;
-  for (int h = 0; h < mesh.n_halfedges(); ++h) {
-    const int f = mesh.halfedge_face(h);
-    const Eigen::Vector3d a = mesh.position(mesh.halfedge_source(h)),
-                          b = mesh.position(mesh.halfedge_target(h));
-    const Eigen::Vector3d x = ref.virtual_points.row(f).transpose();
-    integral[f] += refined_triangle_sign(mesh, h) * t[h];
-    area[f] += 0.5 * (b - a).cross(x - a).norm();
-  }
-  for (int f = 0; f < mesh.n_faces(); ++f) integral[f] = area[f] > 0 ? integral[f] / area[f] : 0;
-  return integral;
-}
-
 void run_form(const Options& o) {
   if (o.form != 1 && o.form != 2) throw UsageError("--form must be 0, 1 or 2");
   if (o.engine.engine != "serial") throw UsageError("--form: only the serial engine computes form spectra");
@@ -306,7 +269,7 @@ void run_form(const Options& o) {
       ropt.scalar_label = "density";
       ropt.isolines = 10;
       render_png(o.png, mesh,
-                 face_to_vertex(mesh, two_form_density(mesh, ref, cx, sp.eigenvectors.col(o.png_index))),
+                 face_to_vertex(mesh, whitney2_face_densities(mesh, ref, sp.eigenvectors.col(o.png_index))),
                  ropt);
     }
     j["png"] = o.png;

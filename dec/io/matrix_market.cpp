@@ -1,6 +1,6 @@
-// dec/io/matrix_market.cpp — Matrix Market files: written as coordinate "real general", 1-based,
-// 17 significant digits; read in the coordinate or the dense array format (what `polydec spectrum`
-// writes for eigenvectors), real or integer, general, symmetric or skew-symmetric.
+// dec/io/matrix_market.cpp — Matrix Market files: written as coordinate "real general", 1-based
+// (sparse matrices) or array "real general" (dense ones), 17 significant digits; read in either
+// format, real or integer, general, symmetric or skew-symmetric.
 #include <climits>
 #include <filesystem>
 #include <fstream>
@@ -62,6 +62,19 @@ void write_matrix_market(const std::string& path, const Eigen::SparseMatrix<doub
   for (int j = 0; j < A.outerSize(); ++j)
     for (Eigen::SparseMatrix<double>::InnerIterator it(A, j); it; ++it)
       fmt::format_to(out, "{} {} {:.17g}\n", it.row() + 1, it.col() + 1, it.value());
+  std::ofstream f(path, std::ios::binary);
+  if (!f) throw FileError(path, 0, -1, "cannot open file for writing");
+  f.write(b.data(), std::streamsize(b.size()));
+  f.close();
+  if (!f) throw FileError(path, 0, -1, "write failed");
+}
+
+void write_dense_matrix_market(const std::string& path, const Eigen::MatrixXd& A) {
+  fmt::memory_buffer b;
+  auto out = std::back_inserter(b);
+  fmt::format_to(out, "%%MatrixMarket matrix array real general\n{} {}\n", A.rows(), A.cols());
+  for (Eigen::Index j = 0; j < A.cols(); ++j)
+    for (Eigen::Index i = 0; i < A.rows(); ++i) fmt::format_to(out, "{:.17g}\n", A(i, j));
   std::ofstream f(path, std::ios::binary);
   if (!f) throw FileError(path, 0, -1, "cannot open file for writing");
   f.write(b.data(), std::streamsize(b.size()));

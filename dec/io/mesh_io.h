@@ -58,6 +58,9 @@ void write_mesh(const std::string& path, const Mesh& mesh, const VertexScalars& 
 
 // Matrix Market "coordinate real general", 1-based, 17 significant digits.
 void write_matrix_market(const std::string& path, const Eigen::SparseMatrix<double>& A);
+// Matrix Market "array real general" (dense, column by column), 17 significant digits: eigenvector
+// blocks and other dense results. read_matrix_market reads it back (as a sparse matrix).
+void write_dense_matrix_market(const std::string& path, const Eigen::MatrixXd& A);
 // Reads a Matrix Market file, coordinate (duplicate entries are summed) or dense array format
 // (column by column; zeros not stored), real or integer; general, symmetric or skew-symmetric.
 // Throws FileError.

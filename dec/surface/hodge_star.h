@@ -89,4 +89,21 @@ HodgeStars hodge_stars(const Mesh& mesh, const Refinement& refinement, const Coa
 SparseMatrix star1(const Mesh& mesh, const Refinement& refinement, const CoarseComplex& complex);
 SparseMatrix star2(const Mesh& mesh, const Refinement& refinement, const CoarseComplex& complex);
 
+// Everything of DEC on a polygon mesh, computed once: the fields of VolumeDec
+// (dec/volume/hodge_star.h) for surfaces, so that d[k], P[k] and star[k] read alike on both.
+// Built from the functions above and those of dec/surface/complex.h and dec/surface/prolongation.h,
+// which remain the building blocks.
+struct SurfaceDec {
+  int max_degree = 2;    // d_k for k < max_degree, P_k and star_k for k <= max_degree
+  CoarseComplex coarse;  // the cells (dec/surface/complex.h)
+  SparseMatrix d[2];     // coarse d0 (|C1| x |V|), d1 (|C2| x |C1|); empty beyond max_degree
+  SparseMatrix P[3];     // P0 = prolongation, P1, P2 (dec/surface/prolongation.h)
+  SparseMatrix star[3];  // coarse star0 (the Galerkin mass M), star1, star2
+};
+
+// Builds the complex, d_k, P_k and star_k up to degree max_degree (0..2, std::invalid_argument
+// otherwise; star2 costs O(n^6) per n-gon, so max_degree = 1 skips it). Defined in
+// dec/surface/surface_dec.cpp.
+SurfaceDec surface_dec(const Mesh& mesh, const Refinement& refinement, int max_degree = 2);
+
 }  // namespace polydec

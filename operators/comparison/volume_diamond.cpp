@@ -91,16 +91,15 @@ VolumeLaplacian assemble_volume_diamond(const VolumeMesh& mesh, const VolumeRefi
   return V;
 }
 
-OperatorSet volume_diamond_operators(const VolumeMesh& mesh, bool with_gradient, SubTetQuality* quality,
-                                     VolumeRefinement* refinement) {
+OperatorSet volume_diamond_operators(const VolumeMesh& mesh, const VolumeOperatorOptions& options) {
   OperatorSet ops;
   ops.name = "diamond (volume)";
   ops.n_input_vertices = mesh.n_vertices();
   ops.mean_edge_length = mesh.mean_edge_length();
   VolumeRefinement R = refine_volume(mesh);
-  if (quality) *quality = R.quality;
-  fill_diamond_operators(volume_diamonds(mesh, R), volume_prolongation(mesh, R), with_gradient, ops);
-  if (refinement) *refinement = std::move(R);
+  ops.sub_tet_quality = R.quality;
+  fill_diamond_operators(volume_diamonds(mesh, R), volume_prolongation(mesh, R), options.with_gradient, ops);
+  if (options.keep_refinement) ops.volume_refinement = std::move(R);
   return ops;
 }
 

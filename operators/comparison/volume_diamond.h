@@ -16,6 +16,7 @@
 
 #include "polydec/dec/volume/refinement.h"
 #include "polydec/operators/comparison/diamond.h"
+#include "polydec/operators/registry/volume_laplacians.h"
 #include "polydec/operators/volume/laplacian.h"
 
 namespace polydec {
@@ -27,12 +28,11 @@ FineDiamonds volume_diamonds(const VolumeMesh& mesh, const VolumeRefinement& ref
 VolumeLaplacian assemble_volume_diamond(const VolumeMesh& mesh, const VolumeRefinement& refinement);
 
 // The same with the default refinement as an OperatorSet (name "diamond (volume)", no surface
-// domain, n_input_vertices = |V|, mean_edge_length of the volume mesh); with_gradient adds G (3 rows
-// per sub-diamond) and D. n_degenerate_triangles / n_folded_triangles count degenerate and folded
-// (negative Gauss volume) sub-diamonds; `quality` (optional) receives the refinement's sub-tetrahedron
-// counts, `refinement` (optional) the refinement itself. Method "diamond" of operators/registry/volume_laplacians.h.
-OperatorSet volume_diamond_operators(const VolumeMesh& mesh, bool with_gradient = true,
-                                     SubTetQuality* quality = nullptr,
-                                     VolumeRefinement* refinement = nullptr);
+// domain, n_input_vertices = |V|, mean_edge_length of the volume mesh, sub_tet_quality the
+// refinement's sub-tetrahedron counts); options.with_gradient adds G (3 rows per sub-diamond) and D,
+// options.keep_refinement the refinement (volume_refinement); options.threads is not used.
+// n_degenerate_triangles / n_folded_triangles count degenerate and folded (negative Gauss volume)
+// sub-diamonds. Method "diamond" of operators/registry/volume_laplacians.h.
+OperatorSet volume_diamond_operators(const VolumeMesh& mesh, const VolumeOperatorOptions& options = {});
 
 }  // namespace polydec

@@ -88,19 +88,22 @@ LaplacianChoice parse_laplacian(const std::string& spec) {
 
 namespace {
 
-OperatorSet virtual_vertex_operators(const Mesh& mesh, VirtualVertexRule rule, bool with_gradient) {
+OperatorSet virtual_vertex_operators(const Mesh& mesh, VirtualVertexRule rule,
+                                     const OperatorOptions& options) {
   OperatorSet ops;
   ops.domain = mesh;
   ops.n_input_vertices = mesh.n_vertices();
   RefinementOptions ro;
   ro.rule = rule;
   const Refinement r = refine(mesh, ro);
-  Laplacian L = assemble_laplacian(mesh, r);
+  AssemblyOptions aopt;
+  aopt.threads = options.threads;
+  Laplacian L = assemble_laplacian(mesh, r, {}, nullptr, aopt);
   ops.S.swap(L.S);  // swap, not move: std::move copies an Eigen 3.4 SparseMatrix
   ops.M.swap(L.M);
   ops.M_lumped = std::move(L.M_lumped);
   ops.quality = r.quality;
-  if (with_gradient) {
+  if (options.with_gradient) {
     SparseMatrix G = gradient(mesh, r), D = divergence(mesh, r);
     ops.G.swap(G);
     ops.D.swap(D);
@@ -183,13 +186,15 @@ OperatorSet intrinsic_delaunay_operators(const Mesh& mesh, bool with_gradient) {
 
 // Returns each method's set as a prvalue: `ops = f(...)` would deep-copy S, M, G and D (Eigen
 // 3.4's SparseMatrix has no move assignment; ~10 s of the 1.5M-quad heat-method set-up).
-OperatorSet operators_by_name(const Mesh& mesh, const LaplacianChoice& choice, bool with_gradient) {
+OperatorSet operators_by_name(const Mesh& mesh, const LaplacianChoice& choice,
+                              const OperatorOptions& options) {
+  const bool with_gradient = options.with_gradient;
   const std::string& m = choice.method;
-  if (m == "ours") return virtual_vertex_operators(mesh, VirtualVertexRule::SquaredArea, with_gradient);
-  if (m == "centroid") return virtual_vertex_operators(mesh, VirtualVertexRule::Centroid, with_gradient);
-  if (m == "abs-area") return virtual_vertex_operators(mesh, VirtualVertexRule::AbsArea, with_gradient);
-  if (m == "convex") return virtual_vertex_operators(mesh, VirtualVertexRule::Convex, with_gradient);
-  if (m == "trace-min") return virtual_vertex_operators(mesh, VirtualVertexRule::TraceMin, with_gradient);
+  if (m == "ours") return virtual_vertex_operators(mesh, VirtualVertexRule::SquaredArea, options);
+  if (m == "centroid") return virtual_vertex_operators(mesh, VirtualVertexRule::Centroid, options);
+  if (m == "abs-area") return virtual_vertex_operators(mesh, VirtualVertexRule::AbsArea, options);
+  if (m == "convex") return virtual_vertex_operators(mesh, VirtualVertexRule::Convex, options);
+  if (m == "trace-min") return virtual_vertex_operators(mesh, VirtualVertexRule::TraceMin, options);
   if (m == "triangulated-minarea")
     return triangulated_operators(mesh, TriangulationRule::MinSquaredArea, with_gradient);
   if (m == "triangulated-maxminangle")
@@ -204,11 +209,17 @@ OperatorSet operators_by_name(const Mesh& mesh, const LaplacianChoice& choice, b
 
 }  // namespace
 
-OperatorSet build_operators(const Mesh& mesh, const LaplacianChoice& choice, bool with_gradient) {
-  OperatorSet ops = operators_by_name(mesh, choice, with_gradient);
+OperatorSet build_operators(const Mesh& mesh, const LaplacianChoice& choice, const OperatorOptions& options) {
+  OperatorSet ops = operators_by_name(mesh, choice, options);
   ops.name = choice.canonical_name();
   if (ops.mean_edge_length == 0.0) ops.mean_edge_length = mesh.mean_edge_length();
   return ops;
+}
+
+OperatorSet build_operators(const Mesh& mesh, const LaplacianChoice& choice, bool with_gradient) {
+  OperatorOptions options;
+  options.with_gradient = with_gradient;
+  return build_operators(mesh, choice, options);
 }
 
 }  // namespace polydec

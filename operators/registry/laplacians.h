@@ -16,9 +16,11 @@
 // A parameter follows a colon, e.g. "aw11:0.5".
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "polydec/dec/surface/refinement.h"
+#include "polydec/dec/volume/refinement.h"
 #include "polydec/operators/surface/laplacian.h"
 
 namespace polydec {
@@ -48,6 +50,11 @@ struct OperatorSet {
   // "refined". The heat method's time step uses the input's by default (paper section 5.5);
   // reference implementations of triangulation methods (libigl) use this one.
   double mean_edge_length = 0.0;
+  // Volume methods (operators/registry/volume_laplacians.h): the sub-tetrahedron counts of the
+  // refinement the operators were built on, and, when VolumeOperatorOptions::keep_refinement asked
+  // for it, that refinement itself (for pictures of their fields, apps/pictures/volume_cut.h).
+  SubTetQuality sub_tet_quality;
+  std::optional<VolumeRefinement> volume_refinement;
 };
 
 // A parsed method name with its parameter.
@@ -64,7 +71,20 @@ LaplacianChoice parse_laplacian(const std::string& spec);
 // Names of all methods, for help texts.
 std::vector<std::string> laplacian_names();
 
-// Builds the operator set of `choice` on `mesh`. `with_gradient` asks for G and D too.
-OperatorSet build_operators(const Mesh& mesh, const LaplacianChoice& choice, bool with_gradient = true);
+// What build_operators builds besides S, M and the lumped M, and how.
+struct OperatorOptions {
+  bool with_gradient = true;  // G and D too
+  int threads = 1;            // assembly threads of "ours" and its virtual-vertex variants (0: all
+                              // hardware threads); the results do not depend on it
+};
+
+// Builds the operator set of `choice` on `mesh`, e.g.
+//   build_operators(mesh, parse_laplacian("aw11:0.5"), {.with_gradient = false}).
+// The volume counterpart is build_volume_operators (operators/registry/volume_laplacians.h).
+OperatorSet build_operators(const Mesh& mesh, const LaplacianChoice& choice,
+                            const OperatorOptions& options = {});
+
+// Shorthand for build_operators(mesh, choice, {.with_gradient = with_gradient}).
+OperatorSet build_operators(const Mesh& mesh, const LaplacianChoice& choice, bool with_gradient);
 
 }  // namespace polydec

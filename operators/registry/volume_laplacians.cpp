@@ -14,43 +14,43 @@ namespace polydec {
 namespace volume_laplacians_detail {
 namespace {
 
-OperatorSet refined_operators(const VolumeMesh& mesh, CellPointRule rule, bool with_gradient,
-                              SubTetQuality* quality, int threads, VolumeRefinement* refinement) {
+OperatorSet refined_operators(const VolumeMesh& mesh, CellPointRule rule,
+                              const VolumeOperatorOptions& options) {
   VolumeRefinementOptions ropt;
   ropt.cell_rule = rule;
-  ropt.threads = threads;
+  ropt.threads = options.threads;
   VolumeRefinement r = refine_volume(mesh, ropt);
-  VolumeLaplacian L = assemble_volume_laplacian(mesh, r, nullptr, threads);
+  VolumeLaplacian L = assemble_volume_laplacian(mesh, r, nullptr, options.threads);
   OperatorSet ops;
   ops.S.swap(L.S);
   ops.M.swap(L.M);
   ops.M_lumped = std::move(L.M_lumped);
-  if (with_gradient) {
+  if (options.with_gradient) {
     Eigen::VectorXd volumes;
     ops.G = volume_gradient(mesh, r, &volumes);
     ops.D = volume_divergence(ops.G, volumes);
   }
-  if (quality) *quality = r.quality;
-  if (refinement) *refinement = std::move(r);
+  ops.sub_tet_quality = r.quality;
+  if (options.keep_refinement) ops.volume_refinement = std::move(r);
   return ops;
 }
 
-// One row per method: a new method (e.g. the volume Diamond Laplacian) is one more row.
+// One row per method: a new method is one more row.
 struct VolumeMethod {
   const char* name;
-  OperatorSet (*build)(const VolumeMesh&, bool with_gradient, SubTetQuality*, int threads, VolumeRefinement*);
+  OperatorSet (*build)(const VolumeMesh&, const VolumeOperatorOptions&);
 };
 const VolumeMethod kVolumeMethods[] = {
     {"ours",
-     [](const VolumeMesh& m, bool g, SubTetQuality* q, int t, VolumeRefinement* r) {
-       return refined_operators(m, CellPointRule::SquaredVolume, g, q, t, r);
+     [](const VolumeMesh& m, const VolumeOperatorOptions& o) {
+       return refined_operators(m, CellPointRule::SquaredVolume, o);
      }},
     {"polylaplace",
-     [](const VolumeMesh& m, bool g, SubTetQuality* q, int t, VolumeRefinement* r) {
-       return refined_operators(m, CellPointRule::PolyLaplace, g, q, t, r);
+     [](const VolumeMesh& m, const VolumeOperatorOptions& o) {
+       return refined_operators(m, CellPointRule::PolyLaplace, o);
      }},
-    {"diamond", [](const VolumeMesh& m, bool g, SubTetQuality* q, int,
-                   VolumeRefinement* r) { return volume_diamond_operators(m, g, q, r); }},
+    {"diamond",
+     [](const VolumeMesh& m, const VolumeOperatorOptions& o) { return volume_diamond_operators(m, o); }},
 };
 
 const VolumeMethod* find_volume_method(const std::string& name) {
@@ -77,14 +77,14 @@ LaplacianChoice parse_volume_laplacian(const std::string& spec) {
   return c;
 }
 
-OperatorSet build_volume_operators(const VolumeMesh& mesh, const LaplacianChoice& choice, bool with_gradient,
-                                   SubTetQuality* quality, int threads, VolumeRefinement* refinement) {
+OperatorSet build_volume_operators(const VolumeMesh& mesh, const LaplacianChoice& choice,
+                                   const VolumeOperatorOptions& options) {
   const auto* m = volume_laplacians_detail::find_volume_method(choice.method);
   if (!m || choice.has_parameter)
     throw std::invalid_argument(fmt::format("unknown volume Laplacian '{}' (known: {})",
                                             choice.canonical_name(),
                                             fmt::join(volume_laplacian_names(), ", ")));
-  OperatorSet ops = m->build(mesh, with_gradient, quality, threads, refinement);
+  OperatorSet ops = m->build(mesh, options);
   ops.name = m->name;
   ops.n_input_vertices = mesh.n_vertices();
   ops.mean_edge_length = mesh.mean_edge_length();

@@ -15,8 +15,9 @@
 // ones), each repeated three times, so that S = D G (the 3D eq. 17-18).
 //
 // The returned OperatorSet has no surface `domain` (an empty Mesh); n_input_vertices = |V|,
-// mean_edge_length that of the volume mesh, `quality` unused (sub-tetrahedron counts go to the
-// optional SubTetQuality output). Conventions as on surfaces: S symmetric negative semi-definite.
+// mean_edge_length that of the volume mesh, `quality` unused (sub-tetrahedron counts are in
+// `sub_tet_quality`, the refinement in `volume_refinement` when asked for). Conventions as on
+// surfaces: S symmetric negative semi-definite.
 #pragma once
 
 #include <string>
@@ -35,14 +36,21 @@ std::vector<std::string> volume_laplacian_names();
 // the known methods.
 LaplacianChoice parse_volume_laplacian(const std::string& spec);
 
-// Builds the operator set of `choice` on `mesh`; `with_gradient` asks for G and D too; `threads`
-// (0: all hardware threads) run the refinement and the assembly of "ours" and "polylaplace" (the
-// results do not depend on it); `refinement` (optional) receives the refinement the operators were
-// built on (for pictures of their fields, apps/pictures/volume_cut.h). Throws std::invalid_argument
-// for a method that is not a volume method.
+// What build_volume_operators builds besides S, M and the lumped M, and how (the fields shared with
+// OperatorOptions mean the same).
+struct VolumeOperatorOptions {
+  bool with_gradient = true;     // G and D too
+  int threads = 1;               // refinement and assembly threads of "ours" and "polylaplace" (0: all
+                                 // hardware threads); the results do not depend on it
+  bool keep_refinement = false;  // OperatorSet::volume_refinement receives the refinement used
+};
+
+// Builds the operator set of `choice` on `mesh`, e.g.
+//   build_volume_operators(mesh, parse_volume_laplacian("ours"), {.with_gradient = false, .threads = 0});
+// OperatorSet::sub_tet_quality holds the refinement's sub-tetrahedron counts. Throws
+// std::invalid_argument for a method that is not a volume method.
 OperatorSet build_volume_operators(const VolumeMesh& mesh, const LaplacianChoice& choice,
-                                   bool with_gradient = true, SubTetQuality* quality = nullptr,
-                                   int threads = 1, VolumeRefinement* refinement = nullptr);
+                                   const VolumeOperatorOptions& options = {});
 
 // Gradient G = G^tet P, (3T) x |V| (T = number of sub-tetrahedra), see above; with `volumes`, also
 // the sub-tetrahedra's volumes from the same pass (as sub_tet_volumes).

@@ -73,11 +73,14 @@ py::dict volume_operator_dict(const VolumeMesh& mesh, const std::string& spec,
       throw std::invalid_argument("unknown operator part '" + p + "' (known: S, M, M_lumped, G, D)");
   const LaplacianChoice choice = parse_volume_laplacian(spec);
   OperatorSet ops;
-  SubTetQuality q;
   {
     py::gil_scoped_release release;
-    ops = build_volume_operators(mesh, choice, parts.count("G") || parts.count("D"), &q, threads);
+    VolumeOperatorOptions options;
+    options.with_gradient = parts.count("G") || parts.count("D");
+    options.threads = threads;
+    ops = build_volume_operators(mesh, choice, options);
   }
+  const SubTetQuality& q = ops.sub_tet_quality;
   py::dict d;
   d["name"] = ops.name;
   d["subtet_degenerate"] = q.n_degenerate;
@@ -268,15 +271,16 @@ void register_volumes(py::module_& m) {
     options.time_step_factor = time_step_factor;
     options.lumped_mass = lumped_mass;
     options.mass_weighted_source = mass_weighted_source;
-    return std::make_unique<HeatGeodesics>(build_volume_operators(mesh, choice, true),
-                                           mesh.mean_edge_length(), options);
+    return std::make_unique<HeatGeodesics>(build_volume_operators(mesh, choice), mesh.mean_edge_length(),
+                                           options);
   });
 
   m.def("volume_spectrum", [](const VolumeMesh& mesh, int k, const std::string& spec, bool dirichlet,
                               bool lumped_mass, double tolerance, int max_iterations) {
     const LaplacianChoice choice = parse_volume_laplacian(spec);
     return spectrum_released(k, lumped_mass, tolerance, max_iterations, [&](const SpectrumOptions& options) {
-      return volume_laplacian_spectrum(build_volume_operators(mesh, choice, false), mesh, dirichlet, options);
+      return volume_laplacian_spectrum(build_volume_operators(mesh, choice, {.with_gradient = false}), mesh,
+                                       dirichlet, options);
     });
   });
   m.def("ball_eigenvalues", [](int count, bool dirichlet) {
@@ -297,8 +301,8 @@ void register_volumes(py::module_& m) {
     VolumePoissonError e;
     {
       py::gil_scoped_release release;
-      e = volume_dirichlet_poisson(build_volume_operators(mesh, choice, false), mesh, exact, laplacian,
-                                   lumped_mass);
+      e = volume_dirichlet_poisson(build_volume_operators(mesh, choice, {.with_gradient = false}), mesh,
+                                   exact, laplacian, lumped_mass);
     }
     return poisson_dict(e);
   });

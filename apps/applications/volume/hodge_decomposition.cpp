@@ -75,24 +75,14 @@ Eigen::VectorXd VolumeHodgeDecomposer::exact_potential(const Eigen::VectorXd& rh
   return poisson_->solve(b);
 }
 
-VolumeHodgeParts VolumeHodgeDecomposer::decompose(const Eigen::VectorXd& omega) const {
+HodgeParts VolumeHodgeDecomposer::decompose(const Eigen::VectorXd& omega) const {
   const SparseMatrix& d0 = dec_.d[0];
   const SparseMatrix& star1 = dec_.star[1];
   if (omega.size() != star1.rows())
     throw std::invalid_argument("1-form has " + std::to_string(omega.size()) + " values, the mesh has " +
                                 std::to_string(star1.rows()) + " coarse pairs");
   if (!omega.allFinite()) throw std::invalid_argument("1-form has non-finite values");
-  VolumeHodgeParts p;
-  p.potential = exact_potential(d0.transpose() * (star1 * omega));
-  p.exact = d0 * p.potential;
-  p.harmonic = H_ * (H_.transpose() * (star1 * omega));
-  p.coexact = omega - p.exact - p.harmonic;
-  auto norm = [&](const Eigen::VectorXd& x) { return std::sqrt(std::max(0.0, x.dot(star1 * x))); };
-  p.norm = norm(omega);
-  p.norm_exact = norm(p.exact);
-  p.norm_coexact = norm(p.coexact);
-  p.norm_harmonic = norm(p.harmonic);
-  return p;
+  return hodge_parts(omega, exact_potential(d0.transpose() * (star1 * omega)), d0, star1, H_);
 }
 
 }  // namespace polydec

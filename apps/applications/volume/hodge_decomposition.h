@@ -19,23 +19,18 @@
 #include <Eigen/Sparse>
 #include <memory>
 
+#include "polydec/apps/applications/hodge_parts.h"
 #include "polydec/dec/volume/hodge_star.h"
 #include "polydec/operators/solvers/cholesky.h"
 
 namespace polydec {
-
-struct VolumeHodgeParts {
-  Eigen::VectorXd exact, coexact, harmonic;  // |C1| each; exact + coexact + harmonic = omega
-  Eigen::VectorXd potential;                 // alpha, |V|
-  double norm = 0, norm_exact = 0, norm_coexact = 0, norm_harmonic = 0;  // sqrt(x^T star1 x)
-};
 
 class VolumeHodgeDecomposer {
  public:
   explicit VolumeHodgeDecomposer(const VolumeMesh& mesh, const VolumeRefinementOptions& options = {});
 
   // omega: one value per coarse pair (std::invalid_argument on a size mismatch or non-finite values).
-  VolumeHodgeParts decompose(const Eigen::VectorXd& omega) const;
+  HodgeParts decompose(const Eigen::VectorXd& omega) const;
 
   const VolumeDec& dec() const { return dec_; }
   const Eigen::MatrixXd& harmonic_basis() const { return H_; }  // star1-orthonormal, |C1| x dim

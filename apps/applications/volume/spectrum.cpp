@@ -98,8 +98,8 @@ std::vector<BallEigenvalue> ball_eigenvalues(int count, bool dirichlet) {
 }
 
 Spectrum volume_laplacian_spectrum(const VolumeMesh& mesh, bool dirichlet, const SpectrumOptions& options) {
-  return volume_laplacian_spectrum(build_volume_operators(mesh, LaplacianChoice{}, false), mesh, dirichlet,
-                                   options);
+  return volume_laplacian_spectrum(build_volume_operators(mesh, LaplacianChoice{}, {.with_gradient = false}),
+                                   mesh, dirichlet, options);
 }
 
 Spectrum volume_laplacian_spectrum(const OperatorSet& ops, const VolumeMesh& mesh, bool dirichlet,

@@ -301,3 +301,30 @@ TEST_CASE("Whitney vectors at the virtual vertices reproduce a constant gradient
 }
 
 }  // namespace test_form_spectrum
+
+namespace test_whitney2_face_densities {
+
+TEST_CASE("whitney2_face_densities: the plane's area cochain has density 1 on every face",
+          "[form-spectrum]") {
+  // Signed areas of the triples (oriented by increasing index) are the cochain of dx ^ dy; P2
+  // carries it to the signed areas of the fan triangles (P reproduces affine functions), so
+  // integral / area = 1 on counter-clockwise faces.
+  for (const Mesh& mesh : {hex_grid(4, 3), add_noise(quad_grid(4, 4), 0.1, 3)}) {
+    const Mesh flat = mesh.with_positions(
+        (Eigen::MatrixX3d(mesh.positions()) * Eigen::Vector3d(1, 1, 0).asDiagonal()).eval());
+    const CoarseComplex cx(flat);
+    Eigen::VectorXd c(cx.n_triples());
+    for (int t = 0; t < cx.n_triples(); ++t) {
+      const Eigen::Vector3d a = flat.position(cx.triples()(t, 0)), b = flat.position(cx.triples()(t, 1)),
+                            d = flat.position(cx.triples()(t, 2));
+      c[t] = 0.5 * (b - a).cross(d - a).z();
+    }
+    const Eigen::VectorXd rho = whitney2_face_densities(flat, refine(flat), c);
+    REQUIRE(rho.size() == flat.n_faces());
+    CHECK((rho.array() - 1.0).abs().maxCoeff() < 1e-12);
+    CHECK_THROWS_AS(whitney2_face_densities(flat, refine(flat), Eigen::VectorXd::Zero(c.size() + 1)),
+                    std::invalid_argument);
+  }
+}
+
+}  // namespace test_whitney2_face_densities

@@ -151,9 +151,14 @@ TEST_CASE("volume cut: the operators' refinement passed in, and a refinement of 
     p.point = Eigen::Vector3d(0.41, 0.52, 0.47);
     p.normal = Eigen::Vector3d(0.3, -1.0, 0.6);
     const VolumeRefinement fresh = refine_volume(mesh);
-    VolumeRefinement ours, poly;
-    build_volume_operators(mesh, parse_volume_laplacian("ours"), true, nullptr, 2, &ours);
-    build_volume_operators(mesh, parse_volume_laplacian("polylaplace"), false, nullptr, 1, &poly);
+    const OperatorSet ours_ops =
+        build_volume_operators(mesh, parse_volume_laplacian("ours"), {.threads = 2, .keep_refinement = true});
+    const OperatorSet poly_ops = build_volume_operators(mesh, parse_volume_laplacian("polylaplace"),
+                                                        {.with_gradient = false, .keep_refinement = true});
+    REQUIRE(ours_ops.volume_refinement.has_value());
+    REQUIRE(poly_ops.volume_refinement.has_value());
+    const VolumeRefinement& ours = *ours_ops.volume_refinement;
+    const VolumeRefinement& poly = *poly_ops.volume_refinement;
     // The refinement "ours" was built on (two threads) cuts exactly as a fresh default one.
     Eigen::VectorXd v_fresh, v_ours, v_poly;
     const Mesh s_fresh = cut_solid(mesh, fresh, u, p, &v_fresh),

@@ -1,6 +1,7 @@
 // tests/dec/io/test_mesh_io.cpp — mesh and matrix readers/writers: round trips in every format
 // (positions bit-exact, faces identical), the paper's meshes (including pmp-library's binary
 // OFF), accepted format variants, PLY scalar properties, Matrix Market, error messages.
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstring>
@@ -301,6 +302,32 @@ TEST_CASE("Matrix Market round-trips every double exactly, symmetric files are m
       read_matrix_market_from_memory("%%MatrixMarket matrix array integer skew-symmetric\n2 2\n7\n", "k.mtx");
   CHECK(Eigen::MatrixXd(AK)(1, 0) == 7.0);
   CHECK(Eigen::MatrixXd(AK)(0, 1) == -7.0);
+}
+
+TEST_CASE("dense Matrix Market: written as an array, read back bit for bit", "[io]") {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> U(-1, 1);
+  Eigen::MatrixXd A(7, 3);
+  for (Eigen::Index j = 0; j < A.cols(); ++j)
+    for (Eigen::Index i = 0; i < A.rows(); ++i) A(i, j) = std::ldexp(U(rng), int(rng() % 1200) - 600);
+  A(0, 0) = 5e-324;  // subnormal
+  A(1, 0) = -1.7976931348623157e308;
+  A(2, 1) = 0.0;  // written, not stored on reading
+  const std::string p = (temp_dir() / "dense.mtx").string();
+  write_dense_matrix_market(p, A);
+  const std::string text = slurp(p);
+  CHECK(text.substr(0, 41) == "%%MatrixMarket matrix array real general\n");
+  CHECK(std::count(text.begin(), text.end(), '\n') == 2 + A.size());  // header, size, one value a line
+  const Eigen::SparseMatrix<double> B = read_matrix_market(p);
+  REQUIRE(B.rows() == A.rows());
+  REQUIRE(B.cols() == A.cols());
+  CHECK(Eigen::MatrixXd(B) == A);
+  // Column by column: the second value is A(1, 0).
+  CHECK(text.find("\n-1.7976931348623157e+308\n") != std::string::npos);
+  const std::string empty = (temp_dir() / "empty.mtx").string();
+  write_dense_matrix_market(empty, Eigen::MatrixXd(0, 4));
+  CHECK(read_matrix_market(empty).cols() == 4);
+  CHECK_THROWS_AS(write_dense_matrix_market("/nonexistent-dir/d.mtx", A), FileError);
 }
 
 TEST_CASE("FileError formats FILE:LINE, FILE: byte N, or FILE alone", "[io]") {

@@ -157,6 +157,38 @@ TEST_CASE("coarse stars assembled face by face equal P_k^T star_k^f P_k, star0 e
   }
 }
 
+TEST_CASE("surface_dec holds the building blocks' d, P and star, as VolumeDec does", "[feec]") {
+  for (const auto& [name, mesh] : test::feec_meshes()) {
+    INFO(name);
+    const Refinement r = refine(mesh);
+    const SurfaceDec D = surface_dec(mesh, r);
+    const CoarseComplex K(mesh);
+    REQUIRE(D.coarse.n_pairs() == K.n_pairs());
+    REQUIRE(D.coarse.n_triples() == K.n_triples());
+    CHECK(relative_difference(D.d[0], K.d0()) == 0.0);
+    CHECK(relative_difference(D.d[1], K.d1()) == 0.0);
+    CHECK(relative_difference(D.P[0], prolongation(mesh, r)) == 0.0);
+    CHECK(relative_difference(D.P[1], prolongation1(mesh, r, K)) == 0.0);
+    CHECK(relative_difference(D.P[2], prolongation2(mesh, r, K)) == 0.0);
+    const HodgeStars H = hodge_stars(mesh, r, K);
+    CHECK(relative_difference(D.star[0], H.star0) == 0.0);
+    CHECK(relative_difference(D.star[1], H.star1) == 0.0);
+    CHECK(relative_difference(D.star[2], H.star2) == 0.0);
+    // The identities read the same on both kinds of mesh: d1 d0 = 0, S = -d0^T star1 d0.
+    CHECK(Eigen::SparseMatrix<double>(D.d[1] * D.d[0]).norm() == 0.0);
+    const Eigen::SparseMatrix<double> S =
+        -Eigen::SparseMatrix<double>(D.d[0].transpose()) * D.star[1] * D.d[0];
+    CHECK(relative_difference(S, stiffness(mesh, r)) <= 1e-12);
+    // Up to degree 1: no d1, P2 or star2.
+    const SurfaceDec D1 = surface_dec(mesh, r, 1);
+    CHECK(D1.d[1].size() == 0);
+    CHECK(D1.P[2].size() == 0);
+    CHECK(D1.star[2].size() == 0);
+    CHECK(relative_difference(D1.star[1], H.star1) == 0.0);
+  }
+  CHECK_THROWS_AS(surface_dec(quad_grid(2, 2), refine(quad_grid(2, 2)), 3), std::invalid_argument);
+}
+
 TEST_CASE("S = -d0^T star1 d0 to 1e-12 relative", "[feec]") {
   for (const auto& [name, mesh] : test::feec_meshes()) {
     INFO(name);

@@ -241,7 +241,7 @@ TEST_CASE("volume Hodge decomposition: harmonic dimension is the first Betti num
     const SparseMatrix& star1 = D.star[1];
     Eigen::VectorXd omega(star1.rows());
     for (int i = 0; i < omega.size(); ++i) omega(i) = g(rng);
-    const VolumeHodgeParts p = hodge.decompose(omega);
+    const HodgeParts p = hodge.decompose(omega);
     CHECK((p.exact + p.coexact + p.harmonic - omega).norm() <= 1e-12 * omega.norm());
     const double n2 = p.norm * p.norm;
     CHECK(std::abs(p.exact.dot(star1 * p.coexact)) <= 1e-9 * n2);
@@ -259,7 +259,7 @@ TEST_CASE("volume Hodge decomposition: harmonic dimension is the first Betti num
     // The exact part of an exact form is the form itself.
     Eigen::VectorXd u(c.mesh.n_vertices());
     for (int i = 0; i < u.size(); ++i) u(i) = g(rng);
-    const VolumeHodgeParts q = hodge.decompose(D.d[0] * u);
+    const HodgeParts q = hodge.decompose(D.d[0] * u);
     CHECK(q.norm_coexact + q.norm_harmonic <= 1e-9 * q.norm);
   }
 }

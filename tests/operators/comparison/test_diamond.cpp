@@ -327,9 +327,10 @@ TEST_CASE("diamond (volume): symmetric, null space, semi-definite, S = D G, mass
 TEST_CASE("diamond (volume): S scales like h, M like h^3, rigid motions change nothing",
           "[diamond][volume]") {
   const VolumeMesh mesh = truncated_octahedra_volume(2, VolumeJitter{0.15, 9});
-  const OperatorSet ops = volume_diamond_operators(mesh, false);
+  const OperatorSet ops = volume_diamond_operators(mesh, {.with_gradient = false});
   for (double scale : {1e-4, 1e4}) {
-    const OperatorSet sc = volume_diamond_operators(mesh.with_positions(scale * mesh.positions()), false);
+    const OperatorSet sc =
+        volume_diamond_operators(mesh.with_positions(scale * mesh.positions()), {.with_gradient = false});
     CHECK(relative_difference(SparseMatrix(sc.S / scale), ops.S) < 1e-10);
     CHECK(relative_difference(SparseMatrix(sc.M / (scale * scale * scale)), ops.M) < 1e-10);
   }
@@ -337,7 +338,7 @@ TEST_CASE("diamond (volume): S scales like h, M like h^3, rigid motions change n
       Eigen::AngleAxisd(-1.1, Eigen::Vector3d(2, 1, -1).normalized()).toRotationMatrix();
   const OperatorSet rot = volume_diamond_operators(
       mesh.with_positions((mesh.positions() * R.transpose()).rowwise() + Eigen::RowVector3d(-4, 2, 9)),
-      false);
+      {.with_gradient = false});
   CHECK(relative_difference(rot.S, ops.S) < 1e-10);
   CHECK(relative_difference(rot.M, ops.M) < 1e-10);
 }

@@ -204,3 +204,28 @@ TEST_CASE("Table 4: geodesic RMSE of [BS07] and AW11 against the paper", "[compa
 }
 
 }  // namespace test_laplacians
+
+namespace test_laplacians_options {
+
+TEST_CASE("build_operators options: threads change nothing, with_gradient = false drops G and D",
+          "[laplacians]") {
+  const Mesh mesh = add_noise(hex_sphere(1), 0.2, 5);
+  for (const char* name : {"ours", "centroid", "aw11:0.5", "diamond"}) {
+    INFO(name);
+    const OperatorSet ref = build_operators(mesh, parse_laplacian(name));
+    const OperatorSet two =
+        build_operators(mesh, parse_laplacian(name), {.with_gradient = false, .threads = 2});
+    CHECK(Eigen::MatrixXd(two.S) == Eigen::MatrixXd(ref.S));
+    CHECK(Eigen::MatrixXd(two.M) == Eigen::MatrixXd(ref.M));
+    CHECK(two.M_lumped == ref.M_lumped);
+    CHECK(two.G.size() == 0);
+    CHECK(two.D.size() == 0);
+    // The bool shorthand is the same call.
+    const OperatorSet plain = build_operators(mesh, parse_laplacian(name), false);
+    CHECK(Eigen::MatrixXd(plain.S) == Eigen::MatrixXd(ref.S));
+    CHECK(plain.G.size() == 0);
+    CHECK_FALSE(ref.volume_refinement.has_value());
+  }
+}
+
+}  // namespace test_laplacians_options

@@ -39,13 +39,24 @@ TEST_CASE("volume operators: S = D G, and S equals the volume Laplacian's", "[vo
       CHECK(test::relative_difference(SparseMatrix(ops.D * ops.G), ops.S) < 1e-12);
       VolumeRefinementOptions ro;
       ro.cell_rule = method == "ours" ? CellPointRule::SquaredVolume : CellPointRule::PolyLaplace;
-      const VolumeLaplacian L = assemble_volume_laplacian(mesh, refine_volume(mesh, ro));
+      const VolumeRefinement r = refine_volume(mesh, ro);
+      const VolumeLaplacian L = assemble_volume_laplacian(mesh, r);
       CHECK(test::relative_difference(ops.S, L.S) == 0.0);
       CHECK(test::relative_difference(ops.M, L.M) == 0.0);
-      // Without the gradient: the same S, no G.
-      const OperatorSet plain = build_volume_operators(mesh, parse_volume_laplacian(method), false);
+      CHECK(ops.sub_tet_quality.n_degenerate == r.quality.n_degenerate);
+      CHECK(ops.sub_tet_quality.n_inverted == r.quality.n_inverted);
+      CHECK_FALSE(ops.volume_refinement.has_value());  // kept only when asked for
+      // Without the gradient, on two threads, keeping the refinement: the same S, no G, the same
+      // refinement as a fresh one.
+      const OperatorSet plain =
+          build_volume_operators(mesh, parse_volume_laplacian(method),
+                                 {.with_gradient = false, .threads = 2, .keep_refinement = true});
       CHECK(plain.G.size() == 0);
       CHECK(test::relative_difference(plain.S, ops.S) == 0.0);
+      REQUIRE(plain.volume_refinement.has_value());
+      CHECK(plain.volume_refinement->cell_points == r.cell_points);
+      CHECK(plain.volume_refinement->face_points == r.face_points);
+      CHECK(plain.volume_refinement->cell_weights == r.cell_weights);
     }
 }
 
