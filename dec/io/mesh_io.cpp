@@ -1,6 +1,6 @@
 // dec/io/mesh_io.cpp — FileError, format dispatch by extension, read_mesh (validation errors mapped
-// back to file positions) and write_mesh. The formats live in io_obj.cpp, io_off.cpp,
-// io_ply.cpp and io_matrix_market.cpp.
+// back to file positions) and write_mesh. The formats live in obj.cpp, off.cpp,
+// ply.cpp and matrix_market.cpp.
 #include "polydec/dec/io/mesh_io.h"
 
 #include <fmt/format.h>
