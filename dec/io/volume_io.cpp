@@ -1,6 +1,6 @@
 // dec/io/volume_io.cpp — volume format dispatch by extension, read_volume_mesh (validation errors
-// mapped back to file lines) and write_volume_mesh. The formats live in io_ovm.cpp, io_vtk.cpp
-// and io_medit.cpp.
+// mapped back to file lines) and write_volume_mesh. The formats live in ovm.cpp, vtk.cpp
+// and medit.cpp.
 #include "polydec/dec/io/volume_io.h"
 
 #include <fmt/format.h>
