@@ -1,5 +1,5 @@
 // bench/plain_volume_reference.h — a deliberately plain implementation of the polyhedral
-// Laplacian of operators/volume/laplacian.h (issue 17), written in the style of the surface
+// Laplacian of operators/volume/laplacian.h, written in the style of the surface
 // baseline ../shared/bench/plain_reference.cpp: per-element loops over std::vector meshes, dense
 // local matrices, S = P^T S^tet P and M = P^T M^tet P added through Eigen triplets. The timing
 // baseline of polydec_bench's volume rows and an independent oracle for the [volume-bench-ref] test.

@@ -4,7 +4,7 @@
 # builds one there (default build-install/), installs it into a temporary prefix, checks that the
 # installed headers compile on their own and that the shared libraries export nothing outside
 # namespace polydec, then configures, builds and runs the three examples/
-# out of tree with find_package(polydec 0.2 CONFIG), checks pkg-config, and pip-installs the Python
+# out of tree with find_package(polydec 0.3 CONFIG), checks pkg-config, and pip-installs the Python
 # module against the installation into a venv and runs the Python tests there
 # (scripts/test_pip_install.sh). Exits non-zero on any failure. Usage: scripts/test_install.sh [BUILD_DIR] (default: build/ when it is a shared build,
 # else build-install/).

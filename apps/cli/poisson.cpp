@@ -1,6 +1,6 @@
 // apps/cli/poisson.cpp — `polydec poisson`: the convergence study of the paper's section 5.8
 // (Figure 9), Franke's function on triangle, quad and hexagon grids of the unit square; with --volume
-// the 3D Franke study (issue 17) on the shared polyhedral cubes or generated grids of the unit cube.
+// the 3D Franke study on the shared polyhedral cubes or generated grids of the unit cube.
 #include "polydec/apps/applications/poisson.h"
 
 #include <fmt/format.h>

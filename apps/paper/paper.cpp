@@ -200,7 +200,7 @@ class Evaluation {
         for (const std::string& m : kAllMethods)
           steps_.push_back({fmt::format("Spectrum: {} / {}", s, m), s == "HEX SPHERE" ? 3.0 : 0.5,
                             [this, s, m] { r_["spectrum100"][s][m] = sphere_spectrum_errors(mesh(s), m); }});
-    // Issue 17's volume tables (apps/paper/volume_tables.h): 3D Poisson on the shared cubes, ball eigenvalues.
+    // The volume tables (apps/paper/volume_tables.h): 3D Poisson on the shared cubes, ball eigenvalues.
     steps_.push_back({"Volumes: 3D Poisson, ball eigenvalues", o_.quick ? 1.0 : 20.0,
                       [this] { r_["volumes"] = volume_tables(o_.data_dir, o_.quick); }});
   }
@@ -623,7 +623,7 @@ json authors_program_values() {
                  {"FINE SPHERE", {{"ours", 3.168e-4}}},
                  {"REGULAR SPHERE", {{"ours", 0.039341}}},
                  {"NOISY SPHERE", {{"ours", 0.064276}}}};
-  // TETRIS 1: 0.17758 with float positions, 0.18983 with double (the issue's note); not a target.
+  // TETRIS 1: 0.17758 with float positions, 0.18983 with double; not a target.
   a["table4"] = {{"QUADS 1", {{"ours", 0.026455}}},
                  {"QUADS 2", {{"ours", 0.035637}}},
                  {"L-SHAPED", {{"ours", 0.057402}}},
@@ -639,7 +639,8 @@ std::string paper_report_markdown(const json& r) {
   std::string s;
   s += "# Polygon Laplacian Made Simple — the evaluation, reproduced by polydec\n\n";
   s += "Made by `polydec paper`. Each cell: our value, then in parentheses the paper's printed value and our "
-       "deviation from it; ✗ marks a deviation above 10% (baselines) — the acceptance of issue 7. "
+       "deviation from it; ✗ marks a deviation above 10% (baselines), the tolerance within which we take a "
+       "value as reproduced. "
        "Method names are polydec's (`--laplacian NAME`): `ours` is the paper's operator, "
        "`triangulated-minarea` is [Lie03], `intrinsic-delaunay` is [BS07], `aw11:L` is [AW11] with lambda L; "
        "`-unlumped` means the Galerkin mass instead of the lumped one. A dash: not defined for that method "

@@ -1,4 +1,4 @@
-// apps/paper/volume_tables.h — the "Volumes" section of `polydec paper` (issue 17): the 3D Franke
+// apps/paper/volume_tables.h — the "Volumes" section of `polydec paper`: the 3D Franke
 // Poisson convergence on the shared polyLaplace cube families (apps/applications/volume/poisson.h)
 // with the mass-weighted L2 and polyLaplace's RMS error and their slopes per refinement step, and
 // the unit ball's eigenvalue errors, Dirichlet and Neumann, against the zeros of the spherical

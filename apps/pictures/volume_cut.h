@@ -1,4 +1,4 @@
-// apps/pictures/volume_cut.h — a planar cut through a polyhedral volume mesh, for pictures (issue 17):
+// apps/pictures/volume_cut.h — a planar cut through a polyhedral volume mesh, for pictures:
 // the section of the mesh by a plane, and the solid behind the plane (its boundary surface clipped,
 // closed by the section) as a surface Mesh carrying a scalar, ready for render() (render.h).
 //

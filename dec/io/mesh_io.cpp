@@ -13,6 +13,8 @@
 
 namespace polydec {
 
+using namespace io_detail;
+
 FileError::FileError(std::string file_, long line_, long byte_offset_, std::string reason_)
     : std::runtime_error(line_ > 0           ? fmt::format("{}:{}: {}", file_, line_, reason_)
                          : byte_offset_ >= 0 ? fmt::format("{}: byte {}: {}", file_, byte_offset_, reason_)

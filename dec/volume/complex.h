@@ -1,5 +1,5 @@
-// dec/volume/complex.h — the two simplicial complexes of FEEC on a polyhedral mesh (issue 17,
-// the 3D analogue of dec/surface/complex.h) and their exterior derivatives d0, d1, d2.
+// dec/volume/complex.h — the two simplicial complexes of FEEC on a polyhedral mesh (the
+// 3D analogue of dec/surface/complex.h) and their exterior derivatives d0, d1, d2.
 //
 // Coarse complex (the cells of the coarsened Whitney forms): 0-cells the mesh vertices; k-cells
 // (k = 1, 2, 3) the vertex pairs, triples and quadruples that share a cell. Refined complex: the

@@ -1,7 +1,7 @@
 // dec/volume/hodge_star.h — prolongations P0..P3 and Hodge stars star0..star3 of the coarsened
-// Whitney forms on a polyhedral mesh (issue 17; paper eq. 23-27 in 3D).
+// Whitney forms on a polyhedral mesh (paper eq. 23-27 in 3D).
 //
-// With the coarse hats phi_i = sum_r P_ri phi^tet_r (P = P0, operators/volume/laplacian.h), the
+// With the coarse hats phi_i = sum_r P_ri phi^tet_r (P = P0, dec/volume/prolongation.h), the
 // coarse Whitney k-form of a sorted coarse simplex (i_0 < .. < i_k) is, by multilinearity,
 //   phi_{i_0..i_k} = sum over sorted refined k-simplices (r_0 < .. < r_k) of
 //                    det[P_{r_a, i_b}]_{a,b = 0..k} phi^tet_{r_0..r_k},

@@ -1,4 +1,4 @@
-// dec/volume/refinement.h — the virtual refinement of a polyhedral mesh (issue 17, the 3D analogue
+// dec/volume/refinement.h — the virtual refinement of a polyhedral mesh (the 3D analogue
 // of paper section 4.1): one virtual point per face (the surface rule, eq. 10 and 16) and one per
 // cell, splitting every cell into the tetrahedra (x_i, x_{i+1}, x_f, x_c), one per face edge (i, i+1)
 // of each of its faces f. Computed once and shared by every volume operator; the refined

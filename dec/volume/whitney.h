@@ -1,4 +1,4 @@
-// dec/volume/whitney.h — Whitney forms on one tetrahedron (issue 17, DEC on volumes): hat
+// dec/volume/whitney.h — Whitney forms on one tetrahedron (DEC on polyhedral volume meshes): hat
 // gradients, the linear stiffness and mass, and the Galerkin inner products of the Whitney 0-, 1-,
 // 2- and 3-forms in closed form. Pure functions of the four corners; no mesh needed.
 //

@@ -1,5 +1,5 @@
 // operators/registry/volume_laplacians.h — the Laplacians polydec offers on polyhedral volume meshes, behind
-// the OperatorSet interface of operators/registry/laplacians.h (issue 17), selectable by name
+// the OperatorSet interface of operators/registry/laplacians.h, selectable by name
 // (`--laplacian NAME` of the volume commands):
 //   ours          S, M of operators/volume/laplacian.h with the least-norm cell-point weights
 //                 (CellPointRule::SquaredVolume, the default)

@@ -50,9 +50,10 @@ Eigen::SparseMatrix<double> principal_submatrix(const Eigen::SparseMatrix<double
 
 // The BLAS thread policy of the solvers. CHOLMOD's supernodal factorization and its solves do
 // their dense work in BLAS (CHOLMOD 3 has no threads of its own); OpenBLAS's default of one
-// thread per core spins against other processes on a loaded machine (issue 14: geodesics on HEX
-// SPHERE 7.5-9.1 s wall with the default threads, 3.1-3.4 s with one, same CPU time). The
-// policy, applied once before the first factorization (or by set_blas_threads()):
+// thread per core spins against other processes on a loaded machine (measured when this policy
+// was introduced: geodesics on HEX SPHERE 7.5-9.1 s wall with the default threads, 3.1-3.4 s
+// with one, same CPU time). The policy, applied once before the first factorization (or by
+// set_blas_threads()):
 //   1. set_blas_threads(n) (the CLI's --blas-threads), else
 //   2. the environment variable POLYDEC_BLAS_THREADS (n >= 1, or 0 for OpenBLAS's own default), else
 //   3. OPENBLAS_NUM_THREADS or OMP_NUM_THREADS when set (the user asked OpenBLAS directly), else

@@ -1,4 +1,4 @@
-// operators/volume/laplacian.h — the polyhedral Laplacian (issue 17): stiffness S = P^T S^tet P,
+// operators/volume/laplacian.h — the polyhedral Laplacian of volume meshes: stiffness S = P^T S^tet P,
 // Galerkin mass M = P^T M^tet P and lumped mass, with P the composed prolongation (mesh vertices
 // <- face points <- cell points) of dec/volume/refinement.h and S^tet, M^tet the linear finite
 // elements of the sub-tetrahedra. Assembled cell by cell into the pattern of "vertices sharing a

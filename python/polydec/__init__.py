@@ -26,7 +26,7 @@ import numpy as np
 from . import _convert, _polydec
 from ._polydec import FileError, InvalidMeshError, SolverError
 
-__version__ = "0.2.0"
+__version__ = "0.3.0"
 
 __all__ = [
     "FileError", "InvalidMeshError", "SolverError",

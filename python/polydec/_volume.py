@@ -1,4 +1,4 @@
-"""polydec._volume — polyhedral volume meshes (issue 17; docs/volumes.md, docs/python.md): the
+"""polydec._volume — polyhedral volume meshes (docs/volumes.md, docs/python.md): the
 VolumeMesh class, its readers, writer and generators, the volume Laplacians ("ours",
 "polylaplace", "diamond"), volume DEC and the volume applications. Imported into polydec.
 

@@ -1,4 +1,4 @@
-// python/src/volumes.cpp — bindings of polyhedral volume meshes (issue 17): the VolumeMesh class
+// python/src/volumes.cpp — bindings of polyhedral volume meshes: the VolumeMesh class
 // (dec/mesh/volume_mesh.h, dec/io/volume_io.h, dec/mesh/volume_generators.h), the volume operators
 // (operators/registry/volume_laplacians.h), volume DEC (dec/volume/hodge_star.h) and the volume applications
 // (heat geodesics, spectrum, Poisson, Hodge decomposition). The Python package (polydec/_volume.py)

@@ -116,7 +116,7 @@ def test_spectrum_equals_scipy_on_a_noisy_sphere():
 
 
 # An expected failure (one of the 5-fold l = 2 eigenvalues of hex_sphere(3) missed at k = 9) until
-# issue 14's planarity decision: with the paper's definition for the nearly planar faces instead of
+# planarity was decided from the data's precision: with the paper's definition for the nearly planar faces instead of
 # a fixed 1e-5 cut, the spectrum keeps the multiplicity.
 def test_spectrum_keeps_exact_multiplicities(sphere):
     V, F = sphere

@@ -1,6 +1,6 @@
 // apps/applications/volume/hodge_decomposition.h — Hodge decomposition of a coarse 1-cochain on a
 // polyhedral mesh, omega = d0 alpha + co-exact + harmonic, orthogonal in the star1 inner product of
-// the coarsened Whitney 1-forms (issue 17; the volume counterpart of hodge_decomposition.h).
+// the coarsened Whitney 1-forms (the volume counterpart of apps/applications/hodge_decomposition.h).
 //
 //   exact:    d0 alpha, with d0^T star1 d0 alpha = d0^T star1 omega (one vertex pinned per
 //             connected component);

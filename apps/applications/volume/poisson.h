@@ -1,4 +1,4 @@
-// apps/applications/volume/poisson.h — the 3D Franke Poisson study on polyhedral volume meshes (issue 17):
+// apps/applications/volume/poisson.h — the 3D Franke Poisson study on polyhedral volume meshes:
 // Delta f = b in the unit cube with Dirichlet values on the boundary vertices, discretized with
 // a volume Laplacian of operators/registry/volume_laplacians.h as S f = M b at the interior vertices.
 //

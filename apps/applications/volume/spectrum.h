@@ -1,5 +1,5 @@
 // apps/applications/volume/spectrum.h — eigenvalues of the volume Laplacian (-S x = lambda M x) and the
-// analytic spectrum of the unit ball (issue 17): spherical Bessel functions j_l, their zeros and the zeros of
+// analytic spectrum of the unit ball: spherical Bessel functions j_l, their zeros and the zeros of
 // their derivatives.
 //
 // Unit ball, -Delta u = lambda u: separation u = j_l(sqrt(lambda) r) Y_lm gives

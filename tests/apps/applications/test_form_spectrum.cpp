@@ -21,7 +21,8 @@ namespace test_form_spectrum {
 
 namespace {
 
-// Meshes of every kind the issue names, small enough for a dense check; name, mesh, b1.
+// Meshes of every kind the form spectra are for (closed, with boundary, higher genus, non-planar,
+// non-convex), small enough for a dense check; name, mesh, b1.
 struct Case {
   std::string name;
   Mesh mesh;

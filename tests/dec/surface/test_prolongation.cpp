@@ -80,8 +80,8 @@ TEST_CASE("prolongations commute with d: P1 d0 = d0^f P0, P2 d1 = d1^f P1", "[fe
 }
 
 TEST_CASE("rank table of a single n-gon: P1, star1, P2, star2", "[feec]") {
-  // n, coarse pairs, rank P1 = rank star1, coarse triples, rank P2 = rank star2 (issue 3 table,
-  // measured there with an independent implementation).
+  // n, coarse pairs, rank P1 = rank star1, coarse triples, rank P2 = rank star2 (the rank
+  // table of docs/feec.md, first measured with an independent implementation).
   const int table[6][5] = {{3, 3, 3, 1, 1},    {4, 6, 6, 4, 3},    {5, 10, 9, 10, 5},
                            {6, 15, 11, 20, 6}, {7, 21, 13, 35, 7}, {8, 28, 15, 56, 8}};
   for (const auto& row : table) {

@@ -213,7 +213,7 @@ TEST_CASE("fan quality of each variant on tetris.obj (non-star-shaped polygons)"
   const FanQuality ours = quality(VirtualVertexRule::SquaredArea), centroid = quality(VirtualVertexRule::Centroid),
                    abs = quality(VirtualVertexRule::AbsArea), convex = quality(VirtualVertexRule::Convex),
                    trace = quality(VirtualVertexRule::TraceMin);
-  CHECK(ours.n_inverted >= 1);  // the inverted fan triangle the issue points at
+  CHECK(ours.n_inverted >= 1);  // tetris.obj's non-star-shaped faces invert a fan triangle
   // Abs-area (measured on this mesh): the L1 objective moves the point onto edge lines, trading
   // every inverted triangle for degenerate ones.
   CHECK(abs.n_inverted == 0);

@@ -1,4 +1,4 @@
-// tests/dec/volume/test_hodge_star.cpp — DEC on polyhedral meshes (issue 17): the Whitney kernels of a
+// tests/dec/volume/test_hodge_star.cpp — DEC on polyhedral volume meshes: the Whitney kernels of a
 // tetrahedron against quadrature and their defining integrals, d_{k+1} d_k = 0, the commuting
 // relations P_{k+1} d_k = d_k^tet P_k, S = -d0^T star1 d0 and star0 = M, the stars on tetrahedral
 // meshes against the Whitney stars of the tetrahedra themselves, ranks, and solving on the span.

@@ -1,4 +1,4 @@
-// tests/operators/volume/test_laplacian.cpp — the polyhedral stiffness and mass (issue 17):
+// tests/operators/volume/test_laplacian.cpp — the polyhedral stiffness and mass:
 // symmetry, null space, semi-definiteness, linear precision, equality with an independently
 // assembled linear FEM on tetrahedral meshes (both cell-point rules), invariance under
 // translation and scaling, total mass, the cell-point kernels, degenerate sub-tetrahedra, and the
