@@ -16,7 +16,8 @@ log="$build/sanitize-tests.log"
 # 8 files, CMakeLists.txt) compiles the Eigen templates once per batch; POLYDEC_UNITY=OFF turns it off.
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS="-O1 -g1" -DPOLYDEC_SANITIZE=ON \
   -DPOLYDEC_BUILD_BENCH=OFF -DPOLYDEC_UNITY_BUILD=${POLYDEC_UNITY:-ON} >/dev/null
-ninja -C "$build" ${POLYDEC_JOBS:+-j"$POLYDEC_JOBS"} polydec_cli polydec_tests
+# Every program a ctest test runs: the test program, the `polydec` program and README.md's programs.
+ninja -C "$build" ${POLYDEC_JOBS:+-j"$POLYDEC_JOBS"} polydec_cli polydec_tests polydec_readme
 
 # Any report stops the process with a non-zero status; leaks are reported at exit. Reports also go
 # to files under $reports (log_path), so that those of the `polydec` processes the CLI tests start,

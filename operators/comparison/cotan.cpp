@@ -1,6 +1,6 @@
 // operators/comparison/cotan.cpp — cotangent stiffness, Galerkin mass and triangle gradients.
 #include "polydec/operators/comparison/cotan.h"
-#include "polydec/operators/surface/gradient.h"
+#include "polydec/dec/surface/whitney.h"
 
 #include <algorithm>
 #include <cmath>
@@ -104,8 +104,9 @@ TriangleOperators cotan_operators(const Eigen::MatrixX3d& X, const std::vector<E
       len[t][k] = (X.row(tris[t][(k + 1) % 3]) - X.row(tris[t][k])).norm();
     }
   return assemble(nv, tris, len, with_gradient, tol, [&](int t, Eigen::Vector3d g[3]) {
-    hat_gradients(X.row(tris[t][0]).transpose(), X.row(tris[t][1]).transpose(), X.row(tris[t][2]).transpose(),
-                  g);
+    const Eigen::Matrix3d G =
+        hat_gradients(X.row(tris[t][0]).transpose(), X.row(tris[t][1]).transpose(), X.row(tris[t][2]).transpose());
+    for (int a = 0; a < 3; ++a) g[a] = G.col(a);
   });
 }
 
@@ -168,7 +169,8 @@ TriangleOperators cotan_operators(const LengthTriangles& T, bool with_gradient, 
     const Eigen::Vector3d& l = T.lengths[t];
     const double x2 = (l[0] * l[0] + l[2] * l[2] - l[1] * l[1]) / (2 * l[0]);
     const double y2 = 2 * triangle_area_from_lengths(l[0], l[1], l[2]) / l[0];
-    hat_gradients(Eigen::Vector3d::Zero(), Eigen::Vector3d(l[0], 0, 0), Eigen::Vector3d(x2, y2, 0), g);
+    const Eigen::Matrix3d G = hat_gradients(Eigen::Vector3d::Zero(), Eigen::Vector3d(l[0], 0, 0), Eigen::Vector3d(x2, y2, 0));
+    for (int a = 0; a < 3; ++a) g[a] = G.col(a);
   });
 }
 

@@ -5,17 +5,9 @@
 #include <vector>
 
 #include "polydec/dec/detail/huge_pages.h"
+#include "polydec/dec/surface/whitney.h"
 
 namespace polydec {
-
-void hat_gradients(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2,
-                   Eigen::Vector3d g[3]) {
-  const Eigen::Vector3d N = (p1 - p0).cross(p2 - p0);
-  const double n2 = N.squaredNorm();
-  g[0] = N.cross(p2 - p1) / n2;
-  g[1] = N.cross(p0 - p2) / n2;
-  g[2] = N.cross(p1 - p0) / n2;
-}
 
 Eigen::VectorXd fan_areas(const Mesh& mesh, const Refinement& refinement) {
   check_refinement(mesh, refinement, "fan_areas");
@@ -72,8 +64,8 @@ SparseMatrix gradient_transposed(const Mesh& mesh, const Refinement& refinement)
       const int h = h0 + k;
       if (refinement.fan[h] == FanTriangle::Degenerate) continue;
       const int i = face[k], j = face[(k + 1) % n];
-      Eigen::Vector3d g[3];
-      hat_gradients(mesh.position(i), mesh.position(j), xf, g);
+      const Eigen::Matrix3d G = hat_gradients(mesh.position(i), mesh.position(j), xf);
+      const Eigen::Vector3d g[3] = {G.col(0), G.col(1), G.col(2)};
       // Coarse vertex c contributes [c == i] g0 + [c == j] g1 + w_c g2.
       for (int e = 0; e < n; ++e) {
         const int m = order[size_t(e)];

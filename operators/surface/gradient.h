@@ -12,12 +12,6 @@
 
 namespace polydec {
 
-// Gradients of the three hat functions of triangle (p0, p1, p2): N x e_a / |N|^2, with N the
-// triangle's (unnormalized) normal and e_a the counter-clockwise edge opposite corner a. Also used
-// by the cotangent operators (operators/comparison/cotan.h).
-void hat_gradients(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2,
-                   Eigen::Vector3d g[3]);
-
 // Gradient, (3|H|) x |V|.
 SparseMatrix gradient(const Mesh& mesh, const Refinement& refinement);
 
