@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "polydec/dec/surface/complex.h"
+#include "polydec/dec/surface/mesh_complex.h"
 #include "polydec/dec/surface/refinement.h"
 
 namespace polydec {
@@ -90,20 +91,30 @@ SparseMatrix star1(const Mesh& mesh, const Refinement& refinement, const CoarseC
 SparseMatrix star2(const Mesh& mesh, const Refinement& refinement, const CoarseComplex& complex);
 
 // Everything of DEC on a polygon mesh, computed once: the fields of VolumeDec
-// (dec/volume/hodge_star.h) for surfaces, so that d[k], P[k] and star[k] read alike on both.
-// Built from the functions above and those of dec/surface/complex.h and dec/surface/prolongation.h,
-// which remain the building blocks.
+// (dec/volume/hodge_star.h) for surfaces, so that d[k], P[k] and star[k] read alike on both, on
+// either complex. Built from the functions above and those of dec/surface/complex.h,
+// dec/surface/prolongation.h and dec/surface/mesh_complex.h, which remain the building blocks.
 struct SurfaceDec {
+  DecComplex complex = DecComplex::Complete;
   int max_degree = 2;    // d_k for k < max_degree, P_k and star_k for k <= max_degree
-  CoarseComplex coarse;  // the cells (dec/surface/complex.h)
+  CoarseComplex coarse;  // the complete complex's cells (dec/surface/complex.h); empty for the mesh complex,
+                         // whose cells are the mesh's vertices, edges (Mesh::edges()) and faces
   SparseMatrix d[2];     // coarse d0 (|C1| x |V|), d1 (|C2| x |C1|); empty beyond max_degree
-  SparseMatrix P[3];     // P0 = prolongation, P1, P2 (dec/surface/prolongation.h)
-  SparseMatrix star[3];  // coarse star0 (the Galerkin mass M), star1, star2
+  SparseMatrix P[3];     // P0 = prolongation, P1, P2 (dec/surface/prolongation.h, mesh_complex.h)
+  SparseMatrix star[3];  // coarse star0 (the Galerkin mass M), star1, star2 (diagonal on the mesh complex)
+};
+
+struct SurfaceDecOptions {
+  int max_degree = 2;                          // 0..2
+  DecComplex complex = DecComplex::Complete;  // the paper's cells, or the mesh's own
+  SpokeRule spoke_rule = SpokeRule::AreaConsistent;  // the mesh complex's P1 (dec/surface/mesh_complex.h)
 };
 
 // Builds the complex, d_k, P_k and star_k up to degree max_degree (0..2, std::invalid_argument
-// otherwise; star2 costs O(n^6) per n-gon, so max_degree = 1 skips it). Defined in
-// dec/surface/surface_dec.cpp.
+// otherwise). On the complete complex star2 costs O(n^6) per n-gon (max_degree = 1 skips it); on
+// the mesh complex every degree costs O(n^2) per n-gon. Defined in dec/surface/surface_dec.cpp.
+SurfaceDec surface_dec(const Mesh& mesh, const Refinement& refinement, const SurfaceDecOptions& options);
+// The complete complex up to max_degree.
 SurfaceDec surface_dec(const Mesh& mesh, const Refinement& refinement, int max_degree = 2);
 
 }  // namespace polydec

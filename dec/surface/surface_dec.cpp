@@ -9,10 +9,35 @@
 namespace polydec {
 
 SurfaceDec surface_dec(const Mesh& mesh, const Refinement& refinement, int max_degree) {
+  return surface_dec(mesh, refinement, SurfaceDecOptions{.max_degree = max_degree});
+}
+
+SurfaceDec surface_dec(const Mesh& mesh, const Refinement& refinement, const SurfaceDecOptions& options) {
+  const int max_degree = options.max_degree;
   if (max_degree < 0 || max_degree > 2)
     throw std::invalid_argument("surface_dec: max_degree " + std::to_string(max_degree) + " (0..2)");
   SurfaceDec D;
   D.max_degree = max_degree;
+  D.complex = options.complex;
+  if (options.complex == DecComplex::Mesh) {
+    if (max_degree >= 1) D.d[0] = mesh_d0(mesh);
+    if (max_degree >= 2) D.d[1] = mesh_d1(mesh);
+    D.P[0] = prolongation(mesh, refinement);
+    HodgeStarParts parts;
+    parts.star0_lumped = parts.star1 = parts.star2 = false;
+    HodgeStars stars = hodge_stars(mesh, refinement, CoarseComplex(), parts);
+    D.star[0].swap(stars.star0);
+    if (max_degree >= 1) {
+      D.P[1] = mesh_prolongation1(mesh, refinement, options.spoke_rule);
+      D.star[1] = mesh_star1(mesh, refinement, options.spoke_rule);
+    }
+    if (max_degree >= 2) {
+      D.P[2] = mesh_prolongation2(mesh, refinement, options.spoke_rule);
+      const Eigen::VectorXd s2 = mesh_star2_diagonal(mesh, refinement, options.spoke_rule);
+      D.star[2] = SparseMatrix(s2.asDiagonal());
+    }
+    return D;
+  }
   D.coarse = CoarseComplex(mesh);
   if (max_degree >= 1) D.d[0] = D.coarse.d0();
   if (max_degree >= 2) D.d[1] = D.coarse.d1();
