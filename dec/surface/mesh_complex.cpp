@@ -89,12 +89,11 @@ Eigen::VectorXd signed_fan_areas(const Mesh& mesh, const Refinement& refinement)
     Eigen::Vector3d N = Eigen::Vector3d::Zero();
     for (int k = 0; k < n; ++k)
       N += (mesh.position(mesh.halfedge_source(h0 + k)) - xf).cross(mesh.position(mesh.halfedge_target(h0 + k)) - xf);
-    const double len = N.norm();
-    const Eigen::Vector3d unit = len > 0 ? Eigen::Vector3d(N / len) : Eigen::Vector3d::Zero();
-    for (int k = 0; k < n; ++k)
-      a[h0 + k] = 0.5 * (mesh.position(mesh.halfedge_source(h0 + k)) - xf)
-                            .cross(mesh.position(mesh.halfedge_target(h0 + k)) - xf)
-                            .dot(unit);
+    for (int k = 0; k < n; ++k) {
+      const Eigen::Vector3d t = (mesh.position(mesh.halfedge_source(h0 + k)) - xf)
+                                    .cross(mesh.position(mesh.halfedge_target(h0 + k)) - xf);
+      a[h0 + k] = (t.dot(N) < 0 ? -0.5 : 0.5) * t.norm();
+    }
   }
   return a;
 }
@@ -186,6 +185,7 @@ SparseMatrix mesh_star1(const Mesh& mesh, const Refinement& refinement, SpokeRul
           whitney1_mass(mesh.position(mesh.halfedge_source(h0 + k)), mesh.position(mesh.halfedge_target(h0 + k)), xf);
       local.noalias() += R.transpose() * W * R;
     }
+    local = 0.5 * (local + local.transpose()).eval();  // exactly symmetric
     for (int b = 0; b < n; ++b)
       for (int a = 0; a < n; ++a)
         t.emplace_back(mesh.halfedge_edge(h0 + a), mesh.halfedge_edge(h0 + b),

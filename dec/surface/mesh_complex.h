@@ -21,9 +21,10 @@
 //      chooses the gammas up to one constant per face, which is taken of least norm (sum over the
 //      spokes of the squared coefficients).
 //   SpokeRule::AreaConsistent (default): alpha_k = a_k / A_f, the fan triangles' share of the
-//      face's area, signed: a_k is fan triangle k's vector area along the face's unit vector-area
-//      normal (negative for an inverted fan triangle) and A_f = sum_k a_k = |vector area|. P2 then
-//      reproduces constant 2-forms, and star2 is diagonal, 1 / A_f when no fan triangle is inverted.
+//      face's area, signed: a_k is fan triangle k's area, negative when it is inverted (oriented
+//      against the face's vector area), and A_f = sum_k a_k. P2 then carries the refined surface's
+//      area form to itself (constant 2-forms are reproduced), and star2 is diagonal, 1 / A_f when
+//      no fan triangle is inverted or degenerate.
 //   SpokeRule::MinimumNorm: every spoke row of least norm on its own; then alpha_k = 1/n.
 //   Both rules depend on the cyclic order of the face only, not on where its list starts.
 // Since P_{k+1} d_k = d_k^f P_k, -d0^T star1 d0 = P0^T S^f P0 = S (eq. 14), the paper's
@@ -68,8 +69,8 @@ struct PolygonCochainMaps {
 PolygonCochainMaps polygon_cochain_maps(std::span<const double> weights, std::span<const double> fan_areas,
                                         SpokeRule rule = SpokeRule::AreaConsistent);
 
-// Signed fan triangle areas a_k, one per halfedge: the vector area of (x_k, x_{k+1}, x_f) along
-// the face's unit vector-area normal.
+// Signed fan triangle areas a_k, one per halfedge: the area of (x_k, x_{k+1}, x_f), negative when
+// its normal points against the face's vector area.
 Eigen::VectorXd signed_fan_areas(const Mesh& mesh, const Refinement& refinement);
 
 // Signed incidence matrices of the mesh complex: d0 |E| x |V|, d1 |F| x |E|.
@@ -86,8 +87,8 @@ SparseMatrix mesh_prolongation2(const Mesh& mesh, const Refinement& refinement,
 // (an n-gon adds an n x n block over its sides).
 SparseMatrix mesh_star1(const Mesh& mesh, const Refinement& refinement, SpokeRule rule = SpokeRule::AreaConsistent);
 // star2 = P2^T star2^f P2 (|F| x |F|), diagonal: sum_k alpha_k^2 / |area_k| over the fan
-// triangles not flagged degenerate; 1 / A_f with AreaConsistent on a face without inverted fan
-// triangles.
+// triangles not flagged degenerate; 1 / A_f with AreaConsistent on a face without inverted or
+// degenerate fan triangles.
 Eigen::VectorXd mesh_star2_diagonal(const Mesh& mesh, const Refinement& refinement,
                                     SpokeRule rule = SpokeRule::AreaConsistent);
 
