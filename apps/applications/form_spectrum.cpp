@@ -7,6 +7,7 @@
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 
 #include "polydec/apps/applications/detail/complete_eigs.h"
@@ -106,10 +107,30 @@ FormSpectrum form_spectrum(const Mesh& mesh, const FormSpectrumOptions& options)
     throw std::invalid_argument(fmt::format("form spectrum: degree {} must be 1 or 2", options.degree));
   if (mesh.n_faces() == 0) throw InvalidMeshError("mesh", -1, "form spectrum: the mesh has no faces");
   const Refinement ref = refine(mesh, options.refinement);
-  const CoarseComplex cx(mesh);
-  const HodgeStars H = hodge_stars(mesh, ref, cx);
-  const SpMat d0 = cx.d0(), d1 = cx.d1();
-  const FormSpan span1 = form_span(mesh, ref, cx, 1);
+  const bool on_mesh = options.complex == DecComplex::Mesh;
+  const CoarseComplex cx = on_mesh ? CoarseComplex() : CoarseComplex(mesh);
+  HodgeStars H;
+  SpMat d0, d1;
+  FormSpan span1;
+  if (on_mesh) {
+    // The mesh complex: positive definite stars, so the reduced bases are the identity.
+    SurfaceDec D = surface_dec(mesh, ref, SurfaceDecOptions{.max_degree = 2, .complex = DecComplex::Mesh});
+    d0.swap(D.d[0]);
+    d1.swap(D.d[1]);
+    H.star0.swap(D.star[0]);
+    H.star1.swap(D.star[1]);
+    H.star2.swap(D.star[2]);
+    H.star0_lumped = Eigen::VectorXd::Zero(mesh.n_vertices());
+    for (int j = 0; j < H.star0.outerSize(); ++j)
+      for (SpMat::InnerIterator it(H.star0, j); it; ++it) H.star0_lumped[it.row()] += it.value();
+    span1.R = SpMat(mesh.n_edges(), mesh.n_edges());
+    span1.R.setIdentity();
+  } else {
+    H = hodge_stars(mesh, ref, cx);
+    d0 = cx.d0();
+    d1 = cx.d1();
+    span1 = form_span(mesh, ref, cx, 1);
+  }
   const SpMat& R1 = span1.R;
   const SpMat B1 = R1.transpose() * H.star1 * R1;
   const double area = H.star0_lumped.sum();
@@ -139,8 +160,12 @@ FormSpectrum form_spectrum(const Mesh& mesh, const FormSpectrumOptions& options)
     R = R1;
     name = "[d1^T star2 d1 - sigma star1, star1 d0; d0^T star1, -M0]";
   } else {
-    const FormSpan span2 = form_span(mesh, ref, cx, 2);
-    R = span2.R;
+    if (on_mesh) {
+      R = SpMat(mesh.n_faces(), mesh.n_faces());
+      R.setIdentity();
+    } else {
+      R = form_span(mesh, ref, cx, 2).R;
+    }
     B = R.transpose() * H.star2 * R;
     A = SpMat(B.rows(), B.cols());
     C = R.transpose() * H.star2 * d1 * R1;
@@ -176,7 +201,7 @@ FormSpectrum form_spectrum(const Mesh& mesh, const FormSpectrumOptions& options)
   // Eigenvalues below this (relative to the first nonzero scale 1 / area) count as zero.
   const double zero = 1e-8 / area;
   if (options.degree == 1) {
-    const HodgeDecomposer hd(mesh, options.refinement);
+    const HodgeDecomposer hd(mesh, options.refinement, options.complex);
     for (int i = 0; i < k; ++i) {
       const HodgeParts p = hd.decompose(out.eigenvectors.col(i));
       out.exact.col(i) = p.exact;
@@ -187,12 +212,19 @@ FormSpectrum form_spectrum(const Mesh& mesh, const FormSpectrumOptions& options)
       out.norm_harmonic[i] = p.norm_harmonic;
     }
   } else {
-    // u = d1 (delta u) / lambda with delta u = star1^+ d1^T star2 u, when lambda != 0.
-    const SpanSolver S1(H.star1, span1, "star1");
+    // u = d1 (delta u) / lambda with delta u = star1^+ d1^T star2 u, when lambda != 0 (star1^-1 on
+    // the mesh complex).
+    std::unique_ptr<SpanSolver> S1span;
+    std::unique_ptr<SparseCholesky> S1mesh;
+    if (on_mesh)
+      S1mesh = std::make_unique<SparseCholesky>(H.star1, "star1");
+    else
+      S1span = std::make_unique<SpanSolver>(H.star1, span1, "star1");
     for (int i = 0; i < k; ++i) {
       const Eigen::VectorXd u = out.eigenvectors.col(i);
       if (std::abs(out.eigenvalues[i]) > zero) {
-        const Eigen::VectorXd delta = S1.solve(d1.transpose() * (H.star2 * u));
+        const Eigen::VectorXd rhs = d1.transpose() * (H.star2 * u);
+        const Eigen::VectorXd delta = on_mesh ? S1mesh->solve(rhs) : S1span->solve(rhs);
         out.exact.col(i) = d1 * delta / out.eigenvalues[i];
       }
       out.harmonic.col(i) = u - out.exact.col(i);
@@ -211,13 +243,16 @@ FormSpectrum form_spectrum(const Mesh& mesh, const FormSpectrumOptions& options)
 }
 
 Eigen::MatrixX3d whitney_vectors_at_virtual_vertices(const Mesh& mesh, const Refinement& refinement,
-                                                     const Eigen::VectorXd& cochain) {
+                                                     const Eigen::VectorXd& cochain, DecComplex complex) {
   check_refinement(mesh, refinement, "whitney_vectors_at_virtual_vertices");
-  const CoarseComplex cx(mesh);
-  if (cochain.size() != cx.n_pairs())
-    throw std::invalid_argument(fmt::format("whitney vectors: the cochain has {} values, the mesh {} pairs",
-                                            cochain.size(), cx.n_pairs()));
-  const Eigen::VectorXd c = prolongation1(mesh, refinement, cx) * cochain;
+  const bool on_mesh = complex == DecComplex::Mesh;
+  const CoarseComplex cx = on_mesh ? CoarseComplex() : CoarseComplex(mesh);
+  const long n1 = on_mesh ? mesh.n_edges() : cx.n_pairs();
+  if (cochain.size() != n1)
+    throw std::invalid_argument(fmt::format("whitney vectors: the cochain has {} values, the mesh {} {}",
+                                            cochain.size(), n1, on_mesh ? "edges" : "pairs"));
+  const Eigen::VectorXd c =
+      (on_mesh ? mesh_prolongation1(mesh, refinement) : prolongation1(mesh, refinement, cx)) * cochain;
   const int ne = mesh.n_edges();
   Eigen::MatrixX3d U = Eigen::MatrixX3d::Zero(mesh.n_faces(), 3);
   for (int f = 0; f < mesh.n_faces(); ++f) {
@@ -241,14 +276,16 @@ Eigen::MatrixX3d whitney_vectors_at_virtual_vertices(const Mesh& mesh, const Ref
 }
 
 Eigen::VectorXd whitney2_face_densities(const Mesh& mesh, const Refinement& refinement,
-                                        const Eigen::VectorXd& cochain) {
+                                        const Eigen::VectorXd& cochain, DecComplex complex) {
   check_refinement(mesh, refinement, "whitney2_face_densities");
-  const CoarseComplex cx(mesh);
-  if (cochain.size() != cx.n_triples())
-    throw std::invalid_argument(
-        fmt::format("whitney 2-form densities: the cochain has {} values, the mesh {} triples",
-                    cochain.size(), cx.n_triples()));
-  const Eigen::VectorXd t = prolongation2(mesh, refinement, cx) * cochain;
+  const bool on_mesh = complex == DecComplex::Mesh;
+  const CoarseComplex cx = on_mesh ? CoarseComplex() : CoarseComplex(mesh);
+  const long n2 = on_mesh ? mesh.n_faces() : cx.n_triples();
+  if (cochain.size() != n2)
+    throw std::invalid_argument(fmt::format("whitney 2-form densities: the cochain has {} values, the mesh {} {}",
+                                            cochain.size(), n2, on_mesh ? "faces" : "triples"));
+  const Eigen::VectorXd t =
+      (on_mesh ? mesh_prolongation2(mesh, refinement) : prolongation2(mesh, refinement, cx)) * cochain;
   Eigen::VectorXd integral = Eigen::VectorXd::Zero(mesh.n_faces()), area = integral;
   for (int h = 0; h < mesh.n_halfedges(); ++h) {
     const int f = mesh.halfedge_face(h);

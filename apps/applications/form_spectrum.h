@@ -17,7 +17,8 @@
 //
 // Conventions: eigenvalues ascending, lambda >= 0; eigenvectors are coarse k-cochains (values on
 // CoarseComplex::pairs() or triples()) supported on the span cells, star-orthonormal
-// (W^T star W = I). Scaling the mesh by s scales lambda by 1/s^2.
+// (W^T star W = I). On the mesh complex (options.complex, dec/surface/mesh_complex.h) the stars are
+// positive definite, R is the identity and the cochains live on the mesh's edges or faces. Scaling the mesh by s scales lambda by 1/s^2.
 // Each eigenform is split by the Hodge decomposition: 1-forms by HodgeDecomposer
 // (exact d0 alpha, co-exact, harmonic; star1 norms); 2-forms into exact d1 (delta u / lambda)
 // and the rest, harmonic (for lambda = 0 the whole form is harmonic).
@@ -28,6 +29,7 @@
 #include <vector>
 
 #include "polydec/dec/mesh/mesh.h"
+#include "polydec/dec/surface/mesh_complex.h"
 #include "polydec/dec/surface/refinement.h"
 
 namespace polydec {
@@ -41,6 +43,7 @@ struct FormSpectrumOptions {
   int max_iterations = 1000;  // restarts
   int krylov_size = 0;        // 0: spectrum_krylov_size(k, rank) (apps/applications/spectrum.h)
   bool decompose = true;      // compute the Hodge parts of every eigenform
+  DecComplex complex = DecComplex::Complete;  // the paper's cells, or the mesh's edges and faces
   RefinementOptions refinement;
 };
 
@@ -76,13 +79,16 @@ FormSpectrum form_spectrum(const Mesh& mesh, const FormSpectrumOptions& options 
 // vertex: the mean over the face's fan triangles of the Whitney form of the prolonged cochain
 // P1 w there (eq. 25), |F| x 3. A Whitney form at the vertex it is opposite to: on fan triangle
 // (a, b, v), the vector u in its plane with u . (x_a - x_v) = -(P1 w)_(a v) and likewise for b.
+// On the mesh complex the cochain holds values on Mesh::edges() and P1 is mesh_prolongation1.
 Eigen::MatrixX3d whitney_vectors_at_virtual_vertices(const Mesh& mesh, const Refinement& refinement,
-                                                     const Eigen::VectorXd& cochain);
+                                                     const Eigen::VectorXd& cochain,
+                                                     DecComplex complex = DecComplex::Complete);
 
 // The density of Whitney 2-form `cochain` (values on triples()) per face: its integral over the
 // face's fan triangles (P2 cochain, eq. 26, oriented as the face) divided by their total area, |F|.
 // The area cochain of a plane (signed areas of the triples) has density 1 on every face of it.
+// On the mesh complex the cochain holds one value per face and P2 is mesh_prolongation2.
 Eigen::VectorXd whitney2_face_densities(const Mesh& mesh, const Refinement& refinement,
-                                        const Eigen::VectorXd& cochain);
+                                        const Eigen::VectorXd& cochain, DecComplex complex = DecComplex::Complete);
 
 }  // namespace polydec

@@ -55,7 +55,7 @@ int along(const Mesh& mesh, int h) { return mesh.halfedge_source(h) < mesh.halfe
 
 }  // namespace
 
-Eigen::MatrixXd cohomology_generators(const Mesh& mesh, const CoarseComplex& complex) {
+Eigen::MatrixXd cohomology_generators(const Mesh& mesh) {
   const int nf = mesh.n_faces(), ne = mesh.n_edges();
   const SpanningForest T = primal_forest(mesh);
   // Dual graph: nodes 0..nf-1 faces, nf + c the exterior node of component c; one dual edge per
@@ -108,9 +108,8 @@ Eigen::MatrixXd cohomology_generators(const Mesh& mesh, const CoarseComplex& com
   for (int e = 0; e < ne; ++e)
     if (!T.tree_edge[e] && !cotree[e]) leftover.push_back(e);
 
-  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(complex.n_pairs(), long(leftover.size()));
+  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(ne, long(leftover.size()));
   std::vector<double> g(ne);
-  std::vector<unsigned char> assigned(complex.n_pairs());
   for (size_t i = 0; i < leftover.size(); ++i) {
     std::fill(g.begin(), g.end(), 0.0);
     g[leftover[i]] = 1.0;
@@ -127,6 +126,18 @@ Eigen::MatrixXd cohomology_generators(const Mesh& mesh, const CoarseComplex& com
           sum += along(mesh, h) * g[mesh.halfedge_edge(h)];
       g[parent_edge[f]] = -sum * along(mesh, hp);
     }
+    G.col(long(i)) = Eigen::Map<const Eigen::VectorXd>(g.data(), ne);
+  }
+  return G;
+}
+
+Eigen::MatrixXd cohomology_generators(const Mesh& mesh, const CoarseComplex& complex) {
+  const Eigen::MatrixXd E = cohomology_generators(mesh);
+  const int nf = mesh.n_faces();
+  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(complex.n_pairs(), E.cols());
+  std::vector<unsigned char> assigned(complex.n_pairs());
+  for (long i = 0; i < E.cols(); ++i) {
+    const auto g = E.col(i);
     // Extend to diagonals by the face potential u (u = 0 at the first corner).
     std::fill(assigned.begin(), assigned.end(), 0);
     std::vector<double> u;
@@ -140,17 +151,26 @@ Eigen::MatrixXd cohomology_generators(const Mesh& mesh, const CoarseComplex& com
           const int p = complex.pair_index(face[a], face[b]);
           if (assigned[p]) continue;
           assigned[p] = 1;
-          G(p, long(i)) = face[a] < face[b] ? u[b] - u[a] : u[a] - u[b];
+          G(p, i) = face[a] < face[b] ? u[b] - u[a] : u[a] - u[b];
         }
     }
   }
   return G;
 }
 
-HodgeDecomposer::HodgeDecomposer(const Mesh& mesh, const RefinementOptions& options) : complex_(mesh) {
+HodgeDecomposer::HodgeDecomposer(const Mesh& mesh, const RefinementOptions& options, DecComplex complex)
+    : kind_(complex) {
   const Refinement refinement = refine(mesh, options);
-  d0_ = complex_.d0();
-  star1_ = polydec::star1(mesh, refinement, complex_);
+  if (kind_ == DecComplex::Mesh) {
+    d0_ = mesh_d0(mesh);
+    star1_ = mesh_star1(mesh, refinement);
+    edges_ = mesh.edges();
+  } else {
+    complex_ = CoarseComplex(mesh);
+    d0_ = complex_.d0();
+    star1_ = polydec::star1(mesh, refinement, complex_);
+    edges_ = complex_.pairs();
+  }
   // Poisson matrix d0^T star1 d0 = -S, pinned at one vertex per component and at unreferenced vertices.
   const SpanningForest T = primal_forest(mesh);
   pinned_.assign(mesh.n_vertices(), 0);
@@ -164,7 +184,8 @@ HodgeDecomposer::HodgeDecomposer(const Mesh& mesh, const RefinementOptions& opti
   poisson_ = std::make_unique<SparseCholesky>(pin_to_identity(A, pinned_), "Poisson matrix d0^T star1 d0 (pinned)");
 
   // Harmonic basis: generators minus their exact parts, star1-orthonormalised.
-  const Eigen::MatrixXd Gen = cohomology_generators(mesh, complex_);
+  const Eigen::MatrixXd Gen =
+      kind_ == DecComplex::Mesh ? cohomology_generators(mesh) : cohomology_generators(mesh, complex_);
   Eigen::MatrixXd H0(Gen.rows(), Gen.cols());
   for (long i = 0; i < Gen.cols(); ++i) {
     const Eigen::VectorXd g = Gen.col(i);
@@ -192,15 +213,14 @@ Eigen::VectorXd HodgeDecomposer::exact_potential(const Eigen::VectorXd& rhs) con
 }
 
 HodgeParts HodgeDecomposer::decompose(const Eigen::VectorXd& omega) const {
-  if (omega.size() != complex_.n_pairs())
+  if (omega.size() != d0_.rows())
     throw std::invalid_argument(fmt::format(
-        "hodge decomposition: the 1-form has {} values, the mesh has {} coarse 1-cells (vertex pairs "
-        "sharing a face)",
-        omega.size(), complex_.n_pairs()));
+        "hodge decomposition: the 1-form has {} values, the mesh has {} {}", omega.size(), d0_.rows(),
+        kind_ == DecComplex::Mesh ? "edges" : "coarse 1-cells (vertex pairs sharing a face)"));
   for (long p = 0; p < omega.size(); ++p)
     if (!std::isfinite(omega[p]))
       throw std::invalid_argument(fmt::format("hodge decomposition: value {} (1-cell {} {}) is not finite", p,
-                                              complex_.pairs()(p, 0), complex_.pairs()(p, 1)));
+                                              edges_(p, 0), edges_(p, 1)));
   return hodge_parts(omega, exact_potential(d0_.transpose() * (star1_ * omega)), d0_, star1_, H_);
 }
 

@@ -17,6 +17,9 @@
 //             form (ker d1 = exact + harmonic), hence in the range of delta = star1^+ d1^T star2.
 // Assumes a manifold mesh in which no polygon diagonal is shared by two faces (then the coarse
 // complex has the surface's cohomology).
+// On the mesh complex (DecComplex::Mesh, dec/surface/mesh_complex.h) the 1-forms live on the mesh
+// edges and star1 is positive definite: the same steps are ordinary solves, the parts are unique,
+// and the harmonic generators are the tree-cotree cochains on the edges.
 #pragma once
 
 #include <Eigen/Sparse>
@@ -24,6 +27,7 @@
 
 #include "polydec/apps/applications/hodge_parts.h"
 #include "polydec/dec/surface/complex.h"
+#include "polydec/dec/surface/mesh_complex.h"
 #include "polydec/dec/surface/refinement.h"
 #include "polydec/operators/solvers/cholesky.h"
 
@@ -32,13 +36,17 @@ namespace polydec {
 class HodgeDecomposer {
  public:
   // Builds the complex, d0, star1, factors d0^T star1 d0 (pinned) and the harmonic basis.
-  explicit HodgeDecomposer(const Mesh& mesh, const RefinementOptions& options = {});
+  explicit HodgeDecomposer(const Mesh& mesh, const RefinementOptions& options = {},
+                           DecComplex complex = DecComplex::Complete);
 
-  // omega: one value per coarse 1-cell (throws std::invalid_argument on a size mismatch or
-  // non-finite values).
+  // omega: one value per coarse 1-cell (pair of the complete complex, or mesh edge); throws
+  // std::invalid_argument on a size mismatch or non-finite values.
   HodgeParts decompose(const Eigen::VectorXd& omega) const;
 
-  const CoarseComplex& complex() const { return complex_; }
+  DecComplex dec_complex() const { return kind_; }
+  const CoarseComplex& complex() const { return complex_; }  // empty on the mesh complex
+  // The 1-cells' vertices (i, j), i < j: the complete complex's pairs, or the mesh edges.
+  const Eigen::MatrixX2i& cells() const { return edges_; }
   const Eigen::SparseMatrix<double>& d0() const { return d0_; }
   const Eigen::SparseMatrix<double>& star1() const { return star1_; }
   // star1-orthonormal basis of the harmonic 1-forms, |C1| x dim.
@@ -48,7 +56,9 @@ class HodgeDecomposer {
  private:
   Eigen::VectorXd exact_potential(const Eigen::VectorXd& rhs) const;
 
+  DecComplex kind_ = DecComplex::Complete;
   CoarseComplex complex_;
+  Eigen::MatrixX2i edges_;
   Eigen::SparseMatrix<double> d0_, star1_;
   std::vector<unsigned char> pinned_;
   std::unique_ptr<SparseCholesky> poisson_;
@@ -60,6 +70,8 @@ class HodgeDecomposer {
 // forest whose roots are one exterior node per bordered component), |C1| x b1. Integer-valued;
 // d1 g = 0 exactly.
 Eigen::MatrixXd cohomology_generators(const Mesh& mesh, const CoarseComplex& complex);
+// The same generators on the mesh edges (the mesh complex), |E| x b1.
+Eigen::MatrixXd cohomology_generators(const Mesh& mesh);
 
 // One-shot: HodgeDecomposer(mesh).decompose(omega).
 HodgeParts hodge_decomposition(const Mesh& mesh, const Eigen::VectorXd& omega);

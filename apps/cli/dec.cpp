@@ -1,13 +1,16 @@
 // apps/cli/dec.cpp — `polydec dec MESH --out DIR`: the FEEC building blocks (paper section 4.6)
 // in Matrix Market: d0, d1, star0, star1, star2, P0, P1, P2, plus the coarse cell lists
 // edges.txt (vertex pairs) and triangles.txt (vertex triples), 0-based, one per line, in
-// matrix order. Volume meshes (.ovm, .vtk, .mesh, or --volume): d0, d1, d2, star0..star3,
+// matrix order. With --complex mesh, on the mesh's own cells (dec/surface/mesh_complex.h): the
+// same matrices, edges.txt (the mesh edges i j, oriented i -> j) and faces.txt (each face's
+// vertices in its orientation). Volume meshes (.ovm, .vtk, .mesh, or --volume): d0, d1, d2, star0..star3,
 // P0..P3 of the polyhedral refinement (dec/volume/hodge_star.h) and the coarse cell lists
 // edges.txt, triangles.txt, tetrahedra.txt (vertex pairs, triples, quadruples sharing a cell), up
 // to the degree the cells' sizes allow (--max-degree; dec/volume/complex.h).
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -28,6 +31,7 @@ struct Options {
   std::string mesh, out, rule = "squared-area", cell_rule = "squared-volume";
   bool json = false, lumped = false, volume = false;
   int max_degree = -1;  // volumes: -1 = the largest the cells allow (volume_dec_max_degree)
+  std::string complex = "complete", spoke_rule = "area";
 };
 
 template <class Cells>
@@ -43,6 +47,78 @@ void write_cells(const std::string& path, const Cells& cells) {
 
 void write_simplices(const std::string& path, const SimplexComplex3& K, int k) {
   write_cells(path, K.simplices(k));
+}
+
+void write_faces(const std::string& path, const Mesh& mesh) {
+  std::ofstream out(path);
+  if (!out) throw FileError(path, 0, -1, "cannot open file for writing");
+  for (int f = 0; f < mesh.n_faces(); ++f) {
+    const auto face = mesh.face(f);
+    for (size_t k = 0; k < face.size(); ++k) out << (k ? " " : "") << face[k];
+    out << '\n';
+  }
+  if (!out) throw FileError(path, 0, -1, "write failed");
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// The surface mesh complex: d, P and the stars on the mesh's edges and faces.
+void run_surface_mesh_complex(const Options& o, const Mesh& mesh, const Refinement& r, double read_seconds) {
+  SpokeRule rule;
+  try {
+    rule = parse_spoke_rule(o.spoke_rule);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  auto t0 = std::chrono::steady_clock::now();
+  const SurfaceDec D = surface_dec(mesh, r, {.max_degree = 2, .complex = DecComplex::Mesh, .spoke_rule = rule});
+  const double build_seconds = seconds_since(t0);
+  t0 = std::chrono::steady_clock::now();
+  std::filesystem::create_directories(o.out);
+  SparseMatrix star0 = D.star[0];
+  if (o.lumped) {
+    const Eigen::VectorXd rows = D.star[0] * Eigen::VectorXd::Ones(mesh.n_vertices());
+    star0 = SparseMatrix(rows.asDiagonal());
+  }
+  const std::string d = o.out + "/";
+  write_matrix_market(d + "d0.mtx", D.d[0]);
+  write_matrix_market(d + "d1.mtx", D.d[1]);
+  write_matrix_market(d + "star0.mtx", star0);
+  write_matrix_market(d + "star1.mtx", D.star[1]);
+  write_matrix_market(d + "star2.mtx", D.star[2]);
+  for (int k = 0; k < 3; ++k) write_matrix_market(d + fmt::format("P{}.mtx", k), D.P[k]);
+  write_cells(d + "edges.txt", mesh.edges());
+  write_faces(d + "faces.txt", mesh);
+  const double write_seconds = seconds_since(t0);
+  nlohmann::json j = {{"mesh", o.mesh},
+                      {"out", o.out},
+                      {"complex", "mesh"},
+                      {"spoke_rule", to_string(rule)},
+                      {"vertices", mesh.n_vertices()},
+                      {"edges", mesh.n_edges()},
+                      {"faces", mesh.n_faces()},
+                      {"max_face_size", mesh.max_face_size()},
+                      {"star0", o.lumped ? "lumped" : "galerkin"},
+                      {"star1_nonzeros", D.star[1].nonZeros()},
+                      {"star2_nonzeros", D.star[2].nonZeros()},
+                      {"fan_degenerate", r.quality.n_degenerate},
+                      {"fan_inverted", r.quality.n_inverted},
+                      {"seconds", {{"read", read_seconds}, {"operators", build_seconds}, {"write", write_seconds}}},
+                      {"files",
+                       {"d0.mtx", "d1.mtx", "star0.mtx", "star1.mtx", "star2.mtx", "P0.mtx", "P1.mtx", "P2.mtx",
+                        "edges.txt", "faces.txt"}}};
+  if (o.json) {
+    print_json(j);
+    return;
+  }
+  fmt::print("{}: {} vertices, {} edges, {} faces (up to {} corners)\n", o.mesh, mesh.n_vertices(), mesh.n_edges(),
+             mesh.n_faces(), mesh.max_face_size());
+  fmt::print("mesh complex ({} spoke rule): star1 {} non-zeros, star2 diagonal\n", to_string(rule),
+             D.star[1].nonZeros());
+  fmt::print("fan triangles: {} degenerate, {} inverted\n", r.quality.n_degenerate, r.quality.n_inverted);
+  fmt::print("wrote d0 d1 star0 star1 star2 P0 P1 P2 (.mtx), edges.txt, faces.txt to {}\n", o.out);
 }
 
 void run_volume(const Options& o) {
@@ -136,7 +212,21 @@ void run(const Options& o) {
     run_volume(o);
     return;
   }
+  DecComplex complex;
+  try {
+    complex = parse_dec_complex(o.complex);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  const auto t_read = std::chrono::steady_clock::now();
   const Mesh mesh = load_mesh(o.mesh, o.repair);
+  const double read_seconds = seconds_since(t_read);
+  if (complex == DecComplex::Mesh) {
+    RefinementOptions ropt;
+    ropt.rule = parse_virtual_vertex_rule(o.rule);
+    run_surface_mesh_complex(o, mesh, refine(mesh, ropt), read_seconds);
+    return;
+  }
   if (mesh.max_face_size() > kHighValence)
     std::cerr << fmt::format(
         "polydec: warning: faces with up to {} corners: a face of valence n carries n(n-1)/2 1-cells and "
@@ -210,6 +300,11 @@ const RegisterCommand reg("dec", "Write d0, d1, star0-2, P0-2 and the coarse cel
                             app.add_option("--virtual-vertex", o->rule,
                                            "virtual-vertex rule: squared-area (default), centroid");
                             app.add_flag("--lumped", o->lumped, "write the lumped (diagonal) star0");
+                            app.add_option("--complex", o->complex,
+                                           "the cells: complete (default; the paper's vertex pairs and triples "
+                                           "of a face) or mesh (the mesh's edges and faces: positive definite stars)");
+                            app.add_option("--spoke-rule", o->spoke_rule,
+                                           "mesh complex: area (default; star2 = 1/area) or minimum-norm");
                             app.add_option("--max-degree", o->max_degree,
                                            "volumes: forms up to this degree (0..3; default: the largest the "
                                            "cells allow, 3 for cells of up to 12 vertices)");

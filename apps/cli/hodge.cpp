@@ -1,6 +1,6 @@
 // apps/cli/hodge.cpp — `polydec hodge MESH --out FILE`: Hodge decomposition of a 1-form
 // (one value per coarse 1-cell, in the order of `polydec dec`'s edges.txt) into exact,
-// co-exact and harmonic parts, with their star1 norms.
+// co-exact and harmonic parts, with their star1 norms; --complex mesh: one value per mesh edge.
 #include <fmt/format.h>
 
 #include <Eigen/Geometry>
@@ -22,10 +22,11 @@ struct Options {
   double noise = 0.05;
   unsigned seed = 1;
   bool json = false;
+  std::string complex = "complete";
 };
 
 // Reads one finite value per line (blank lines and '#' comments skipped).
-Eigen::VectorXd read_form(const std::string& path, long expected) {
+Eigen::VectorXd read_form(const std::string& path, long expected, const char* cells) {
   std::ifstream in(path);
   if (!in) throw FileError(path, 0, -1, "cannot open file");
   std::vector<double> v;
@@ -50,21 +51,20 @@ Eigen::VectorXd read_form(const std::string& path, long expected) {
   if (long(v.size()) != expected)
     throw FileError(
         path, 0, -1,
-        fmt::format("{} values, but the mesh has {} coarse 1-cells (see `polydec dec`'s edges.txt)", v.size(),
-                    expected));
+        fmt::format("{} values, but the mesh has {} {} (see `polydec dec`'s edges.txt)", v.size(), expected, cells));
   return Eigen::Map<Eigen::VectorXd>(v.data(), long(v.size()));
 }
 
 // d0 of the x coordinate + the rotation about the z axis through the centroid, integrated along
 // each 1-cell (midpoint rule) + uniform noise of amplitude noise * mean edge length.
-Eigen::VectorXd builtin_form(const Mesh& mesh, const CoarseComplex& K, double noise, unsigned seed) {
+Eigen::VectorXd builtin_form(const Mesh& mesh, const Eigen::MatrixX2i& cells, double noise, unsigned seed) {
   const Eigen::RowVector3d c = mesh.positions().colwise().mean();
   const double h = mesh.mean_edge_length();
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> U(-1.0, 1.0);
-  Eigen::VectorXd omega(K.n_pairs());
-  for (int p = 0; p < K.n_pairs(); ++p) {
-    const Eigen::Vector3d a = mesh.position(K.pairs()(p, 0)), b = mesh.position(K.pairs()(p, 1));
+  Eigen::VectorXd omega(cells.rows());
+  for (int p = 0; p < cells.rows(); ++p) {
+    const Eigen::Vector3d a = mesh.position(cells(p, 0)), b = mesh.position(cells(p, 1));
     const Eigen::Vector3d m = 0.5 * (a + b) - c.transpose();
     omega[p] = (b - a).x() + Eigen::Vector3d::UnitZ().cross(m).dot(b - a) + noise * h * U(rng);
   }
@@ -73,27 +73,38 @@ Eigen::VectorXd builtin_form(const Mesh& mesh, const CoarseComplex& K, double no
 
 void run(const Options& o) {
   if (!(o.noise >= 0) || !std::isfinite(o.noise)) throw UsageError("--noise must be a finite number >= 0");
+  DecComplex complex;
+  try {
+    complex = parse_dec_complex(o.complex);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  const bool on_mesh = complex == DecComplex::Mesh;
   const Mesh mesh = load_mesh(o.mesh, o.repair);
-  if (mesh.max_face_size() > kHighValence)
+  if (!on_mesh && mesh.max_face_size() > kHighValence)
     std::cerr << fmt::format("polydec: warning: faces with up to {} corners: star1 grows as n^4 per face\n",
                              mesh.max_face_size());
-  const HodgeDecomposer hd(mesh);
-  const CoarseComplex& K = hd.complex();
+  const HodgeDecomposer hd(mesh, {}, complex);
+  const Eigen::MatrixX2i cells = on_mesh ? mesh.edges() : hd.complex().pairs();
+  const long n1 = cells.rows();
+  const char* cell_name = on_mesh ? "edges" : "coarse 1-cells";
   const Eigen::VectorXd omega =
-      o.form.empty() ? builtin_form(mesh, K, o.noise, o.seed) : read_form(o.form, K.n_pairs());
+      o.form.empty() ? builtin_form(mesh, cells, o.noise, o.seed) : read_form(o.form, n1, cell_name);
   const HodgeParts parts = hd.decompose(omega);
   if (!o.out.empty()) {
     std::ofstream out(o.out);
     if (!out) throw FileError(o.out, 0, -1, "cannot open file for writing");
-    out << "# i j omega exact coexact harmonic (one line per coarse 1-cell, i < j, 0-based)\n";
-    for (int p = 0; p < K.n_pairs(); ++p)
-      out << fmt::format("{} {} {:.17g} {:.17g} {:.17g} {:.17g}\n", K.pairs()(p, 0), K.pairs()(p, 1),
+    out << fmt::format("# i j omega exact coexact harmonic (one line per {}, i < j, 0-based)\n",
+                       on_mesh ? "mesh edge" : "coarse 1-cell");
+    for (int p = 0; p < n1; ++p)
+      out << fmt::format("{} {} {:.17g} {:.17g} {:.17g} {:.17g}\n", cells(p, 0), cells(p, 1),
                          omega[p], parts.exact[p], parts.coexact[p], parts.harmonic[p]);
     if (!out) throw FileError(o.out, 0, -1, "write failed");
   }
   const nlohmann::json j = {{"mesh", o.mesh},
                             {"form", o.form.empty() ? "builtin" : o.form},
-                            {"pairs", K.n_pairs()},
+                            {"complex", to_string(complex)},
+                            {on_mesh ? "edges" : "pairs", n1},
                             {"harmonic_dimension", hd.harmonic_dimension()},
                             {"norm", parts.norm},
                             {"norm_exact", parts.norm_exact},
@@ -104,8 +115,8 @@ void run(const Options& o) {
     print_json(j);
     return;
   }
-  fmt::print("{}: {} vertices, {} faces, {} coarse 1-cells, harmonic dimension {}\n", o.mesh,
-             mesh.n_vertices(), mesh.n_faces(), K.n_pairs(), hd.harmonic_dimension());
+  fmt::print("{}: {} vertices, {} faces, {} {}, harmonic dimension {}\n", o.mesh, mesh.n_vertices(),
+             mesh.n_faces(), n1, cell_name, hd.harmonic_dimension());
   fmt::print("star1 norms: form {:.6g} = sqrt(exact^2 + co-exact^2 + harmonic^2)\n", parts.norm);
   fmt::print("  exact    {:.6g}\n  co-exact {:.6g}\n  harmonic {:.6g}\n", parts.norm_exact,
              parts.norm_coexact, parts.norm_harmonic);
@@ -124,6 +135,9 @@ const RegisterCommand reg(
                      "noise amplitude of the built-in form, relative to "
                      "the mean edge length (default 0.05)");
       app.add_option("--seed", o->seed, "random seed of the built-in form's noise");
+      app.add_option("--complex", o->complex,
+                     "the cells: complete (default; vertex pairs sharing a face) or mesh (the mesh's edges: "
+                     "positive definite star1, unique parts)");
       app.add_flag("--json", o->json, "print one JSON object instead of text");
       add_repair_flag(app, o->repair);
       app.callback([o] { run(*o); });

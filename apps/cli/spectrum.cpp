@@ -29,6 +29,7 @@ struct Options {
   bool repair = false;  // --repair
   std::string mesh, out, png, mass = "lumped", laplacian = "ours";
   int k = 10, png_index = 1, form = 0;
+  std::string complex = "complete";  // --complex, for --form 1|2
   bool json = false, volume = false;
   EngineOptions engine;  // --engine, --solver, --petsc-options
 };
@@ -191,8 +192,16 @@ void run_form(const Options& o) {
   if (o.k < 1) throw UsageError("--k must be positive");
   if (!o.png.empty() && (o.png_index < 0 || o.png_index >= o.k))
     throw UsageError("--png-index must lie in [0, k)");
+  DecComplex complex;
+  try {
+    complex = parse_dec_complex(o.complex);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  const bool on_mesh = complex == DecComplex::Mesh;
   const Mesh mesh = load_mesh(o.mesh, o.repair);
   FormSpectrumOptions fo;
+  fo.complex = complex;
   fo.degree = o.form;
   fo.k = o.k;
   fo.lumped_mass = o.mass == "lumped";
@@ -202,7 +211,10 @@ void run_form(const Options& o) {
         "polydec: warning: {} degenerate fan triangle(s) (zero area, in {} face(s)) carry no Whitney forms: "
         "zero eigenvalues beyond the Betti number may be spurious\n",
         sp.quality.n_degenerate, sp.quality.n_faces_affected);
-  const CoarseComplex cx(mesh);
+  const CoarseComplex cx = on_mesh ? CoarseComplex() : CoarseComplex(mesh);
+  const long n_cells = on_mesh ? (o.form == 1 ? mesh.n_edges() : mesh.n_faces())
+                               : (o.form == 1 ? cx.n_pairs() : cx.n_triples());
+  const char* cell_file = on_mesh ? (o.form == 1 ? "edges.txt" : "faces.txt") : (o.form == 1 ? "pairs.txt" : "triples.txt");
   std::vector<double> ev(sp.eigenvalues.data(), sp.eigenvalues.data() + sp.eigenvalues.size());
   nlohmann::json pairs = nlohmann::json::array();
   for (int i = 0; i < o.k; ++i)
@@ -214,7 +226,7 @@ void run_form(const Options& o) {
                      {"norm_harmonic", sp.norm_harmonic[i]}});
   nlohmann::json j = {{"mesh", o.mesh},          {"form", o.form},
                       {"mass", o.mass},          {"vertices", mesh.n_vertices()},
-                      {"faces", mesh.n_faces()}, {"cells", o.form == 1 ? cx.n_pairs() : cx.n_triples()},
+                      {"faces", mesh.n_faces()}, {"complex", to_string(complex)}, {"cells", n_cells},
                       {"rank", sp.rank},         {"k", o.k},
                       {"shift", sp.shift},       {"method", sp.method},
                       {"eigenvalues", ev},       {"eigenpairs", pairs},
@@ -235,10 +247,18 @@ void run_form(const Options& o) {
     write_dense_matrix_market(o.out + "/coexact.mtx", sp.coexact);
     write_dense_matrix_market(o.out + "/harmonic.mtx", sp.harmonic);
     {
-      const std::string p = o.out + (o.form == 1 ? "/pairs.txt" : "/triples.txt");
+      const std::string p = o.out + "/" + cell_file;
       std::ofstream f(p);
       if (!f) throw FileError(p, 0, -1, "cannot open file for writing");
-      if (o.form == 1)
+      if (on_mesh && o.form == 1)
+        for (int e = 0; e < mesh.n_edges(); ++e) f << mesh.edges()(e, 0) << ' ' << mesh.edges()(e, 1) << '\n';
+      else if (on_mesh)
+        for (int fc = 0; fc < mesh.n_faces(); ++fc) {
+          const auto face = mesh.face(fc);
+          for (size_t c = 0; c < face.size(); ++c) f << (c ? " " : "") << face[c];
+          f << '\n';
+        }
+      else if (o.form == 1)
         for (int c = 0; c < cx.n_pairs(); ++c) f << cx.pairs()(c, 0) << ' ' << cx.pairs()(c, 1) << '\n';
       else
         for (int c = 0; c < cx.n_triples(); ++c)
@@ -247,7 +267,7 @@ void run_form(const Options& o) {
     std::ofstream(o.out + "/spectrum.json") << j.dump(2) << '\n';
     j["out"] = o.out;
     j["files"] = {"eigenvalues.txt", "eigenvectors.mtx", "exact.mtx",
-                  "coexact.mtx",     "harmonic.mtx",     o.form == 1 ? "pairs.txt" : "triples.txt",
+                  "coexact.mtx",     "harmonic.mtx",     cell_file,
                   "spectrum.json"};
   }
   if (!o.png.empty()) {
@@ -261,7 +281,7 @@ void run_form(const Options& o) {
                              ev[size_t(o.png_index)], form_kind_name(sp.kinds[size_t(o.png_index)]));
     if (o.form == 1) {
       const Eigen::MatrixX3d U =
-          whitney_vectors_at_virtual_vertices(mesh, ref, sp.eigenvectors.col(o.png_index));
+          whitney_vectors_at_virtual_vertices(mesh, ref, sp.eigenvectors.col(o.png_index), complex);
       ropt.scalar_label = "|w|";
       render_vector_field_png(o.png, mesh, face_to_vertex(mesh, U.rowwise().norm()), ref.virtual_points, U,
                               ropt);
@@ -269,7 +289,7 @@ void run_form(const Options& o) {
       ropt.scalar_label = "density";
       ropt.isolines = 10;
       render_png(o.png, mesh,
-                 face_to_vertex(mesh, whitney2_face_densities(mesh, ref, sp.eigenvectors.col(o.png_index))),
+                 face_to_vertex(mesh, whitney2_face_densities(mesh, ref, sp.eigenvectors.col(o.png_index), complex)),
                  ropt);
     }
     j["png"] = o.png;
@@ -278,9 +298,8 @@ void run_form(const Options& o) {
     print_json(j);
     return;
   }
-  fmt::print("{}: {} vertices, {} faces; Whitney {}-forms: {} cells, rank {}; shift {:.6g}\n", o.mesh,
-             mesh.n_vertices(), mesh.n_faces(), o.form, o.form == 1 ? cx.n_pairs() : cx.n_triples(), sp.rank,
-             sp.shift);
+  fmt::print("{}: {} vertices, {} faces; Whitney {}-forms on the {} complex: {} cells, rank {}; shift {:.6g}\n",
+             o.mesh, mesh.n_vertices(), mesh.n_faces(), o.form, to_string(complex), n_cells, sp.rank, sp.shift);
   fmt::print(
       "{} smallest eigenvalues of the Hodge Laplacian (norms of the exact, co-exact, harmonic parts):\n",
       o.k);
@@ -293,7 +312,7 @@ void run_form(const Options& o) {
     fmt::print(
         "wrote eigenvalues.txt, eigenvectors.mtx (cells x k), exact/coexact/harmonic.mtx, "
         "{} and spectrum.json to {}\n",
-        o.form == 1 ? "pairs.txt" : "triples.txt", o.out);
+        cell_file, o.out);
 }
 
 const RegisterCommand reg(
@@ -320,6 +339,9 @@ const RegisterCommand reg(
           "picture of one eigenfunction with isolines (.png); --form 1: the eigen 1-form as arrows, "
           "--form 2: its density; volumes: on the solid cut by the plane z = centre");
       app.add_option("--png-index", o->png_index, "which eigenfunction to draw (default 1)");
+      app.add_option("--complex", o->complex,
+                     "--form 1|2: the cells, complete (default; the paper's vertex pairs and triples) or mesh "
+                     "(the mesh's edges and faces, dec/surface/mesh_complex.h)");
       app.add_flag("--json", o->json, "print one JSON object instead of text");
       add_repair_flag(app, o->repair);
       add_engine_options(app, o->engine);

@@ -38,7 +38,7 @@ __all__ = [
     "HeatGeodesics", "suggested_time_factor", "spectrum", "HodgeDecomposer", "HodgeParts", "hodge_decomposition",
     "mean_curvature", "vertex_normals", "CurvatureFlow", "curvature_flow",
     "conformal_parametrization", "conformal_distortion",
-    "form_spectrum", "hks_times", "heat_kernel_signature", "wave_kernel_signature", "biharmonic_distance",
+    "form_spectrum", "surface_dec", "hks_times", "heat_kernel_signature", "wave_kernel_signature", "biharmonic_distance",
     "diffusion_distance", "lowpass_filter",
     "VolumeMesh", "read_volume_mesh", "write_volume_mesh", "jitter_interior", "hex_grid_volume", "tet_grid_volume",
     "pyramid_grid_volume", "truncated_octahedra_volume", "cuboctahedra_volume", "hex_torus_volume",
@@ -286,6 +286,23 @@ def cells(V, F):
     return d["pairs"], d["triples"]
 
 
+def surface_dec(V, F, complex="mesh", max_degree=2, spoke_rule="area", virtual_vertex="squared-area"):
+    """DEC on a polygon mesh in one bundle (dec/surface/hodge_star.h, SurfaceDec) -> dict with the
+    lists d [d0, d1], P [P0, P1, P2], star [star0, star1, star2] (csc_matrix; d_k for k < max_degree,
+    P_k and star_k for k <= max_degree), so that d[k], P[k], star[k] read like PyDEC's and like
+    volume_dec's; complex, max_degree, and the cells: complex="mesh" (default) the mesh's edges
+    (|E|, 2) int32 (i < j, oriented i -> j) and faces (a list of vertex arrays, each in its
+    orientation), with star1, star2 positive definite (star2 diagonal, 1/area with
+    spoke_rule="area"; "minimum-norm" the alternative of docs/feec.md); complex="complete" the
+    paper's pairs (|C1|, 2) and triples (|C2|, 3). S = -d[0].T @ star[1] @ d[0] on both."""
+    X, idx, off = _convert.mesh(V, F)
+    d = _polydec.surface_dec(X, idx, off, str(complex), int(max_degree), str(spoke_rule), str(virtual_vertex))
+    if "faces" in d:
+        o, i = d.pop("face_offsets"), d.pop("face_indices")
+        d["faces"] = [i[o[f]:o[f + 1]] for f in range(len(o) - 1)]
+    return d
+
+
 def dec_operators(V, F, virtual_vertex="squared-area"):
     """All DEC pieces from one refinement: a dict with d0, d1, star0, star0_lumped (vector),
     star1, star2, P0, P1, P2 (csc_matrix), pairs, triples (int32 cell lists) and is_edge (bool
@@ -383,10 +400,12 @@ class HodgeDecomposer:
     harmonic basis; decompose(omega) with omega (|C1|,), one value per pair of cells()[0] (the
     integral of the 1-form from i to j), returns HodgeParts. Attributes: pairs (|C1|, 2), d0,
     star1 (csc_matrix), harmonic_basis (|C1|, 2 genus + ...), star1-orthonormal.
+    complex="mesh": on the mesh's own edges (pairs = the mesh edges (i, j), i < j; star1 positive
+    definite, so every step is an ordinary solve and the parts are unique).
     """
 
-    def __init__(self, V, F, virtual_vertex="squared-area"):
-        self._h = _polydec.HodgeDecomposer(*_convert.mesh(V, F), str(virtual_vertex))
+    def __init__(self, V, F, virtual_vertex="squared-area", complex="complete"):
+        self._h = _polydec.HodgeDecomposer(*_convert.mesh(V, F), str(virtual_vertex), str(complex))
         self.pairs = self._h.pairs
         self.d0 = self._h.d0
         self.star1 = self._h.star1

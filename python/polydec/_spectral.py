@@ -8,7 +8,8 @@ import numpy as np
 from . import _convert, _polydec
 
 
-def form_spectrum(V, F, k, degree=1, mass="lumped", tolerance=1e-10, max_iterations=1000, decompose=True):
+def form_spectrum(V, F, k, degree=1, mass="lumped", tolerance=1e-10, max_iterations=1000, decompose=True,
+                  complex="complete"):
     """The k smallest eigenpairs of the Hodge Laplacian on Whitney `degree`-forms (1 or 2):
     1-forms K1 w = lambda star1 w, K1 = d1^T star2 d1 + star1 d0 M0^-1 d0^T star1 (M0 the lumped
     star0, or mass="galerkin" the Galerkin one); 2-forms K2 u = lambda star2 u. -> dict:
@@ -17,9 +18,11 @@ def form_spectrum(V, F, k, degree=1, mass="lumped", tolerance=1e-10, max_iterati
     coexact, harmonic (same shape, summing to the eigenvectors), their star norms norm_exact,
     norm_coexact, norm_harmonic (k,) and kinds (the part of largest norm per eigenform:
     "exact", "co-exact", "harmonic"); rank (dimension of the Whitney forms), shift, n_converged,
-    n_solves, method, degenerate_fan_triangles. SolverError when the solver fails."""
+    n_solves, method, degenerate_fan_triangles. SolverError when the solver fails.
+    complex="mesh": on the mesh's own edges (degree 1) or faces (degree 2), positive definite stars
+    (surface_dec(V, F, "mesh")); the eigenvectors are then (|E|, k) or (|F|, k)."""
     return _polydec.form_spectrum(*_convert.mesh(V, F), int(degree), int(k), _convert.lumped_flag(mass),
-                                  float(tolerance), int(max_iterations), bool(decompose))
+                                  float(tolerance), int(max_iterations), bool(decompose), str(complex))
 
 
 def _pairs(evals, evecs):

@@ -131,6 +131,47 @@ void register_operators(py::module_& m) {
     }
     return d;
   });
+
+  m.def("surface_dec", [](const PositionArray& V, const IndexArray& I, const IndexArray& O,
+                          const std::string& complex, int max_degree, const std::string& spoke_rule,
+                          const std::string& rule) {
+    const Mesh mesh = mesh_from_arrays(V, I, O);
+    SurfaceDecOptions options;
+    options.complex = parse_dec_complex(complex);
+    options.spoke_rule = parse_spoke_rule(spoke_rule);
+    options.max_degree = max_degree;
+    RefinementOptions ropt;
+    ropt.rule = parse_virtual_vertex_rule(rule);
+    SurfaceDec D;
+    {
+      py::gil_scoped_release release;
+      D = surface_dec(mesh, refine(mesh, ropt), options);
+    }
+    py::list d, P, star;
+    for (int k = 0; k < D.max_degree; ++k) d.append(D.d[k]);
+    for (int k = 0; k <= D.max_degree; ++k) {
+      P.append(D.P[k]);
+      star.append(D.star[k]);
+    }
+    py::dict out;
+    out["d"] = d;
+    out["P"] = P;
+    out["star"] = star;
+    out["complex"] = to_string(D.complex);
+    out["max_degree"] = D.max_degree;
+    if (D.complex == DecComplex::Mesh) {
+      out["edges"] = Eigen::MatrixX2i(mesh.edges());
+      out["face_offsets"] = Eigen::VectorXi(Eigen::Map<const Eigen::VectorXi>(mesh.face_offsets().data(),
+                                                                              long(mesh.face_offsets().size())));
+      out["face_indices"] = Eigen::VectorXi(Eigen::Map<const Eigen::VectorXi>(mesh.face_indices().data(),
+                                                                              long(mesh.face_indices().size())));
+      out["faces"] = true;
+    } else {
+      out["pairs"] = Eigen::MatrixX2i(D.coarse.pairs());
+      out["triples"] = Eigen::MatrixX3i(D.coarse.triples());
+    }
+    return out;
+  });
 }
 
 }  // namespace polydec::python

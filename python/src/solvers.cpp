@@ -70,16 +70,18 @@ void register_solvers(py::module_& m) {
 
   py::class_<HodgeDecomposer>(m, "HodgeDecomposer")
       .def(py::init(
-          [](const PositionArray& V, const IndexArray& I, const IndexArray& O, const std::string& rule) {
+          [](const PositionArray& V, const IndexArray& I, const IndexArray& O, const std::string& rule,
+             const std::string& complex) {
             const Mesh mesh = mesh_from_arrays(V, I, O);
-            py::gil_scoped_release release;
             RefinementOptions options;
             options.rule = parse_virtual_vertex_rule(rule);
-            return std::make_unique<HodgeDecomposer>(mesh, options);
+            const DecComplex kind = parse_dec_complex(complex);
+            py::gil_scoped_release release;
+            return std::make_unique<HodgeDecomposer>(mesh, options, kind);
           }))
       .def("decompose", &decompose_to_dict<HodgeDecomposer>)
       .def_property_readonly("pairs",
-                             [](const HodgeDecomposer& h) { return Eigen::MatrixX2i(h.complex().pairs()); })
+                             [](const HodgeDecomposer& h) { return Eigen::MatrixX2i(h.cells()); })
       .def_property_readonly("d0", [](const HodgeDecomposer& h) { return h.d0(); })
       .def_property_readonly("star1", [](const HodgeDecomposer& h) { return h.star1(); })
       .def_property_readonly("harmonic_basis", [](const HodgeDecomposer& h) { return h.harmonic_basis(); });

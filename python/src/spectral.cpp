@@ -27,12 +27,14 @@ Spectrum spectrum_of(const Eigen::VectorXd& evals, const Eigen::MatrixXd& evecs)
 
 void register_spectral(py::module_& m) {
   m.def("form_spectrum", [](const PositionArray& V, const IndexArray& I, const IndexArray& O, int degree,
-                            int k, bool lumped_mass, double tolerance, int max_iterations, bool decompose) {
+                            int k, bool lumped_mass, double tolerance, int max_iterations, bool decompose,
+                            const std::string& complex) {
     const Mesh mesh = mesh_from_arrays(V, I, O);
     FormSpectrum s;
     {
-      py::gil_scoped_release release;
       FormSpectrumOptions options;
+      options.complex = parse_dec_complex(complex);
+      py::gil_scoped_release release;
       options.degree = degree;
       options.k = k;
       options.lumped_mass = lumped_mass;

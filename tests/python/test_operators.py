@@ -200,3 +200,37 @@ def test_gradient_of_a_linear_function_is_constant():
     G = polydec.gradient(V, F)
     g = (G @ (V @ np.array([1.0, -2.0, 0.0]))).reshape(-1, 3)
     assert np.abs(g - [1.0, -2.0, 0.0]).max() <= 1e-12
+
+
+def test_mesh_complex_bundle_equals_the_command_line_and_holds_its_identities(cli, tmp_path):
+    # A generated non-planar hexagon/pentagon mesh with boundary: no shared data needed.
+    V, F = polydec.add_noise(*polydec.hex_grid(5, 4), 0.1)
+    path = tmp_path / "hexagons.obj"
+    polydec.write_mesh(str(path), V, F)
+    cli("dec", path, "--complex", "mesh", "--out", tmp_path / "dec")
+    V, F = polydec.read_mesh(str(path))
+    D = polydec.surface_dec(V, F, complex="mesh")
+    assert D["complex"] == "mesh" and len(D["d"]) == 2 and len(D["P"]) == 3 and len(D["star"]) == 3
+    for k, name in enumerate(["d0", "d1"]):
+        assert_same(D["d"][k], tmp_path / "dec" / f"{name}.mtx", name)
+    for k in range(3):
+        assert_same(D["P"][k], tmp_path / "dec" / f"P{k}.mtx", f"P{k}")
+        assert_same(D["star"][k], tmp_path / "dec" / f"star{k}.mtx", f"star{k}")
+    assert np.array_equal(D["edges"], np.loadtxt(tmp_path / "dec" / "edges.txt", dtype=np.int64, ndmin=2))
+    with open(tmp_path / "dec" / "faces.txt") as f:
+        assert [list(map(int, line.split())) for line in f] == [list(face) for face in D["faces"]]
+    d0, d1 = D["d"]
+    star0, star1, star2 = D["star"]
+    S = polydec.stiffness(V, F)
+    assert d0.shape == (D["edges"].shape[0], V.shape[0]) and d1.shape == (len(D["faces"]), d0.shape[0])
+    assert abs(d1 @ d0).max() == 0
+    assert abs(S + d0.T @ star1 @ d0).max() <= 1e-12 * abs(S).max()
+    # Positive definite: the smallest eigenvalues of star1 and star2 are positive.
+    assert np.linalg.eigvalsh(star1.toarray()).min() > 0
+    assert star2.nnz == star2.shape[0] and star2.diagonal().min() > 0    # diagonal
+    # The complete complex through the same function keeps the paper's cells.
+    C = polydec.surface_dec(V, F, complex="complete", max_degree=1)
+    pairs, _ = polydec.cells(V, F)
+    assert np.array_equal(C["pairs"], pairs) and len(C["d"]) == 1
+    with pytest.raises(ValueError):
+        polydec.surface_dec(V, F, complex="full")

@@ -191,3 +191,18 @@ def test_conformal_parametrization_of_a_planar_patch_is_a_similarity():
     assert 1e-6 < polydec.conformal_distortion(W, F, uvb) < 0.1
     with pytest.raises(ValueError, match="boundary"):
         polydec.conformal_parametrization(*polydec.cube_sphere(2))
+
+
+def test_hodge_decomposition_on_the_mesh_complex():
+    V, F = polydec.torus(16, 10)
+    hd = polydec.HodgeDecomposer(V, F, complex="mesh")
+    assert hd.harmonic_basis.shape[1] == 2
+    edges = polydec.mesh_info(V, F)["edge_list"]
+    assert np.array_equal(hd.pairs, edges)
+    rng = np.random.default_rng(2)
+    omega = rng.standard_normal(edges.shape[0])
+    p = hd.decompose(omega)
+    inner = lambda a, b: a @ (hd.star1 @ b)                                   # noqa: E731
+    for a, b in [(p.exact, p.coexact), (p.exact, p.harmonic), (p.coexact, p.harmonic)]:
+        assert abs(inner(a, b)) < 1e-9 * p.norm ** 2
+    assert np.abs(p.exact + p.coexact + p.harmonic - omega).max() < 1e-12 * np.abs(omega).max()

@@ -28,6 +28,19 @@ def test_form_spectrum_on_a_torus(degree):
     assert all(k == "harmonic" for k in r["kinds"][:n_zero])
 
 
+@pytest.mark.parametrize("degree", [1, 2])
+def test_form_spectrum_on_the_mesh_complex(degree):
+    V, F = polydec.torus(12, 8)
+    r = polydec.form_spectrum(V, F, 4, degree=degree, complex="mesh")
+    D = polydec.surface_dec(V, F, complex="mesh")
+    star = D["star"][degree]
+    W = r["eigenvectors"]
+    assert W.shape == (star.shape[0], 4) and r["rank"] == star.shape[0]
+    assert np.abs(W.T @ star @ W - np.eye(4)).max() <= 1e-8
+    n_zero = int(np.sum(r["eigenvalues"] <= 1e-8 * r["eigenvalues"][-1]))
+    assert n_zero == (2 if degree == 1 else 1)
+
+
 def test_form_spectrum_rejects_a_bad_degree():
     with pytest.raises(ValueError, match="degree"):
         polydec.form_spectrum(*polydec.quad_grid(3, 3), 2, degree=3)

@@ -328,3 +328,86 @@ TEST_CASE("whitney2_face_densities: the plane's area cochain has density 1 on ev
 }
 
 }  // namespace test_whitney2_face_densities
+
+namespace test_form_spectrum_mesh_complex {
+using namespace test_form_spectrum;
+
+TEST_CASE("mesh complex: 1-form zero eigenvalues count b1, 0-form eigenvalues reappear as exact 1-forms",
+          "[form_spectrum][mesh-complex]") {
+  for (const auto& [name, mesh] : meshes()) {
+    INFO(name);
+    const int b1 = first_betti(mesh);
+    FormSpectrumOptions o;
+    o.complex = DecComplex::Mesh;
+    o.k = b1 + 12;
+    const FormSpectrum sp = form_spectrum(mesh, o);
+    CHECK(sp.rank == mesh.n_edges());
+    CHECK(sp.eigenvectors.rows() == mesh.n_edges());
+    const double area = surface_area(mesh);
+    CHECK(count_zero(sp.eigenvalues, 1 / area) == b1);
+    for (int i = 0; i < b1; ++i) CHECK(sp.kinds[size_t(i)] == FormKind::Harmonic);
+    // -S = d0^T star1 d0 on the mesh complex too: an eigenfunction x of -S x = lambda M0 x gives the
+    // 1-form eigenpair (lambda, d0 x) of K1 w = lambda star1 w.
+    SpectrumOptions s0;
+    s0.k = 6;
+    const Spectrum zero = laplacian_spectrum(mesh, s0);
+    const Refinement R = refine(mesh);
+    const SparseMatrix d0 = mesh_d0(mesh), star1 = mesh_star1(mesh, R);
+    int matched = 0;
+    for (int j = 1; j < s0.k; ++j) {
+      const double lambda = zero.eigenvalues[j];
+      if (lambda > sp.eigenvalues[o.k - 1]) break;
+      std::vector<int> cols;
+      for (int i = 0; i < o.k; ++i)
+        if (std::abs(sp.eigenvalues[i] - lambda) <= 1e-6 * lambda) cols.push_back(i);
+      INFO("0-form eigenvalue " << j << " = " << lambda);
+      REQUIRE(!cols.empty());
+      Eigen::MatrixXd Wl(sp.eigenvectors.rows(), long(cols.size()));
+      for (size_t c = 0; c < cols.size(); ++c) Wl.col(long(c)) = sp.eigenvectors.col(cols[c]);
+      CHECK(outside(Wl, star1, d0 * zero.eigenvectors.col(j)) <= 1e-5);
+      ++matched;
+    }
+    CHECK(matched >= 2);
+  }
+}
+
+TEST_CASE("unit sphere: 1- and 2-form spectra of both complexes approach l(l+1)", "[form_spectrum][mesh-complex]") {
+  // Errors of the bands l = 1..3 on two refinements, for the complete and the mesh complex.
+  for (DecComplex complex : {DecComplex::Complete, DecComplex::Mesh}) {
+    std::vector<std::vector<double>> e1, e2;
+    for (int level : {2, 3}) {
+      const Mesh mesh = project_to_unit_sphere(add_noise(hex_sphere(level), 0.05, 7));
+      FormSpectrumOptions o;
+      o.complex = complex;
+      o.k = 30;  // l <= 3: 2 (3 + 5 + 7)
+      o.decompose = complex == DecComplex::Mesh;
+      const FormSpectrum sp = form_spectrum(mesh, o);
+      e1.push_back(band_errors(sp.eigenvalues, 0, 3, 2));
+      if (o.decompose) {
+        int i = 0;
+        for (int l = 1; l <= 3; ++l) {
+          int exact = 0;
+          for (int c = 0; c < 2 * (2 * l + 1); ++c, ++i) exact += sp.kinds[size_t(i)] == FormKind::Exact;
+          CHECK(exact == 2 * l + 1);
+        }
+      }
+      FormSpectrumOptions o2 = o;
+      o2.degree = 2;
+      o2.k = 16;  // the zero, then l <= 3
+      o2.decompose = false;
+      const FormSpectrum sp2 = form_spectrum(mesh, o2);
+      CHECK(count_zero(sp2.eigenvalues, 1.0) == 1);
+      e2.push_back(band_errors(sp2.eigenvalues, 1, 3, 1));
+      for (int l = 1; l <= 3; ++l)
+        WARN(to_string(complex) << " complex, hex_sphere(" << level << "), " << mesh.n_faces() << " faces: l = " << l
+                                << ", 1-forms max relative error " << e1.back()[size_t(l - 1)] << ", 2-forms "
+                                << e2.back()[size_t(l - 1)]);
+    }
+    for (int l = 1; l <= 3; ++l) {
+      CHECK(e1[1][size_t(l - 1)] < 0.5 * e1[0][size_t(l - 1)]);
+      CHECK(e2[1][size_t(l - 1)] < 0.5 * e2[0][size_t(l - 1)]);
+    }
+  }
+}
+
+}  // namespace test_form_spectrum_mesh_complex

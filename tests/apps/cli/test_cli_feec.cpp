@@ -108,4 +108,59 @@ TEST_CASE("polydec hodge decomposes a given 1-form and reports its norms", "[fee
   CHECK(test::run_cli_in(dir, "hodge " + dir + "/torus.obj --noise -1").code == 2);
 }
 
+TEST_CASE("polydec dec, hodge and spectrum on the mesh complex", "[feec][mesh-complex]") {
+  const test::ScratchDir scratch("feec_mesh_complex");
+  const std::string dir = scratch.dir.string();
+  write_mesh(dir + "/torus.obj", test::torus(8, 6, 0.1, true));
+  const Mesh m = read_mesh(dir + "/torus.obj");
+  const test::CliRun r = test::run_cli_in(dir, "dec " + dir + "/torus.obj --complex mesh --out " + dir + "/out --json");
+  REQUIRE(r.code == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  CHECK(j["complex"] == "mesh");
+  CHECK(j["edges"] == m.n_edges());
+  CHECK(j["seconds"]["operators"].get<double>() >= 0);
+  const SurfaceDec D = surface_dec(m, refine(m), {.complex = DecComplex::Mesh});
+  CHECK(test::relative_difference(read_matrix_market(dir + "/out/d0.mtx"), D.d[0]) == 0.0);
+  CHECK(test::relative_difference(read_matrix_market(dir + "/out/d1.mtx"), D.d[1]) == 0.0);
+  for (int k = 0; k < 3; ++k) {
+    CHECK(test::relative_difference(read_matrix_market(dir + fmt::format("/out/star{}.mtx", k)), D.star[k]) <= 1e-15);
+    CHECK(test::relative_difference(read_matrix_market(dir + fmt::format("/out/P{}.mtx", k)), D.P[k]) <= 1e-15);
+  }
+  std::ifstream edges(dir + "/out/edges.txt"), faces(dir + "/out/faces.txt");
+  for (int e = 0; e < m.n_edges(); ++e) {
+    int a = -1, b = -1;
+    edges >> a >> b;
+    REQUIRE((a == m.edges()(e, 0) && b == m.edges()(e, 1)));
+  }
+  for (int f = 0; f < m.n_faces(); ++f) {
+    std::string line;
+    std::getline(faces, line);
+    std::string expect;
+    for (int v : m.face(f)) {
+      if (!expect.empty()) expect += ' ';
+      expect += std::to_string(v);
+    }
+    REQUIRE(line == expect);
+  }
+  // The Hodge decomposition of the built-in form on the mesh's edges: harmonic dimension 2.
+  const test::CliRun h = test::run_cli_in(dir, "hodge " + dir + "/torus.obj --complex mesh --json");
+  REQUIRE(h.code == 0);
+  const auto jh = nlohmann::json::parse(h.out);
+  CHECK(jh["harmonic_dimension"] == 2);
+  CHECK(jh["edges"] == m.n_edges());
+  // 1-form spectrum: two harmonic forms on the torus, the cochains on the edges.
+  const test::CliRun s =
+      test::run_cli_in(dir, "spectrum " + dir + "/torus.obj --form 1 --k 4 --complex mesh --json --out " + dir + "/sp");
+  REQUIRE(s.code == 0);
+  const auto js = nlohmann::json::parse(s.out);
+  CHECK(js["cells"] == m.n_edges());
+  CHECK(js["eigenpairs"][0]["kind"] == "harmonic");
+  CHECK(js["eigenpairs"][1]["kind"] == "harmonic");
+  CHECK(std::filesystem::exists(dir + "/sp/edges.txt"));
+  // Bad choices are usage errors (exit 2).
+  CHECK(test::run_cli_in(dir, "dec " + dir + "/torus.obj --complex full --out " + dir + "/x").code == 2);
+  CHECK(test::run_cli_in(dir, "dec " + dir + "/torus.obj --complex mesh --spoke-rule x --out " + dir + "/x").code == 2);
+  CHECK(test::run_cli_in(dir, "hodge " + dir + "/torus.obj --complex full").code == 2);
+}
+
 }  // namespace test_cli_feec
