@@ -1,6 +1,7 @@
 // apps/applications/geodesics.cpp — heat-method geodesic distances.
 #include "polydec/apps/applications/geodesics.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
@@ -58,6 +59,25 @@ OperatorSet take(OperatorSet& src) {
   dst.G.swap(G);
   dst.D.swap(D);
   return dst;
+}
+
+// Eq. (32) on one element's gradient block: x (n rows of `stride` apart) becomes -x / |x|, zero
+// where the gradient vanishes or is not finite. Rescaled first: far from the source |grad u|
+// underflows when squared. No allocation.
+void normalize_block(double* x, int n, int stride) {
+  double m = 0;
+  for (int i = 0; i < n; ++i) m = std::max(m, std::abs(x[i * stride]));
+  if (!(m > 0) || !std::isfinite(m)) {
+    for (int i = 0; i < n; ++i) x[i * stride] = 0;
+    return;
+  }
+  double s2 = 0;
+  for (int i = 0; i < n; ++i) {
+    x[i * stride] /= m;
+    s2 += x[i * stride] * x[i * stride];
+  }
+  const double norm = std::sqrt(s2);  // >= 1: the largest entry is now 1
+  for (int i = 0; i < n; ++i) x[i * stride] = -x[i * stride] / norm;
 }
 
 }  // namespace
@@ -155,14 +175,7 @@ Eigen::VectorXd HeatGeodesics::distance(std::span<const int> sources, HeatDiagno
   for (int h = 0; h < n_blocks; ++h) {
     const int b0 = ops_.G_blocks.empty() ? 3 * h : ops_.G_blocks[h];
     const int b1 = ops_.G_blocks.empty() ? 3 * h + 3 : ops_.G_blocks[h + 1];
-    auto gh = g.segment(b0, b1 - b0);
-    const double m = gh.cwiseAbs().maxCoeff();  // rescale first: far from the source |grad u| underflows when squared
-    if (!(m > 0) || !std::isfinite(m)) {
-      gh.setZero();
-      continue;
-    }
-    const Eigen::VectorXd s = gh / m;
-    gh = -s / s.norm();
+    normalize_block(g.data() + b0, b1 - b0, 1);
   }
   // (33): S d = D g, solved as (-S) d = -D g with pinned vertices.
   Eigen::VectorXd b = -(ops_.D * g);
@@ -193,6 +206,83 @@ Eigen::VectorXd HeatGeodesics::distance(std::span<const int> sources, HeatDiagno
     }
   }
   return d;
+}
+
+Eigen::MatrixXd HeatGeodesics::distances(std::span<const int> sources, int block) const {
+  const int nv = int(ops_.S.rows()), n_out = ops_.n_input_vertices, k = int(sources.size());
+  if (block < 1) throw std::invalid_argument(fmt::format("heat geodesics: block size {} must be positive", block));
+  if (sources.empty()) throw std::out_of_range("heat geodesics: no source vertex given");
+  for (int s : sources) {
+    if (s < 0 || s >= n_out)
+      throw std::out_of_range(fmt::format("heat geodesics: source vertex {} out of range [0, {})", s, n_out));
+    if (component_[s] < 0)
+      throw std::out_of_range(fmt::format("heat geodesics: source vertex {} carries no stiffness (unreferenced, or only in zero-area faces)", s));
+  }
+  // G row by row (a gather per gradient entry) and D column by column (a scatter into the small
+  // right-hand side): one pass over both for all columns of a block.
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> Gr = ops_.G;
+  const int n_blocks = ops_.G_blocks.empty() ? int(Gr.rows() / 3) : int(ops_.G_blocks.size()) - 1;
+  int widest = 3;
+  for (int h = 0; h < n_blocks && !ops_.G_blocks.empty(); ++h)
+    widest = std::max(widest, ops_.G_blocks[h + 1] - ops_.G_blocks[h]);
+  Eigen::MatrixXd out(n_out, k);
+  for (int c0 = 0; c0 < k; c0 += block) {
+    const int m = std::min(block, k - c0);
+    // (31) for m sources at once.
+    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(nv, m);
+    for (int c = 0; c < m; ++c) {
+      const int s = sources[size_t(c0 + c)];
+      if (!options_.mass_weighted_source)
+        rhs(s, c) = 1.0;
+      else if (options_.lumped_mass)
+        rhs(s, c) = ops_.M_lumped[s];
+      else
+        for (SparseMatrix::InnerIterator it(ops_.M, s); it; ++it)
+          if (component_[it.row()] >= 0) rhs(it.row(), c) = it.value();
+    }
+    // Vertex-major copies (the m values of a vertex contiguous) for the fused pass.
+    const Eigen::MatrixXd Ut = heat_->solve(rhs).transpose();
+    Eigen::MatrixXd Bt = Eigen::MatrixXd::Zero(m, nv);
+    const double* U = Ut.data();  // vertex v's m values at U + v m
+    double* Bv = Bt.data();
+    std::vector<double> g(size_t(widest) * size_t(m));  // block row i's m values at g + i m
+    for (int h = 0; h < n_blocks; ++h) {
+      const int b0 = ops_.G_blocks.empty() ? 3 * h : ops_.G_blocks[h];
+      const int b1 = ops_.G_blocks.empty() ? 3 * h + 3 : ops_.G_blocks[h + 1];
+      for (int r = b0; r < b1; ++r) {
+        double* gr = g.data() + size_t(r - b0) * m;
+        std::fill(gr, gr + m, 0.0);
+        for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(Gr, r); it; ++it) {
+          const double a = it.value();
+          const double* u = U + it.col() * long(m);
+          for (int c = 0; c < m; ++c) gr[c] += a * u[c];
+        }
+      }
+      for (int c = 0; c < m; ++c) normalize_block(g.data() + c, b1 - b0, m);  // (32)
+      for (int r = b0; r < b1; ++r) {
+        const double* gr = g.data() + size_t(r - b0) * m;
+        for (SparseMatrix::InnerIterator it(ops_.D, r); it; ++it) {
+          const double a = it.value();
+          double* b = Bv + it.row() * long(m);
+          for (int c = 0; c < m; ++c) b[c] -= a * gr[c];
+        }
+      }
+    }
+    // (33) for the m right-hand sides.
+    Eigen::MatrixXd B = Bt.transpose();
+    for (int v = 0; v < nv; ++v)
+      if (pinned_[v]) B.row(v).setZero();
+    const Eigen::MatrixXd D = poisson_->solve(B);
+    for (int c = 0; c < m; ++c) {
+      const int reached = component_[sources[size_t(c0 + c)]];
+      double cmin = std::numeric_limits<double>::infinity();
+      for (int v = 0; v < n_out; ++v)
+        if (component_[v] == reached) cmin = std::min(cmin, D(v, c));
+      for (int v = 0; v < n_out; ++v)
+        out(v, c0 + c) = component_[v] == reached ? D(v, c) - cmin : std::numeric_limits<double>::infinity();
+    }
+  }
+  return out;
 }
 
 double rmse(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {

@@ -63,6 +63,14 @@ class HeatGeodesics {
   Eigen::VectorXd distance(std::span<const int> sources, HeatDiagnostics* diagnostics) const;
   Eigen::VectorXd distance(int source) const { return distance(std::span<const int>(&source, 1)); }
 
+  // One distance field per source (unlike distance(sources), the distance to the set): column c
+  // holds the distances from sources[c], |V| x k, equal to distance(sources[c]) up to round-off.
+  // Solved as blocks of up to `block` right-hand sides (CHOLMOD's supernodal solves with several
+  // columns), and the normalized gradient (eq. 32) and its divergence fused in one pass over a
+  // row-major copy of G made for the call. Throws as distance() does; std::invalid_argument for
+  // block < 1.
+  Eigen::MatrixXd distances(std::span<const int> sources, int block = 64) const;
+
   double time_step() const { return t_; }
   const OperatorSet& operators() const { return ops_; }
 

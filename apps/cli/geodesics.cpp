@@ -1,11 +1,13 @@
 // apps/cli/geodesics.cpp — `polydec geodesics MESH --source V [...] --out FILE.ply`: heat-method
-// distances (paper section 5.5) written as a per-vertex PLY property and/or a picture (--png); on a
+// distances (paper section 5.5) written as a per-vertex PLY property and/or a picture (--png);
+// --per-source: one distance field per source, written as a dense |V| x k Matrix Market file; on a
 // volume mesh (.ovm, .vtk, .mesh or --volume) with the volume operators (operators/registry/volume_laplacians.h),
 // written as VTK point data and pictured on a planar cut (apps/pictures/volume_cut.h).
 #include "polydec/apps/applications/geodesics.h"
 
 #include <fmt/format.h>
 
+#include <chrono>
 #include <cmath>
 
 #include "polydec/apps/cli/command.h"
@@ -23,7 +25,7 @@ struct Options {
   bool repair = false;  // --repair
   std::string mesh, out, png;
   std::vector<int> sources;
-  bool json = false, euclidean = false, delta_source = false, volume = false;
+  bool json = false, euclidean = false, delta_source = false, volume = false, per_source = false;
   std::string mass = "lumped", laplacian = "ours", time_step_edges = "input";
   double time_factor = 1.0;  // --time-factor
   EngineOptions engine;  // --engine, --solver, --petsc-options
@@ -31,7 +33,7 @@ struct Options {
 
 void report(const Options& o, const LazyMesh& mesh, const std::vector<int>& sources, const Eigen::VectorXd& d,
             const std::string& laplacian, double time_step, const HeatDiagnostics& heat, const FanQuality& quality,
-            const nlohmann::json* engine);
+            const nlohmann::json* engine, nlohmann::json* seconds = nullptr);
 
 // The heat step's reach into the JSON summary, and a warning (on stderr) when it fell short.
 void report_heat(const Options& o, const HeatDiagnostics& heat, int n_vertices, double extent, nlohmann::json& j) {
@@ -90,6 +92,52 @@ Stats stats(const Eigen::VectorXd& d) {
 double euclidean_rmse(const Eigen::MatrixX3d& X, int source, const Eigen::VectorXd& d) {
   const Eigen::VectorXd e = (X.rowwise() - X.row(source)).rowwise().norm();
   return rmse(d, e.array() - e.minCoeff());
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// --per-source: the distance field of every source (HeatGeodesics::distances, blocks of
+// right-hand sides), |file vertices| x k in file vertex order (rows of vertices --repair removed,
+// and of vertices no source reaches, hold inf), written as a dense Matrix Market file.
+void run_per_source(const Options& o, const HeatGeodesics& heat, const std::vector<int>& sources,
+                    const std::vector<int>& vertex_map, nlohmann::json seconds) {
+  auto t0 = std::chrono::steady_clock::now();
+  const Eigen::MatrixXd D = heat.distances(sources);
+  seconds["solves"] = seconds_since(t0);
+  Eigen::MatrixXd out = Eigen::MatrixXd::Constant(long(vertex_map.size()), D.cols(), INFINITY);
+  for (size_t v = 0; v < vertex_map.size(); ++v)
+    if (vertex_map[v] >= 0) out.row(long(v)) = D.row(vertex_map[v]);
+  t0 = std::chrono::steady_clock::now();
+  write_dense_matrix_market(o.out, out);
+  seconds["write"] = seconds_since(t0);
+  long unreached = 0;
+  double mx = 0;
+  for (long i = 0; i < out.size(); ++i) {
+    if (std::isfinite(out.data()[i]))
+      mx = std::max(mx, out.data()[i]);
+    else
+      ++unreached;
+  }
+  const nlohmann::json j = {{"mesh", o.mesh},
+                            {"laplacian", heat.operators().name},
+                            {"sources", o.sources},
+                            {"per_source", true},
+                            {"rows", out.rows()},
+                            {"columns", out.cols()},
+                            {"time_step", heat.time_step()},
+                            {"max", mx},
+                            {"unreached_entries", unreached},
+                            {"out", o.out},
+                            {"seconds", seconds}};
+  if (o.json) {
+    print_json(j);
+    return;
+  }
+  fmt::print("{}: distances from {} sources, {} x {} (max {:.6g}, {} unreached entries)\n", o.mesh,
+             sources.size(), out.rows(), out.cols(), mx, unreached);
+  fmt::print("wrote {} (Matrix Market array, one column per source, file vertex order)\n", o.out);
 }
 
 // A volume mesh: the volume operators, VTK point data, a picture of a cut through the centre.
@@ -158,11 +206,20 @@ void run_volume(const Options& o) {
 }
 
 void run(const Options& o) {
+  if (o.per_source) {
+    if (o.volume || is_volume_mesh_path(o.mesh) || o.engine.engine != "serial")
+      throw UsageError("--per-source: surface meshes on the serial engine");
+    if (o.out.size() < 4 || o.out.substr(o.out.size() - 4) != ".mtx")
+      throw UsageError("--per-source writes a Matrix Market file: --out FILE.mtx");
+    if (!o.png.empty() || o.euclidean) throw UsageError("--per-source: no --png or --euclidean");
+  }
   if (o.volume || is_volume_mesh_path(o.mesh)) return run_volume(o);
   if (o.engine.engine == "petsc") return run_petsc(o);
   if (o.engine.engine != "serial") throw UsageError("--engine must be serial or petsc");
   std::vector<int> vertex_map;
+  auto t0 = std::chrono::steady_clock::now();
   const Mesh mesh = load_mesh(o.mesh, o.repair, &vertex_map);
+  nlohmann::json seconds = {{"read", seconds_since(t0)}};
   // Sources are file vertices; --repair may renumber or remove them.
   std::vector<int> sources = o.sources;
   for (int& s : sources) {
@@ -179,19 +236,27 @@ void run(const Options& o) {
   hopt.time_step_factor = o.time_factor;
   if (o.time_step_edges != "input" && o.time_step_edges != "operator")
     throw UsageError("--time-step-edges must be input or operator");
+  t0 = std::chrono::steady_clock::now();
   OperatorSet ops = build_operators(mesh, parse_laplacian(o.laplacian));
+  seconds["operators"] = seconds_since(t0);
   const double h = o.time_step_edges == "input" ? mesh.mean_edge_length() : ops.mean_edge_length;
+  t0 = std::chrono::steady_clock::now();
   const HeatGeodesics heat(std::move(ops), h, hopt);
+  seconds["factorization"] = seconds_since(t0);
+  if (o.per_source) return run_per_source(o, heat, sources, vertex_map, seconds);
   HeatDiagnostics diagnostics;
+  t0 = std::chrono::steady_clock::now();
   const Eigen::VectorXd d = heat.distance(sources, &diagnostics);
+  seconds["solves"] = seconds_since(t0);
   report(o, LazyMesh::of(mesh), sources, d, heat.operators().name, heat.time_step(), diagnostics,
-         heat.operators().quality, nullptr);
+         heat.operators().quality, nullptr, &seconds);
 }
 
 // The outputs of both engines: text or JSON (with the engine's summary), the PLY, the picture.
 void report(const Options& o, const LazyMesh& mesh, const std::vector<int>& sources, const Eigen::VectorXd& d,
             const std::string& laplacian, double time_step, const HeatDiagnostics& heat, const FanQuality& quality,
-            const nlohmann::json* engine) {
+            const nlohmann::json* engine, nlohmann::json* seconds) {
+  const auto t_write = std::chrono::steady_clock::now();
   const Stats st = stats(d);
   const double mn = st.min, mx = st.max;
   nlohmann::json j = {{"mesh", o.mesh},
@@ -222,6 +287,10 @@ void report(const Options& o, const LazyMesh& mesh, const std::vector<int>& sour
     ropt.view_direction = view_facing_vertex(mesh.get(), sources[0]);
     render_png(o.png, mesh.get(), d, ropt);
     j["png"] = o.png;
+  }
+  if (seconds) {
+    (*seconds)["write"] = seconds_since(t_write);
+    j["seconds"] = *seconds;
   }
   if (o.json) {
     print_json(j);
@@ -263,7 +332,10 @@ const RegisterCommand reg("geodesics", "Geodesic distances by the heat method (p
                  "mean edge length of the time step: input (default; the polygon mesh) or operator (the operator's mesh, "
                  "e.g. a triangulation's, as libigl)");
   app.add_flag("--euclidean", o->euclidean, "also report the RMSE against the Euclidean distance (planar meshes)");
-  app.add_flag("--json", o->json, "print one JSON object instead of text");
+  app.add_flag("--per-source", o->per_source,
+               "one distance field per source (not the distance to the set): --out FILE.mtx gets the |V| x k "
+               "distances (Matrix Market array, one column per --source, file vertex order)");
+  app.add_flag("--json", o->json, "print one JSON object instead of text (with the phases' seconds)");
   add_repair_flag(app, o->repair);
   add_engine_options(app, o->engine);
   app.callback([o] { run(*o); });

@@ -342,6 +342,16 @@ class HeatGeodesics:
         """
         return _convert.heat_distance(self._solver, self._n, sources, return_diagnostics)
 
+    def distances(self, sources, block=64):
+        """One distance field per source -> (|V|, k) float64, column c the distances from
+        sources[c] (distance(sources) is the distance to the whole set): equal to k calls of
+        distance() up to round-off, solved as blocks of up to `block` right-hand sides, several
+        times cheaper per source. An all-pairs matrix: D = distances(range(|V|)), then
+        0.5 * (D + D.T) (the heat method is not exactly symmetric)."""
+        if int(block) < 1:
+            raise ValueError(f"block must be positive, got {block}")
+        return self._solver.distances(_convert.sources(sources, self._n), int(block))
+
     @property
     def time_step(self):
         """The heat time step t."""

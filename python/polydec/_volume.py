@@ -302,6 +302,12 @@ class VolumeHeatGeodesics:
         step's unresolved vertices and resolved radius; see suggested_time_factor)."""
         return _convert.heat_distance(self._solver, self._n, sources, return_diagnostics)
 
+    def distances(self, sources, block=64):
+        """One distance field per source -> (|V|, k), as HeatGeodesics.distances."""
+        if int(block) < 1:
+            raise ValueError(f"block must be positive, got {block}")
+        return self._solver.distances(_convert.sources(sources, self._n), int(block))
+
     @property
     def time_step(self):
         return self._solver.time_step

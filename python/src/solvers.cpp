@@ -53,6 +53,11 @@ void register_solvers(py::module_& m) {
              info["resolved_radius"] = diagnostics.resolved_radius;
              return py::make_tuple(d, info);
            })
+      .def("distances",
+           [](const HeatGeodesics& h, const std::vector<int>& sources, int block) {
+             py::gil_scoped_release release;
+             return h.distances(sources, block);
+           })
       .def_property_readonly("time_step", &HeatGeodesics::time_step)
       .def_property_readonly("laplacian", [](const HeatGeodesics& h) { return h.operators().name; });
 

@@ -206,3 +206,19 @@ def test_hodge_decomposition_on_the_mesh_complex():
     for a, b in [(p.exact, p.coexact), (p.exact, p.harmonic), (p.coexact, p.harmonic)]:
         assert abs(inner(a, b)) < 1e-9 * p.norm ** 2
     assert np.abs(p.exact + p.coexact + p.harmonic - omega).max() < 1e-12 * np.abs(omega).max()
+
+
+def test_heat_distances_per_source_equal_one_by_one():
+    V, F = polydec.add_noise(*polydec.hex_sphere(2), 0.05)
+    heat = polydec.HeatGeodesics(V, F)
+    sources = [0, 7, 40, 7]
+    D = heat.distances(sources, block=3)           # two blocks, a repeated source
+    assert D.shape == (V.shape[0], 4)
+    scale = D.max()
+    for c, s in enumerate(sources):
+        assert np.abs(D[:, c] - heat.distance(s)).max() <= 1e-12 * scale
+        assert D[s, c] == 0
+    with pytest.raises(ValueError):
+        heat.distances([V.shape[0]])
+    with pytest.raises(ValueError):
+        heat.distances([0], block=0)

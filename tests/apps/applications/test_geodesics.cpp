@@ -223,4 +223,50 @@ TEST_CASE("one suggested time factor resolves the strip from any factor in [1e-4
   CHECK(suggested_time_factor(0.5, HeatDiagnostics{1, 2 * extent}, extent) == 0.5);
 }
 
+TEST_CASE("distances: one field per source, equal to one-by-one in every block size and option", "[geodesics]") {
+  // Two components and an unreferenced vertex: each source's own component is reached only.
+  PolygonSoup s;
+  const Mesh g = add_noise(hex_grid(5, 4), 0.1, 3), h = hex_sphere(1);
+  s.positions.resize(g.n_vertices() + h.n_vertices() + 1, 3);
+  s.positions.topRows(g.n_vertices()) = g.positions();
+  s.positions.middleRows(g.n_vertices(), h.n_vertices()) = h.positions().rowwise() + Eigen::RowVector3d(5, 0, 0);
+  s.positions.bottomRows(1) << 9, 9, 9;
+  for (int f = 0; f < g.n_faces(); ++f) s.add_face(g.face(f));
+  for (int f = 0; f < h.n_faces(); ++f) {
+    std::vector<int> face;
+    for (int v : h.face(f)) face.push_back(v + g.n_vertices());
+    s.add_face(face);
+  }
+  const Mesh mesh(std::move(s));
+  const std::vector<int> sources = {0, g.n_vertices() + 3, 11, 0, g.n_vertices() + 20};
+  for (bool lumped : {true, false})
+    for (bool weighted : {true, false}) {
+      HeatGeodesicsOptions o;
+      o.lumped_mass = lumped;
+      o.mass_weighted_source = weighted;
+      const HeatGeodesics heat(mesh, o);
+      for (int block : {1, 2, 64}) {
+        INFO("lumped " << lumped << ", mass-weighted source " << weighted << ", block " << block);
+        const Eigen::MatrixXd D = heat.distances(sources, block);
+        REQUIRE(D.rows() == mesh.n_vertices());
+        REQUIRE(D.cols() == long(sources.size()));
+        for (size_t c = 0; c < sources.size(); ++c) {
+          const Eigen::VectorXd one = heat.distance(sources[c]);
+          double scale = 0;
+          for (int v = 0; v < mesh.n_vertices(); ++v) {
+            CHECK(std::isinf(D(v, long(c))) == std::isinf(one[v]));
+            if (std::isfinite(one[v])) scale = std::max(scale, one[v]);
+          }
+          for (int v = 0; v < mesh.n_vertices(); ++v)
+            if (std::isfinite(one[v])) CHECK(std::abs(D(v, long(c)) - one[v]) <= 1e-12 * scale);
+          if (lumped) CHECK(D(sources[c], long(c)) == 0.0);  // the Galerkin mass may put the minimum elsewhere
+        }
+      }
+    }
+  const HeatGeodesics heat(mesh);
+  CHECK_THROWS_AS(heat.distances(std::vector<int>{}), std::out_of_range);
+  CHECK_THROWS_AS(heat.distances(std::vector<int>{mesh.n_vertices() - 1}), std::out_of_range);  // unreferenced
+  CHECK_THROWS_AS(heat.distances(std::vector<int>{0}, 0), std::invalid_argument);
+}
+
 }  // namespace test_geodesics
