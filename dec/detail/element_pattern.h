@@ -24,6 +24,14 @@ enum class SlotKind {
                     // column (half the memory and bandwidth of absolute slots)
 };
 
+// How element_pattern orders each column's rows, which are collected in first-seen order.
+enum class ColumnOrder {
+  transpose,  // one transposition of the whole pattern (it is symmetric): no comparisons, one
+              // extra buffer of nnz ints; faster for long columns (hexahedra: 27 rows)
+  sort,       // each column sorted in place in the pattern's own arrays (insertion sort up to 32
+              // rows): faster for short columns whose rows are far apart (star1: ~9 rows)
+};
+
 // Element e's slots are [offsets[e], offsets[e + 1]), m_e^2 of them for its m_e nodes, row-major:
 // slot a m_e + b is entry (nodes[a], nodes[b]), i.e. row nodes[a] of column nodes[b]. Absolute,
 // it indexes pattern.valuePtr(); column-relative, pattern.valuePtr() + outerIndexPtr()[nodes[b]].
@@ -50,6 +58,20 @@ namespace element_pattern_impl {
 
 // Calls f with std::integral_constant<int, m> for the common element sizes (triangles, quads,
 // quad pairs, hexahedra), else with 0 (any size), so that the per-element loops unroll.
+// Sorts [b, e): insertion sort for short ranges (columns are short and often nearly sorted).
+inline void sort_column(int* b, int* e) {
+  if (e - b > 32) {
+    std::sort(b, e);
+    return;
+  }
+  for (int* i = b + 1; i < e; ++i) {
+    const int x = *i;
+    int* j = i;
+    for (; j > b && j[-1] > x; --j) *j = j[-1];
+    *j = x;
+  }
+}
+
 template <class F>
 inline void with_size(long m, F&& f) {
   switch (m) {
@@ -76,10 +98,11 @@ inline void with_size(long m, F&& f) {
 // The pattern of n_nodes x n_nodes entries (u, v) such that u and v are nodes of one element, and
 // the elements' slots of kind K. nodes_of(e) gives element e's nodes as a contiguous range
 // (std::data, std::size) of ids in [0, n_nodes), distinct within the element, in any order.
-// Rows are collected per column in first-seen order and sorted by one transposition; the large
-// buffers are advised for huge pages and the scratch ones left uninitialized.
-template <SlotKind K, class NodesOf>
+// Rows are collected per column in first-seen order and ordered as O says; the large buffers are
+// advised for huge pages and the scratch ones left uninitialized.
+template <SlotKind K, ColumnOrder O = ColumnOrder::transpose, class NodesOf>
 ElementPattern element_pattern(int n_nodes, int n_elements, NodesOf&& nodes_of) {
+  using element_pattern_impl::sort_column;
   using element_pattern_impl::with_size;
   constexpr bool with_slots = K != SlotKind::none;
   // The elements of each node (CSR), with the node's position in the element.
@@ -107,10 +130,24 @@ ElementPattern element_pattern(int n_nodes, int n_elements, NodesOf&& nodes_of) 
       if constexpr (with_slots) local[size_t(k)] = b;
     }
   }
-  // Column v, unsorted: the nodes of v's elements, each once (marked with v). Bounded by sum
-  // m_e^2; the pages of the bound that are never written are never touched.
+  // Column v: the nodes of v's elements, each once (marked with v), in first-seen order, written
+  // to a buffer of the bound sum m_e^2 (the pages never written are never touched): the pattern's
+  // own index array when sorting in place (trimmed afterwards without copying), else scratch.
+  ElementPattern ep;
+  Eigen::SparseMatrix<double>& pattern = ep.pattern;
+  pattern.resize(n_nodes, n_nodes);
   std::vector<int> outer(size_t(n_nodes) + 1, 0), mark(size_t(n_nodes), -1);
-  auto unsorted = uninitialized_on_huge_pages<int>(bound);
+  std::unique_ptr<int[]> unsorted;
+  int* rows;
+  if constexpr (O == ColumnOrder::sort) {
+    pattern.resizeNonZeros(long(bound));
+    advise_huge_pages(pattern.innerIndexPtr(), sizeof(int) * bound);
+    advise_huge_pages(pattern.valuePtr(), sizeof(double) * bound);
+    rows = pattern.innerIndexPtr();
+  } else {
+    unsorted = uninitialized_on_huge_pages<int>(bound);
+    rows = unsorted.get();
+  }
   int nnz = 0, longest = 0;
   for (int v = 0; v < n_nodes; ++v) {
     for (int k = start[size_t(v)]; k < start[size_t(v) + 1]; ++k) {
@@ -122,33 +159,38 @@ ElementPattern element_pattern(int n_nodes, int n_elements, NodesOf&& nodes_of) 
           const int u = p[a];
           if (mark[size_t(u)] != v) {
             mark[size_t(u)] = v;
-            unsorted[size_t(nnz++)] = u;
+            rows[nnz++] = u;
           }
         }
       });
     }
+    if constexpr (O == ColumnOrder::sort) sort_column(rows + outer[size_t(v)], rows + nnz);
     outer[size_t(v) + 1] = nnz;
     longest = std::max(longest, nnz - outer[size_t(v)]);
   }
-  // Sorted by transposition (the pattern is symmetric): visiting the columns v in order and
-  // appending v to column u for each row u of column v leaves every column's rows ascending.
-  ElementPattern ep;
-  Eigen::SparseMatrix<double>& pattern = ep.pattern;
-  pattern.resize(n_nodes, n_nodes);
-  pattern.resizeNonZeros(nnz);
-  advise_huge_pages(pattern.innerIndexPtr(), sizeof(int) * size_t(nnz));
-  advise_huge_pages(pattern.valuePtr(), sizeof(double) * size_t(nnz));
-  std::copy(outer.begin(), outer.end(), pattern.outerIndexPtr());
-  int* inner = pattern.innerIndexPtr();
-  std::copy(outer.begin(), outer.end() - 1, next.begin());
-  for (int v = 0; v < n_nodes; ++v)
-    for (int k = outer[size_t(v)]; k < outer[size_t(v) + 1]; ++k) inner[next[size_t(unsorted[size_t(k)])]++] = v;
+  int* inner;
+  if constexpr (O == ColumnOrder::sort) {
+    pattern.data().resize(nnz);  // within the capacity: no copy
+    inner = pattern.innerIndexPtr();
+    std::copy(outer.begin(), outer.end(), pattern.outerIndexPtr());
+  } else {
+    // Sorted by transposition (the pattern is symmetric): visiting the columns v in order and
+    // appending v to column u for each row u of column v leaves every column's rows ascending.
+    pattern.resizeNonZeros(nnz);
+    advise_huge_pages(pattern.innerIndexPtr(), sizeof(int) * size_t(nnz));
+    advise_huge_pages(pattern.valuePtr(), sizeof(double) * size_t(nnz));
+    std::copy(outer.begin(), outer.end(), pattern.outerIndexPtr());
+    inner = pattern.innerIndexPtr();
+    std::copy(outer.begin(), outer.end() - 1, next.begin());
+    for (int v = 0; v < n_nodes; ++v)
+      for (int k = outer[size_t(v)]; k < outer[size_t(v) + 1]; ++k) inner[next[size_t(unsorted[size_t(k)])]++] = v;
+    unsorted.reset();
+  }
   std::fill(pattern.valuePtr(), pattern.valuePtr() + nnz, 0.0);
   if constexpr (!with_slots) {
     return ep;
   } else {
     if (K == SlotKind::column_relative && longest > 65535) return ep;
-    unsorted.reset();
     ep.offsets.resize(size_t(n_elements) + 1);
     ep.offsets[0] = 0;
     for (int e = 0; e < n_elements; ++e) {

@@ -242,10 +242,12 @@ Eigen::MatrixXd polygon_star2(const PolygonPositions& X, const Eigen::VectorXd& 
 namespace {
 // dst = the pattern of the cells sharing a face (cells_of(f): face f's cells) with absolute slots,
 // moved in without copying the matrix (Eigen 3.4's SparseMatrix has no move assignment: a copy
-// of FINE SPHERE's star1 pattern is ~40 MB).
+// of FINE SPHERE's star1 pattern is ~40 MB). Columns sorted in place: star1's are short and
+// their rows far apart, where this beats the transposition (FINE SPHERE: 54 ms against 63 ms).
 template <class FaceCells>
 void build_star_pattern(StarPattern& dst, int n_cells, int n_faces, FaceCells cells_of) {
-  detail::ElementPattern ep = detail::element_pattern<detail::SlotKind::absolute>(n_cells, n_faces, cells_of);
+  detail::ElementPattern ep =
+      detail::element_pattern<detail::SlotKind::absolute, detail::ColumnOrder::sort>(n_cells, n_faces, cells_of);
   dst.pattern.swap(ep.pattern);
   dst.offsets = std::move(ep.offsets);
   dst.slots = std::move(ep.slots);

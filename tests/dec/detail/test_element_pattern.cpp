@@ -1,6 +1,6 @@
 // tests/dec/detail/test_element_pattern.cpp — the shared element pattern: its pattern against one
 // built from triplets, every slot at entry (nodes[a], nodes[b]), absolute and column-relative
-// slots agreeing, unsorted elements, unused nodes, the uint16 fallback.
+// slots and both column orders agreeing, unsorted elements, unused nodes, the uint16 fallback.
 #include <catch2/catch.hpp>
 #include <numeric>
 #include <random>
@@ -11,6 +11,7 @@
 using namespace polydec;
 using polydec::detail::element_pattern;
 using polydec::detail::ElementPattern;
+using polydec::detail::ColumnOrder;
 using polydec::detail::SlotKind;
 
 namespace test_element_pattern {
@@ -36,17 +37,19 @@ bool same_structure(const Eigen::SparseMatrix<double>& A, const Eigen::SparseMat
          std::equal(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros(), B.innerIndexPtr());
 }
 
-template <SlotKind K>
+template <SlotKind K, ColumnOrder O = ColumnOrder::transpose>
 ElementPattern build(int n_nodes, const Elements& elements) {
-  return element_pattern<K>(n_nodes, int(elements.size()), [&](int e) -> const std::vector<int>& { return elements[size_t(e)]; });
+  return element_pattern<K, O>(n_nodes, int(elements.size()),
+                               [&](int e) -> const std::vector<int>& { return elements[size_t(e)]; });
 }
 
-// Checks everything the header promises for one input.
-void check(int n_nodes, const Elements& elements) {
+// Checks everything the header promises for one input, for both column orders.
+template <ColumnOrder O>
+void check_order(int n_nodes, const Elements& elements) {
   const auto ref = triplet_pattern(n_nodes, elements);
-  const ElementPattern none = build<SlotKind::none>(n_nodes, elements);
-  const ElementPattern abs = build<SlotKind::absolute>(n_nodes, elements);
-  const ElementPattern rel = build<SlotKind::column_relative>(n_nodes, elements);
+  const ElementPattern none = build<SlotKind::none, O>(n_nodes, elements);
+  const ElementPattern abs = build<SlotKind::absolute, O>(n_nodes, elements);
+  const ElementPattern rel = build<SlotKind::column_relative, O>(n_nodes, elements);
   for (const ElementPattern* p : {&none, &abs, &rel}) {
     REQUIRE(same_structure(p->pattern, ref));
     REQUIRE(p->pattern.coeffs().isZero(0.0));
@@ -79,6 +82,14 @@ void check(int n_nodes, const Elements& elements) {
   }
 }
 
+void check(int n_nodes, const Elements& elements) {
+  check_order<ColumnOrder::transpose>(n_nodes, elements);
+  check_order<ColumnOrder::sort>(n_nodes, elements);
+  // Both orders give the same slots.
+  REQUIRE(build<SlotKind::absolute>(n_nodes, elements).slots ==
+          build<SlotKind::absolute, ColumnOrder::sort>(n_nodes, elements).slots);
+}
+
 // Random elements of 0..max_size distinct nodes in random order; nodes >= n_used never occur.
 Elements random_elements(std::mt19937& rng, int n_used, int n_elements, int max_size) {
   Elements elements(static_cast<size_t>(n_elements));
@@ -109,7 +120,7 @@ TEST_CASE("element_pattern: pattern and slots on small hand-made elements", "[el
 
 TEST_CASE("element_pattern: random elements of every unrolled and general size", "[element-pattern]") {
   std::mt19937 rng(7);
-  for (int max_size : {3, 4, 6, 8, 11}) {
+  for (int max_size : {3, 4, 6, 8, 11, 30}) {  // 30: columns over 32 rows (std::sort)
     const int n_nodes = 40;
     check(n_nodes, random_elements(rng, 35, 60, max_size));  // nodes 35..39 unused
   }
@@ -135,6 +146,10 @@ TEST_CASE("element_pattern: columns over 65535 entries fall back to no column-re
   for (int i = 1; i < n; ++i) elements.push_back({i, 0});
   const ElementPattern rel = build<SlotKind::column_relative>(n, elements);
   CHECK(rel.relative_slots == nullptr);
+  CHECK(rel.offsets.empty());
+  const ElementPattern sorted = build<SlotKind::column_relative, ColumnOrder::sort>(n, elements);
+  CHECK(sorted.relative_slots == nullptr);
+  REQUIRE(same_structure(sorted.pattern, rel.pattern));
   CHECK(rel.pattern.col(0).nonZeros() == n);
   REQUIRE(same_structure(rel.pattern, triplet_pattern(n, elements)));
   const ElementPattern abs = build<SlotKind::absolute>(n, elements);  // absolute slots have no limit
