@@ -29,7 +29,8 @@ enum class ColumnOrder {
   transpose,  // one transposition of the whole pattern (it is symmetric): no comparisons, one
               // extra buffer of nnz ints; faster for long columns (hexahedra: 27 rows)
   sort,       // each column sorted in place in the pattern's own arrays (insertion sort up to 32
-              // rows): faster for short columns whose rows are far apart (star1: ~9 rows)
+              // rows), which keep the capacity of the bound sum m_e^2 (pages never touched):
+              // faster for short columns whose rows are far apart (star1: ~9 rows)
 };
 
 // Element e's slots are [offsets[e], offsets[e + 1]), m_e^2 of them for its m_e nodes, row-major:
@@ -48,7 +49,7 @@ struct ElementPattern {
   }
 
   Eigen::SparseMatrix<double> pattern;  // n_nodes x n_nodes, symmetric, values zero, rows ascending
-  std::vector<long> offsets;            // |E| + 1 prefix sums of m_e^2; empty with SlotKind::none
+  std::vector<long> offsets;            // |E| + 1 prefix sums of m_e^2; empty without slots
   std::vector<int> slots;               // SlotKind::absolute
   std::unique_ptr<std::uint16_t[]> relative_slots;  // SlotKind::column_relative; null when a column
                                                     // has more than 65535 entries
@@ -57,7 +58,8 @@ struct ElementPattern {
 namespace element_pattern_impl {
 
 // Calls f with std::integral_constant<int, m> for the common element sizes (triangles, quads,
-// quad pairs, hexahedra), else with 0 (any size), so that the per-element loops unroll.
+// hexagons and a quad's 6 vertex pairs, hexahedra), else with 0 (any size), so that the
+// per-element loops unroll.
 // Sorts [b, e): insertion sort for short ranges (columns are short and often nearly sorted).
 inline void sort_column(int* b, int* e) {
   if (e - b > 32) {
@@ -135,11 +137,11 @@ ElementPattern element_pattern(int n_nodes, int n_elements, NodesOf&& nodes_of) 
   // own index array when sorting in place (trimmed afterwards without copying), else scratch.
   ElementPattern ep;
   Eigen::SparseMatrix<double>& pattern = ep.pattern;
-  pattern.resize(n_nodes, n_nodes);
   std::vector<int> outer(size_t(n_nodes) + 1, 0), mark(size_t(n_nodes), -1);
   std::unique_ptr<int[]> unsorted;
   int* rows;
   if constexpr (O == ColumnOrder::sort) {
+    pattern.resize(n_nodes, n_nodes);
     pattern.resizeNonZeros(long(bound));
     advise_huge_pages(pattern.innerIndexPtr(), sizeof(int) * bound);
     advise_huge_pages(pattern.valuePtr(), sizeof(double) * bound);
@@ -176,6 +178,7 @@ ElementPattern element_pattern(int n_nodes, int n_elements, NodesOf&& nodes_of) 
   } else {
     // Sorted by transposition (the pattern is symmetric): visiting the columns v in order and
     // appending v to column u for each row u of column v leaves every column's rows ascending.
+    pattern.resize(n_nodes, n_nodes);
     pattern.resizeNonZeros(nnz);
     advise_huge_pages(pattern.innerIndexPtr(), sizeof(int) * size_t(nnz));
     advise_huge_pages(pattern.valuePtr(), sizeof(double) * size_t(nnz));
