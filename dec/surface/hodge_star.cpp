@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "polydec/dec/detail/huge_pages.h"
+#include "polydec/dec/detail/element_pattern.h"
 #include "polydec/dec/surface/whitney.h"
 
 namespace polydec {
@@ -15,75 +15,6 @@ namespace {
 using Triplet = Eigen::Triplet<double>;
 
 Eigen::Vector3d row3(const Eigen::MatrixX3d& X, int r) { return X.row(r).transpose(); }
-
-template <class FaceCells>
-StarPattern cell_pattern(int n_cells, int n_faces, FaceCells cells_of) {
-  // Cell -> faces incidence (CSR).
-  std::vector<int> start(n_cells + 1, 0);
-  for (int f = 0; f < n_faces; ++f)
-    for (int c : cells_of(f)) ++start[c + 1];
-  for (int c = 0; c < n_cells; ++c) start[c + 1] += start[c];
-  std::vector<int> faces(start[n_cells]), fill(start.begin(), start.end() - 1);
-  for (int f = 0; f < n_faces; ++f)
-    for (int c : cells_of(f)) faces[fill[c]++] = f;
-  // Column c: all cells of the faces of c, sorted and unique, written straight into the
-  // pattern's index arrays (sized for the bound sum_f m_f^2, then trimmed without copying).
-  size_t bound = 0;
-  for (int f = 0; f < n_faces; ++f) bound += cells_of(f).size() * cells_of(f).size();
-  StarPattern cp;
-  cp.pattern.resize(n_cells, n_cells);
-  cp.pattern.resizeNonZeros(long(bound));
-  advise_huge_pages(cp.pattern.innerIndexPtr(), sizeof(int) * bound);
-  advise_huge_pages(cp.pattern.valuePtr(), sizeof(double) * bound);
-  int* outer = cp.pattern.outerIndexPtr();
-  int* inner = cp.pattern.innerIndexPtr();
-  std::vector<int> buf;
-  long nnz = 0;
-  outer[0] = 0;
-  for (int c = 0; c < n_cells; ++c) {
-    buf.clear();
-    for (int k = start[c]; k < start[c + 1]; ++k)
-      for (int d : cells_of(faces[k])) buf.push_back(d);
-    // One face with its cells in increasing order (the pairs and triples of a face are): done.
-    auto e = buf.end();
-    if (start[c + 1] - start[c] != 1 || !std::is_sorted(buf.begin(), buf.end())) {
-      std::sort(buf.begin(), buf.end());
-      e = std::unique(buf.begin(), buf.end());
-    }
-    nnz = std::copy(buf.begin(), e, inner + nnz) - inner;
-    outer[c + 1] = int(nnz);
-  }
-  cp.pattern.data().resize(nnz);
-  std::fill(cp.pattern.valuePtr(), cp.pattern.valuePtr() + nnz, 0.0);
-  cp.offsets.assign(n_faces + 1, 0);
-  for (int f = 0; f < n_faces; ++f) {
-    const long m = long(cells_of(f).size());
-    cp.offsets[f + 1] = cp.offsets[f] + m * m;
-  }
-  cp.slots.reserve(size_t(cp.offsets[n_faces]));
-  advise_huge_pages(cp.slots.data(), sizeof(int) * cp.slots.capacity());
-  cp.slots.resize(size_t(cp.offsets[n_faces]));
-  // Slots: each column of the face's cells holds all of them, sorted; one forward walk per
-  // column visits them in increasing id order.
-  std::vector<int> by_id;
-  for (int f = 0; f < n_faces; ++f) {
-    const auto cells = cells_of(f);
-    const int m = int(cells.size());
-    by_id.resize(size_t(m));
-    for (int a = 0; a < m; ++a) by_id[size_t(a)] = a;
-    if (!std::is_sorted(cells.begin(), cells.end()))
-      std::sort(by_id.begin(), by_id.end(), [&](int a, int b) { return cells[a] < cells[b]; });
-    int* slot = cp.slots.data() + cp.offsets[f];
-    for (int b = 0; b < m; ++b) {
-      const int* p = inner + outer[cells[b]];
-      for (int a : by_id) {
-        while (*p < cells[a]) ++p;
-        slot[a * m + b] = int(p - inner);
-      }
-    }
-  }
-  return cp;
-}
 
 void scatter(const StarPattern& cp, int f, int m, const double* local, SparseMatrix& A) {
   const int* slot = cp.slots.data() + cp.offsets[f];
@@ -308,13 +239,18 @@ Eigen::MatrixXd polygon_star2(const PolygonPositions& X, const Eigen::VectorXd& 
   return A;
 }
 
-// dst = src without copying the pattern matrix (Eigen 3.4's SparseMatrix has no move
-// assignment: `P.star1 = cell_pattern(...)` deep-copied it, ~40 MB for FINE SPHERE's star1).
 namespace {
-void take_pattern(StarPattern& dst, StarPattern&& src) {
-  dst.pattern.swap(src.pattern);
-  dst.offsets = std::move(src.offsets);
-  dst.slots = std::move(src.slots);
+// dst = the pattern of the cells sharing a face (cells_of(f): face f's cells) with absolute slots,
+// moved in without copying the matrix (Eigen 3.4's SparseMatrix has no move assignment: a copy
+// of FINE SPHERE's star1 pattern is ~40 MB). Columns sorted in place: star1's are short and
+// their rows far apart, where this beats the transposition (FINE SPHERE: 54 ms against 63 ms).
+template <class FaceCells>
+void build_star_pattern(StarPattern& dst, int n_cells, int n_faces, FaceCells cells_of) {
+  detail::ElementPattern ep =
+      detail::element_pattern<detail::SlotKind::absolute, detail::ColumnOrder::sort>(n_cells, n_faces, cells_of);
+  dst.pattern.swap(ep.pattern);
+  dst.offsets = std::move(ep.offsets);
+  dst.slots = std::move(ep.slots);
 }
 }  // namespace
 
@@ -322,10 +258,10 @@ StarPatterns star_patterns(const Mesh& mesh, const CoarseComplex& complex, Hodge
   StarPatterns P;
   const int nf = mesh.n_faces();
   if (parts.star0 || parts.star0_lumped)
-    take_pattern(P.star0, cell_pattern(mesh.n_vertices(), nf, [&](int f) { return mesh.face(f); }));
-  if (parts.star1) take_pattern(P.star1, cell_pattern(complex.n_pairs(), nf, [&](int f) { return complex.face_pairs(f); }));
+    build_star_pattern(P.star0, mesh.n_vertices(), nf, [&](int f) { return mesh.face(f); });
+  if (parts.star1) build_star_pattern(P.star1, complex.n_pairs(), nf, [&](int f) { return complex.face_pairs(f); });
   if (parts.star2)
-    take_pattern(P.star2, cell_pattern(complex.n_triples(), nf, [&](int f) { return complex.face_triples(f); }));
+    build_star_pattern(P.star2, complex.n_triples(), nf, [&](int f) { return complex.face_triples(f); });
   return P;
 }
 

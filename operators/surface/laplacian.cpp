@@ -14,6 +14,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "polydec/dec/detail/element_pattern.h"
 #include "polydec/dec/detail/huge_pages.h"
 #include "polydec/dec/detail/threads.h"
 #include "polydec/operators/surface/local_matrices.h"
@@ -21,79 +22,15 @@
 namespace polydec {
 
 FacePattern face_pattern(const Mesh& mesh, int threads) {
-  const int nv = mesh.n_vertices(), nf = mesh.n_faces();
+  const int nf = mesh.n_faces();
   const int* offsets = mesh.face_offsets().data();
   const int* indices = mesh.face_indices().data();
+  detail::ElementPattern ep = detail::element_pattern<detail::SlotKind::absolute>(
+      mesh.n_vertices(), nf, [&](int f) { return mesh.face(f); });
   FacePattern fp;
-  fp.local_offsets.resize(nf + 1);
-  fp.local_offsets[0] = 0;
-  for (int f = 0; f < nf; ++f) {
-    const long n = offsets[f + 1] - offsets[f];
-    fp.local_offsets[f + 1] = fp.local_offsets[f] + n * n;
-  }
-  fp.slots.reserve(fp.local_offsets[nf]);
-  advise_huge_pages(fp.slots.data(), sizeof(int) * fp.local_offsets[nf]);
-  fp.slots.resize(fp.local_offsets[nf]);
-  // Pass 1, column v: the distinct rows of the faces around v in first-seen order (U), and for
-  // every local slot (a, b) with b = v's corner the position in U of row face[a].
-  const long bound = fp.local_offsets[nf];
-  std::unique_ptr<int[]> U(new int[bound]);  // upper bound; pages never touched cost no memory
-  advise_huge_pages(U.get(), sizeof(int) * size_t(bound));
-  std::vector<int> ucol(nv + 1), pos(nv, -1);
-  int nnz = 0;
-  ucol[0] = 0;
-  for (int v = 0; v < nv; ++v) {
-    const int base = nnz;
-    for (int f : mesh.vertex_faces(v)) {
-      const int h0 = offsets[f], n = offsets[f + 1] - h0;
-      int b = 0;
-      while (indices[h0 + b] != v) ++b;
-      int* slot = fp.slots.data() + fp.local_offsets[f] + b;
-      for (int a = 0; a < n; ++a) {
-        const int u = indices[h0 + a];
-        if (pos[u] < 0) {
-          pos[u] = nnz - base;
-          U[nnz++] = u;
-        }
-        slot[a * n] = base + pos[u];
-      }
-    }
-    for (int k = base; k < nnz; ++k) pos[U[k]] = -1;
-    ucol[v + 1] = nnz;
-  }
-  // Pass 2, transpose: the pattern is symmetric, so column i has as many rows as U's column i,
-  // and appending j to column i for j = 0, 1, ... gives every column sorted rows. perm maps the
-  // U position of entry (i, j) to the sorted position of its transpose (j, i).
-  fp.pattern.resize(nv, nv);
-  fp.pattern.resizeNonZeros(nnz);
-  int* inner = fp.pattern.innerIndexPtr();
-  int* outer = fp.pattern.outerIndexPtr();
-  advise_huge_pages(inner, sizeof(int) * size_t(nnz));
-  advise_huge_pages(fp.pattern.valuePtr(), sizeof(double) * size_t(nnz));
-  std::copy(ucol.begin(), ucol.end(), outer);
-  std::vector<int> next(ucol.begin(), ucol.end() - 1);
-  std::unique_ptr<int[]> perm(new int[nnz]);
-  advise_huge_pages(perm.get(), sizeof(int) * size_t(nnz));
-  for (int j = 0; j < nv; ++j)
-    for (int p = ucol[j]; p < ucol[j + 1]; ++p) {
-      const int q = next[U[p]]++;
-      inner[q] = j;
-      perm[p] = q;
-    }
-  // Slot (a, b) is entry (face[a], face[b]), the transpose of the U entry recorded at (b, a).
-  for (int f = 0; f < nf; ++f) {
-    const int n = offsets[f + 1] - offsets[f];
-    int* slot = fp.slots.data() + fp.local_offsets[f];
-    for (int a = 0; a < n; ++a) {
-      slot[a * n + a] = perm[slot[a * n + a]];
-      for (int b = a + 1; b < n; ++b) {
-        const int ab = slot[a * n + b], ba = slot[b * n + a];
-        slot[a * n + b] = perm[ba];
-        slot[b * n + a] = perm[ab];
-      }
-    }
-  }
-  std::fill(fp.pattern.valuePtr(), fp.pattern.valuePtr() + nnz, 0.0);
+  fp.pattern.swap(ep.pattern);
+  fp.local_offsets = std::move(ep.offsets);
+  fp.slots = std::move(ep.slots);
   // Breadth-first order over faces sharing a vertex, one component after another: contiguous
   // ranks form compact patches whatever the file's face order, so the threads' face sets share
   // few vertices (with file order, half of FINE SPHERE's faces touched a vertex of both halves).

@@ -8,109 +8,19 @@
 #include <span>
 #include <vector>
 
+#include "polydec/dec/detail/element_pattern.h"
 #include "polydec/dec/detail/huge_pages.h"
 #include "polydec/dec/detail/threads.h"
 
 namespace polydec {
 
-namespace volume_laplacian_detail {
-namespace {
-
-// Where each cell's local entries go: entry (a, b) of cell c (rows and columns in the order of
-// cell_vertices(c)) is row verts[a] of column verts[b], at slot[offset[c] + a + b m] past the
-// column's start, so the assembly adds without searching the column.
-struct CellSlots {
-  std::vector<long> offset;                // |C| + 1: prefix sums of m_c^2
-  std::unique_ptr<std::uint16_t[]> slot;  // null when a column has more than 65535 entries
-};
-
-// cell_pattern(), and the cells' slots when `slots` is given.
-SparseMatrix pattern_and_slots(const VolumeMesh& mesh, CellSlots* slots) {
-  const int nV = mesh.n_vertices(), nC = mesh.n_cells();
-  std::vector<int> count(nV + 1, 0);
-  for (int c = 0; c < nC; ++c)
-    for (int v : mesh.cell_vertices(c)) ++count[v + 1];
-  for (int v = 0; v < nV; ++v) count[v + 1] += count[v];
-  // The cells of each vertex, with the vertex's local index in the cell.
-  // (Every entry of cells and local is written here, so they are not zeroed first.)
-  std::vector<int> fill(count.begin(), count.end() - 1);
-  const auto cells = uninitialized_on_huge_pages<int>(size_t(count[nV]));
-  const auto local = uninitialized_on_huge_pages<int>(slots ? size_t(count[nV]) : 0);
-  for (int c = 0; c < nC; ++c) {
-    const auto verts = mesh.cell_vertices(c);
-    for (size_t b = 0; b < verts.size(); ++b) {
-      const int k = fill[verts[b]]++;
-      cells[k] = c;
-      if (slots) local[k] = int(b);
-    }
-  }
-  // Column v, unsorted: the vertices of v's cells, each once (marked with v).
-  // At most sum_c m_c^2 entries (each cell's vertices once per vertex of the cell): allocated
-  // uninitialized, so that the pages never written are never touched.
-  std::vector<int> outer(nV + 1, 0), mark(nV, -1);
-  size_t bound = 0;
-  for (int c = 0; c < nC; ++c) bound += mesh.cell_vertices(c).size() * mesh.cell_vertices(c).size();
-  auto unsorted = uninitialized_on_huge_pages<int>(bound);
-  size_t n_unsorted = 0;
-  int longest = 0;
-  for (int v = 0; v < nV; ++v) {
-    for (int k = count[v]; k < count[v + 1]; ++k) {
-      const auto verts = mesh.cell_vertices(cells[k]);
-      auto visit = [&](int u) {
-        if (mark[u] != v) {
-          mark[u] = v;
-          unsorted[n_unsorted++] = u;
-        }
-      };
-      if (verts.size() == 8)  // hexahedra: unrolled
-        for (int a = 0; a < 8; ++a) visit(verts[a]);
-      else
-        for (int u : verts) visit(u);
-    }
-    outer[v + 1] = int(n_unsorted);
-    longest = std::max(longest, outer[v + 1] - outer[v]);
-  }
-  // Sorted by transposition (the pattern is symmetric): visiting the columns v in order and
-  // appending v to column u for each row u of column v leaves every column's rows ascending.
-  SparseMatrix pattern(nV, nV);
-  pattern.resizeNonZeros(long(n_unsorted));
-  advise_huge_pages(pattern.innerIndexPtr(), sizeof(int) * n_unsorted);
-  advise_huge_pages(pattern.valuePtr(), sizeof(double) * n_unsorted);
-  std::copy(outer.begin(), outer.end(), pattern.outerIndexPtr());
-  int* inner = pattern.innerIndexPtr();
-  std::copy(outer.begin(), outer.end() - 1, fill.begin());
-  for (int v = 0; v < nV; ++v)
-    for (int k = outer[v]; k < outer[v + 1]; ++k) inner[fill[unsorted[k]]++] = v;
-  std::fill(pattern.valuePtr(), pattern.valuePtr() + n_unsorted, 0.0);
-  if (!slots || longest > 65535) return pattern;
-  unsorted.reset();
-  slots->offset.assign(size_t(nC) + 1, 0);
-  for (int c = 0; c < nC; ++c) {
-    const long m = long(mesh.cell_vertices(c).size());
-    slots->offset[c + 1] = slots->offset[c] + m * m;
-  }
-  slots->slot = uninitialized_on_huge_pages<std::uint16_t>(size_t(slots->offset[nC]));  // all written below
-  std::vector<int>& where = mark;  // row -> slot in the current column
-  for (int v = 0; v < nV; ++v) {
-    for (int k = outer[v]; k < outer[v + 1]; ++k) where[inner[k]] = k - outer[v];
-    for (int k = count[v]; k < count[v + 1]; ++k) {
-      const int c = cells[k];
-      const auto verts = mesh.cell_vertices(c);
-      const long m = long(verts.size());
-      std::uint16_t* out = slots->slot.get() + slots->offset[c] + local[k] * m;
-      if (m == 8)  // hexahedra: unrolled
-        for (int a = 0; a < 8; ++a) out[a] = std::uint16_t(where[verts[a]]);
-      else
-        for (long a = 0; a < m; ++a) out[a] = std::uint16_t(where[verts[a]]);
-    }
-  }
+SparseMatrix cell_pattern(const VolumeMesh& mesh) {
+  detail::ElementPattern ep =
+      detail::element_pattern<detail::SlotKind::none>(mesh.n_vertices(), mesh.n_cells(), [&](int c) { return mesh.cell_vertices(c); });
+  SparseMatrix pattern;
+  pattern.swap(ep.pattern);  // Eigen 3.4's SparseMatrix has no move constructor
   return pattern;
 }
-
-}  // namespace
-}  // namespace volume_laplacian_detail
-
-SparseMatrix cell_pattern(const VolumeMesh& mesh) { return volume_laplacian_detail::pattern_and_slots(mesh, nullptr); }
 
 namespace volume_laplacian_detail {
 namespace {
@@ -338,13 +248,17 @@ VolumeLaplacian assemble_volume_laplacian(const VolumeMesh& mesh, const VolumeRe
   using namespace volume_laplacian_detail;
   VolumeLaplacian L;
   L.quality = refinement.quality;
-  CellSlots slots;
+  const int nC = mesh.n_cells(), nV = mesh.n_vertices();
+  // Where each cell's local entries go: slot a m + b of cell c (rows and columns in the order of
+  // cell_vertices(c)) is row verts[a] of column verts[b], that many entries past the column's
+  // start, so the assembly adds without searching the column (2 bytes per slot).
+  detail::ElementPattern slots;
   if (pattern) {
     L.S = *pattern;
     L.S.coeffs().setZero();
   } else {
-    SparseMatrix built = pattern_and_slots(mesh, &slots);  // values already zero
-    L.S.swap(built);  // Eigen's assignment from a returned matrix would copy it
+    slots = detail::element_pattern<detail::SlotKind::column_relative>(nV, nC, [&](int c) { return mesh.cell_vertices(c); });
+    L.S.swap(slots.pattern);  // values already zero
   }
   // M: S's pattern, zero values (a copy by hand, so that its arrays take huge pages too).
   L.M.resize(L.S.rows(), L.S.cols());
@@ -354,7 +268,6 @@ VolumeLaplacian assemble_volume_laplacian(const VolumeMesh& mesh, const VolumeRe
   std::copy_n(L.S.outerIndexPtr(), L.S.outerSize() + 1, L.M.outerIndexPtr());
   std::copy_n(L.S.innerIndexPtr(), L.S.nonZeros(), L.M.innerIndexPtr());
   std::fill_n(L.M.valuePtr(), L.S.nonZeros(), 0.0);
-  const int nC = mesh.n_cells(), nV = mesh.n_vertices();
   const int* outer = L.S.outerIndexPtr();
   const int* inner = L.S.innerIndexPtr();
   double* sv = L.S.valuePtr();
@@ -362,17 +275,18 @@ VolumeLaplacian assemble_volume_laplacian(const VolumeMesh& mesh, const VolumeRe
   // Adds cell c's local matrices (column-major m x m, upper triangles) to the columns v0 <= v < v1:
   // by the cells' slots, or (a pattern given by the caller) by one forward walk per column, the
   // cell's vertices being ascending, as are a column's rows.
-  const bool by_slots = slots.slot != nullptr;
+  const bool by_slots = slots.relative_slots != nullptr;
   auto scatter = [&](int c, const double* Sc, const double* Mc, int v0, int v1) {
     const auto verts = mesh.cell_vertices(c);
     const int m = int(verts.size());
     if (by_slots) {
-      const std::uint16_t* slot = slots.slot.get() + slots.offset[c];
-      for (int b = 0; b < m; ++b, slot += m) {
+      const std::uint16_t* slot = slots.relative_slots.get() + slots.offsets[c];
+      for (int b = 0; b < m; ++b) {
         if (verts[b] < v0 || verts[b] >= v1) continue;
         double *cs = sv + outer[verts[b]], *cm = mv + outer[verts[b]];
-        for (int a = 0; a <= b; ++a) cs[slot[a]] += Sc[a + long(b) * m], cm[slot[a]] += Mc[a + long(b) * m];
-        for (int a = b + 1; a < m; ++a) cs[slot[a]] += Sc[b + long(a) * m], cm[slot[a]] += Mc[b + long(a) * m];
+        const std::uint16_t* s = slot + b;  // slot (a, b) at s[a m]
+        for (int a = 0; a <= b; ++a) cs[s[a * m]] += Sc[a + long(b) * m], cm[s[a * m]] += Mc[a + long(b) * m];
+        for (int a = b + 1; a < m; ++a) cs[s[a * m]] += Sc[b + long(a) * m], cm[s[a * m]] += Mc[b + long(a) * m];
       }
       return;
     }
