@@ -201,4 +201,56 @@ TEST_CASE("VolumeDec on the mesh complex: every degree, equal to the building bl
   CHECK_THROWS_AS(volume_mesh_prolongation(hexes, refine_volume(hexes), 4), std::invalid_argument);
 }
 
+TEST_CASE("volume mesh complex: the rule's minimum-norm edges, cells that are not balls refused",
+          "[volume][volume-dec][volume-mesh-complex]") {
+  // P1's rows on a cell's interior edges (v, x_c), (x_f, x_c) are of least norm: orthogonal to the
+  // cycles of the cell's edge graph, which its face boundaries span, so (P1 d1^T)(rho, f) = 0 for
+  // every face f of the cell.
+  const VolumeMesh mesh = test::merge_neighbour_cells(truncated_octahedra_volume(2, {0.15, 31}), 30);
+  const VolumeRefinement R = refine_volume(mesh);
+  const SimplexComplex3 refined = volume_refined_complex(mesh, R);
+  const Eigen::MatrixXd C = Eigen::MatrixXd(SparseMatrix(volume_mesh_prolongation(mesh, R, refined, 1) *
+                                                         SparseMatrix(volume_mesh_d(mesh, 1).transpose())));
+  const int nV = mesh.n_vertices(), nF = mesh.n_faces();
+  double worst = 0, scale = 0;
+  int rows = 0;
+  for (int c = 0; c < mesh.n_cells(); ++c) {
+    std::vector<int> ends(mesh.cell_vertices(c).begin(), mesh.cell_vertices(c).end());
+    for (int hf : mesh.cell(c)) ends.push_back(nV + hf / 2);
+    for (int a : ends) {
+      const std::array<int, 2> e = {a, nV + nF + c};
+      const int r = refined.index(e);
+      REQUIRE(r >= 0);
+      ++rows;
+      scale = std::max(scale, C.row(r).cwiseAbs().maxCoeff());
+      for (int hf : mesh.cell(c)) worst = std::max(worst, std::abs(C(r, hf / 2)));
+    }
+  }
+  CHECK(rows > 0);
+  CHECK(worst <= 1e-12 * std::max(scale, 1.0));
+
+  // A solid torus as one cell (a square frame: 16 quads, V - E + F = 0).
+  Eigen::MatrixX3d X(16, 3);
+  const double rad[2] = {2.0, 1.0};
+  const int corner[4][2] = {{1, 1}, {-1, 1}, {-1, -1}, {1, -1}};
+  for (int ring = 0; ring < 2; ++ring)
+    for (int z = 0; z < 2; ++z)
+      for (int k = 0; k < 4; ++k)
+        X.row(8 * ring + 4 * z + k) << rad[ring] * corner[k][0], rad[ring] * corner[k][1], double(z);
+  auto id = [](int ring, int z, int k) { return 8 * ring + 4 * z + (k % 4); };
+  std::vector<std::vector<int>> faces;
+  for (int k = 0; k < 4; ++k) {
+    faces.push_back({id(0, 1, k), id(0, 1, k + 1), id(1, 1, k + 1), id(1, 1, k)});  // top, up
+    faces.push_back({id(0, 0, k), id(1, 0, k), id(1, 0, k + 1), id(0, 0, k + 1)});  // bottom, down
+    faces.push_back({id(0, 0, k), id(0, 0, k + 1), id(0, 1, k + 1), id(0, 1, k)});  // outer side
+    faces.push_back({id(1, 0, k), id(1, 1, k), id(1, 1, k + 1), id(1, 0, k + 1)});  // inner side
+  }
+  const VolumeMesh torus = test::volume_from_cells(X, {faces});
+  REQUIRE(torus.n_cells() == 1);
+  CHECK(torus.cell_volume(0) > 0);
+  const VolumeRefinement Rt = refine_volume(torus);
+  CHECK_THROWS_WITH(volume_mesh_stars(torus, Rt), Catch::Contains("cell 0") && Catch::Contains("not a sphere"));
+  CHECK_THROWS_WITH(volume_mesh_prolongation(torus, Rt, 1), Catch::Contains("not a sphere"));
+}
+
 }  // namespace test_volume_mesh_complex
