@@ -158,11 +158,9 @@ VolumeDec volume_dec(const VolumeMesh& mesh, const VolumeRefinement& refinement,
   if (options.complex == DecComplex::Mesh) {
     D.max_degree = max_degree;
     D.refined = volume_refined_complex(mesh, refinement);
-    for (int k = 0; k < max_degree; ++k) D.d[k] = volume_mesh_d(mesh, k);
-    for (int k = 0; k <= max_degree; ++k)
-      D.P[k] = volume_mesh_prolongation(mesh, refinement, D.refined, k, options.spoke_rule);
-    std::array<SparseMatrix, 4> stars = volume_mesh_stars(mesh, refinement, max_degree, options.spoke_rule);
-    for (int k = 0; k <= max_degree; ++k) D.star[k].swap(stars[size_t(k)]);
+    VolumeMeshDec M = volume_mesh_dec(mesh, refinement, D.refined, max_degree, options.spoke_rule);
+    for (int k = 0; k < 3; ++k) D.d[k].swap(M.d[k]);
+    for (int k = 0; k < 4; ++k) D.P[k].swap(M.P[k]), D.star[k].swap(M.star[k]);
     return D;
   }
   D.max_degree = max_degree;

@@ -351,6 +351,122 @@ void check_degree(int k, int lo, int hi, const char* caller) {
                                 ".." + std::to_string(hi) + ")");
 }
 
+// What one pass over the cells assembles: P_k for the k in `prolongations` (1..3, rows in the
+// numbering of `refined`), the stars up to `star_degree` (-1: none).
+struct Request {
+  bool prolongations[4] = {false, false, false, false};
+  int star_degree = -1;
+};
+
+struct Assembled {
+  SparseMatrix P[4];
+  std::array<SparseMatrix, 4> star;
+};
+
+// Appends the rows of P_k of cell c's refined simplices not emitted yet (a face's rows are the
+// same from both of its cells).
+void emit_prolongation(const CellMaps& W, int c, int k, const SimplexComplex3& refined, std::vector<char>& done,
+                       std::vector<Triplet>& t) {
+  auto emit = [&](int row, auto values, const std::vector<int>& cols) {
+    if (row < 0 || row >= int(done.size()))
+      throw std::invalid_argument("volume_mesh_prolongation: the refined complex does not belong to this mesh");
+    if (done[size_t(row)]) return;
+    done[size_t(row)] = 1;
+    for (Eigen::Index j = 0; j < values.size(); ++j)
+      if (values[j] != 0.0) t.emplace_back(row, cols[size_t(j)], values[j]);
+  };
+  if (k == 1) {
+    for (size_t r = 0; r < W.s1.size(); ++r) emit(refined.index(W.s1[r]), W.P1.row(Eigen::Index(r)), W.edges);
+  } else if (k == 2) {
+    for (size_t r = 0; r < W.s2.size(); ++r) emit(refined.index(W.s2[r]), W.P2.row(Eigen::Index(r)), W.faces);
+  } else {
+    const std::vector<int> self{c};
+    for (size_t r = 0; r < W.tets.size(); ++r)
+      emit(refined.index(W.tets[r].v), W.P3.segment(Eigen::Index(r), 1), self);
+  }
+}
+
+// Adds cell c's blocks of star_0..star_max_degree: P_k^T star_k^tet P_k over its sub-tetrahedra.
+void add_cell_stars(const VolumeMesh& mesh, const VolumeRefinement& R, const CellMaps& W, int c, int max_degree,
+                    std::vector<Triplet> (&t)[4], std::vector<double>& s3) {
+  const int nVc = int(W.verts.size()), nEc = int(W.edges.size()), nFc = int(W.faces.size());
+  Eigen::MatrixXd local[3];
+  local[0].setZero(nVc, nVc);
+  if (max_degree >= 1) local[1].setZero(nEc, nEc);
+  if (max_degree >= 2) local[2].setZero(nFc, nFc);
+  Eigen::Matrix<double, 4, Eigen::Dynamic> R0(4, nVc), R2(4, nFc);
+  Eigen::Matrix<double, 6, Eigen::Dynamic> R1(6, nEc);
+  for (size_t i = 0; i < W.tets.size(); ++i) {
+    const auto& tet = W.tets[i];
+    const auto& v = tet.v;
+    Eigen::Vector3d p[4];
+    for (int a = 0; a < 4; ++a) p[a] = refined_position(mesh, R, v[size_t(a)]);
+    for (int a = 0; a < 4; ++a) R0.row(a) = W.P0.row(W.p0_row(v[size_t(a)]));
+    local[0].noalias() += R0.transpose() * tet_whitney0_mass(p[0], p[1], p[2], p[3]) * R0;
+    if (tet.quality == SubTet::Degenerate) continue;
+    if (max_degree >= 1) {
+      for (int a = 0; a < 4; ++a)
+        for (int b = a + 1; b < 4; ++b)
+          R1.row(tet_local_edge(a, b)) = W.P1.row(local_simplex(W.s1, {v[size_t(a)], v[size_t(b)]}));
+      local[1].noalias() += R1.transpose() * tet_whitney1_mass(p[0], p[1], p[2], p[3]) * R1;
+    }
+    if (max_degree >= 2) {
+      for (int missing = 0; missing < 4; ++missing) {
+        std::array<int, 3> tri;
+        for (int a = 0, k = 0; a < 4; ++a)
+          if (a != missing) tri[size_t(k++)] = v[size_t(a)];
+        R2.row(tet_local_triangle_without(missing)) = W.P2.row(local_simplex(W.s2, tri));
+      }
+      local[2].noalias() += R2.transpose() * tet_whitney2_mass(p[0], p[1], p[2], p[3]) * R2;
+    }
+    if (max_degree >= 3)
+      s3[size_t(c)] += W.P3[Eigen::Index(i)] * W.P3[Eigen::Index(i)] * tet_whitney3_mass(p[0], p[1], p[2], p[3]);
+  }
+  const std::vector<int>* index[3] = {&W.verts, &W.edges, &W.faces};
+  for (int k = 0; k <= std::min(max_degree, 2); ++k) {
+    const std::vector<int>& g = *index[k];
+    const int n = int(g.size());
+    for (int b = 0; b < n; ++b)
+      for (int a = 0; a < n; ++a) t[k].emplace_back(g[size_t(a)], g[size_t(b)], local[k](a, b));
+  }
+}
+
+// One pass over the cells, each cell's maps built once, up to the highest degree asked for.
+Assembled assemble(const VolumeMesh& mesh, const VolumeRefinement& R, const SimplexComplex3* refined,
+                   const Request& request, SpokeRule rule) {
+  int degree = std::max(request.star_degree, 0);
+  for (int k = 1; k < 4; ++k)
+    if (request.prolongations[k]) degree = std::max(degree, k);
+  const int nV = mesh.n_vertices(), nF = mesh.n_faces(), nC = mesh.n_cells();
+  if (degree > 0 && refined && refined->n_vertices() != nV + nF + nC)
+    throw std::invalid_argument("volume_mesh_prolongation: the refined complex does not belong to this mesh");
+  std::vector<char> done[4];
+  std::vector<Triplet> pt[4], st[4];
+  for (int k = 1; k < 4; ++k)
+    if (request.prolongations[k]) done[k].assign(size_t(refined->n_simplices(k)), 0);
+  std::vector<double> s3(size_t(nC), 0.0);
+  CellMaps W;
+  for (int c = 0; c < nC; ++c) {
+    build_cell(mesh, R, c, degree, rule, W);
+    for (int k = 1; k < 4; ++k)
+      if (request.prolongations[k]) emit_prolongation(W, c, k, *refined, done[k], pt[k]);
+    if (request.star_degree >= 0) add_cell_stars(mesh, R, W, c, request.star_degree, st, s3);
+  }
+  Assembled out;
+  const int sizes[4] = {nV, mesh.n_edges(), nF, nC};
+  for (int k = 1; k < 4; ++k)
+    if (request.prolongations[k]) {
+      out.P[k].resize(refined->n_simplices(k), sizes[k]);
+      out.P[k].setFromTriplets(pt[k].begin(), pt[k].end());
+    }
+  for (int c = 0; request.star_degree >= 3 && c < nC; ++c) st[3].emplace_back(c, c, s3[size_t(c)]);
+  for (int k = 0; k <= request.star_degree; ++k) {
+    out.star[size_t(k)].resize(sizes[k], sizes[k]);
+    out.star[size_t(k)].setFromTriplets(st[k].begin(), st[k].end());
+  }
+  return out;
+}
+
 }  // namespace
 }  // namespace volume_mesh_complex_detail
 
@@ -391,35 +507,11 @@ SparseMatrix volume_mesh_prolongation(const VolumeMesh& mesh, const VolumeRefine
   check_refinement(mesh, refinement, "volume_mesh_prolongation");
   check_degree(k, 0, 3, "volume_mesh_prolongation");
   if (k == 0) return volume_prolongation(mesh, refinement);
-  const int nV = mesh.n_vertices(), nF = mesh.n_faces();
-  if (refined.n_vertices() != nV + nF + mesh.n_cells())
-    throw std::invalid_argument("volume_mesh_prolongation: the refined complex does not belong to this mesh");
-  const int rows = refined.n_simplices(k);
-  std::vector<char> done(size_t(rows), 0);
-  std::vector<Triplet> t;
-  CellMaps W;
-  auto emit = [&](int row, const Eigen::RowVectorXd& values, const std::vector<int>& cols) {
-    if (row < 0) throw std::invalid_argument("volume_mesh_prolongation: the refined complex does not belong to this mesh");
-    if (done[size_t(row)]) return;
-    done[size_t(row)] = 1;
-    for (Eigen::Index j = 0; j < values.size(); ++j)
-      if (values[j] != 0.0) t.emplace_back(row, cols[size_t(j)], values[j]);
-  };
-  for (int c = 0; c < mesh.n_cells(); ++c) {
-    build_cell(mesh, refinement, c, k, rule, W);
-    if (k == 1) {
-      for (size_t r = 0; r < W.s1.size(); ++r) emit(refined.index(W.s1[r]), W.P1.row(Eigen::Index(r)), W.edges);
-    } else if (k == 2) {
-      for (size_t r = 0; r < W.s2.size(); ++r) emit(refined.index(W.s2[r]), W.P2.row(Eigen::Index(r)), W.faces);
-    } else {
-      const std::vector<int> self{c};
-      for (size_t r = 0; r < W.tets.size(); ++r)
-        emit(refined.index(W.tets[r].v), Eigen::RowVectorXd::Constant(1, W.P3[Eigen::Index(r)]), self);
-    }
-  }
-  const int cols = k == 1 ? mesh.n_edges() : k == 2 ? mesh.n_faces() : mesh.n_cells();
-  SparseMatrix P(rows, cols);
-  P.setFromTriplets(t.begin(), t.end());
+  Request request;
+  request.prolongations[k] = true;
+  Assembled a = assemble(mesh, refinement, &refined, request, rule);
+  SparseMatrix P;
+  P.swap(a.P[k]);
   return P;
 }
 
@@ -435,66 +527,26 @@ std::array<SparseMatrix, 4> volume_mesh_stars(const VolumeMesh& mesh, const Volu
   using namespace volume_mesh_complex_detail;
   check_refinement(mesh, refinement, "volume_mesh_stars");
   check_degree(max_degree, 0, 3, "volume_mesh_stars");
-  std::vector<Triplet> t[4];
-  CellMaps W;
-  Eigen::MatrixXd local[3];
-  std::vector<double> s3(size_t(mesh.n_cells()), 0.0);
-  for (int c = 0; c < mesh.n_cells(); ++c) {
-    build_cell(mesh, refinement, c, max_degree, rule, W);
-    const int nVc = int(W.verts.size()), nEc = int(W.edges.size()), nFc = int(W.faces.size());
-    local[0].setZero(nVc, nVc);
-    if (max_degree >= 1) local[1].setZero(nEc, nEc);
-    if (max_degree >= 2) local[2].setZero(nFc, nFc);
-    Eigen::Matrix<double, 4, Eigen::Dynamic> R0(4, nVc), R2;
-    Eigen::Matrix<double, 6, Eigen::Dynamic> R1;
-    for (size_t i = 0; i < W.tets.size(); ++i) {
-      const auto& tet = W.tets[i];
-      const auto& v = tet.v;
-      Eigen::Vector3d p[4];
-      for (int a = 0; a < 4; ++a) p[a] = refined_position(mesh, refinement, v[size_t(a)]);
-      for (int a = 0; a < 4; ++a) R0.row(a) = W.P0.row(W.p0_row(v[size_t(a)]));
-      local[0].noalias() += R0.transpose() * tet_whitney0_mass(p[0], p[1], p[2], p[3]) * R0;
-      if (tet.quality == SubTet::Degenerate) continue;
-      if (max_degree >= 1) {
-        R1.resize(6, nEc);
-        for (int a = 0; a < 4; ++a)
-          for (int b = a + 1; b < 4; ++b)
-            R1.row(tet_local_edge(a, b)) = W.P1.row(local_simplex(W.s1, {v[size_t(a)], v[size_t(b)]}));
-        local[1].noalias() += R1.transpose() * tet_whitney1_mass(p[0], p[1], p[2], p[3]) * R1;
-      }
-      if (max_degree >= 2) {
-        R2.resize(4, nFc);
-        for (int missing = 0; missing < 4; ++missing) {
-          std::array<int, 3> tri;
-          for (int a = 0, k = 0; a < 4; ++a)
-            if (a != missing) tri[size_t(k++)] = v[size_t(a)];
-          R2.row(tet_local_triangle_without(missing)) = W.P2.row(local_simplex(W.s2, tri));
-        }
-        local[2].noalias() += R2.transpose() * tet_whitney2_mass(p[0], p[1], p[2], p[3]) * R2;
-      }
-      if (max_degree >= 3)
-        s3[size_t(c)] += W.P3[Eigen::Index(i)] * W.P3[Eigen::Index(i)] * tet_whitney3_mass(p[0], p[1], p[2], p[3]);
-    }
-    const std::vector<int>* index[3] = {&W.verts, &W.edges, &W.faces};
-    for (int k = 0; k <= std::min(max_degree, 2); ++k) {
-      const std::vector<int>& g = *index[k];
-      const int n = int(g.size());
-      for (int b = 0; b < n; ++b)
-        for (int a = 0; a < n; ++a) t[k].emplace_back(g[size_t(a)], g[size_t(b)], local[k](a, b));
-    }
-  }
-  std::array<SparseMatrix, 4> stars;
-  const int sizes[4] = {mesh.n_vertices(), mesh.n_edges(), mesh.n_faces(), mesh.n_cells()};
-  for (int k = 0; k <= std::min(max_degree, 2); ++k) {
-    stars[size_t(k)].resize(sizes[k], sizes[k]);
-    stars[size_t(k)].setFromTriplets(t[k].begin(), t[k].end());
-  }
-  if (max_degree >= 3) {
-    for (int c = 0; c < mesh.n_cells(); ++c) t[3].emplace_back(c, c, s3[size_t(c)]);
-    stars[3].resize(sizes[3], sizes[3]);
-    stars[3].setFromTriplets(t[3].begin(), t[3].end());
-  }
-  return stars;
+  Request request;
+  request.star_degree = max_degree;
+  return assemble(mesh, refinement, nullptr, request, rule).star;
+}
+
+VolumeMeshDec volume_mesh_dec(const VolumeMesh& mesh, const VolumeRefinement& refinement,
+                              const SimplexComplex3& refined, int max_degree, SpokeRule rule) {
+  using namespace volume_mesh_complex_detail;
+  check_refinement(mesh, refinement, "volume_mesh_dec");
+  check_degree(max_degree, 0, 3, "volume_mesh_dec");
+  Request request;
+  for (int k = 1; k <= max_degree; ++k) request.prolongations[k] = true;
+  request.star_degree = max_degree;
+  Assembled a = assemble(mesh, refinement, &refined, request, rule);
+  VolumeMeshDec D;
+  for (int k = 0; k < max_degree; ++k) D.d[k] = volume_mesh_d(mesh, k);
+  D.P[0] = volume_prolongation(mesh, refinement);
+  for (int k = 1; k <= max_degree; ++k) D.P[k].swap(a.P[k]);  // swap: std::move copies an Eigen 3.4 SparseMatrix
+  for (int k = 0; k <= max_degree; ++k) D.star[k].swap(a.star[size_t(k)]);
+  return D;
 }
 
 }  // namespace polydec

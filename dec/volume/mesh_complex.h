@@ -68,4 +68,13 @@ SparseMatrix volume_mesh_prolongation(const VolumeMesh& mesh, const VolumeRefine
 std::array<SparseMatrix, 4> volume_mesh_stars(const VolumeMesh& mesh, const VolumeRefinement& refinement,
                                               int max_degree = 3, SpokeRule rule = SpokeRule::AreaConsistent);
 
+// d_k (k < max_degree), P_k and star_k (k <= max_degree) in one pass over the cells, each cell's
+// local systems solved once (what volume_dec uses for DecComplex::Mesh).
+struct VolumeMeshDec {
+  SparseMatrix d[3], P[4], star[4];
+};
+VolumeMeshDec volume_mesh_dec(const VolumeMesh& mesh, const VolumeRefinement& refinement,
+                              const SimplexComplex3& refined, int max_degree = 3,
+                              SpokeRule rule = SpokeRule::AreaConsistent);
+
 }  // namespace polydec

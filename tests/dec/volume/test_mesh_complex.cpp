@@ -171,7 +171,7 @@ TEST_CASE("volume mesh complex: independent of the face order of a cell and of a
   }
 }
 
-TEST_CASE("VolumeDec on the mesh complex: every degree, equal to the building blocks",
+TEST_CASE("volume mesh complex in VolumeDec: every degree, equal to the building blocks",
           "[volume][volume-dec][volume-mesh-complex]") {
   const VolumeMesh mesh = truncated_octahedra_volume(2, {0.15, 29});
   const VolumeRefinement R = refine_volume(mesh);
