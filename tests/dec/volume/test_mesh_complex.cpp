@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "polydec/dec/io/volume_io.h"
 #include "polydec/dec/mesh/volume_generators.h"
 #include "polydec/dec/volume/hodge_star.h"
 #include "polydec/dec/volume/mesh_complex.h"
@@ -251,6 +252,30 @@ TEST_CASE("volume mesh complex: the rule's minimum-norm edges, cells that are no
   const VolumeRefinement Rt = refine_volume(torus);
   CHECK_THROWS_WITH(volume_mesh_stars(torus, Rt), Catch::Contains("cell 0") && Catch::Contains("not a sphere"));
   CHECK_THROWS_WITH(volume_mesh_prolongation(torus, Rt, 1), Catch::Contains("not a sphere"));
+}
+
+TEST_CASE("volume mesh complex on the shared cube meshes", "[volume][volume-dec][volume-mesh-complex]") {
+  for (const char* name : {"volume/noisycube.ovm", "volume/cube_truncated_2.ovm", "volume/cube_pyramids_2.ovm",
+                           "volume/cube_tetrahedron_1.ovm"}) {
+    const std::string path = test::shared_path(name);
+    if (path.empty()) {
+      WARN("skipped: " << name << " missing");
+      continue;
+    }
+    INFO(name);
+    const VolumeMesh mesh = read_volume_mesh(path);
+    const VolumeRefinement R = refine_volume(mesh);
+    const VolumeDec D = volume_dec(mesh, R, VolumeDecOptions{.max_degree = 3, .complex = DecComplex::Mesh});
+    for (int k = 0; k < 3; ++k) {
+      CHECK(max_abs(SparseMatrix(D.refined.d(k) * D.P[k])) > 0);
+      CHECK(relative_difference(SparseMatrix(D.P[k + 1] * D.d[k]), SparseMatrix(D.refined.d(k) * D.P[k])) < 1e-12);
+    }
+    const VolumeLaplacian L = assemble_volume_laplacian(mesh, R);
+    CHECK(relative_difference(SparseMatrix(-D.d[0].transpose() * D.star[1] * D.d[0]), L.S) < 1e-12);
+    CHECK(relative_difference(D.star[0], L.M) < 1e-12);
+    for (int k = 1; k < 4; ++k) CHECK(positive_definite(D.star[k]));
+    CHECK(D.star[3].nonZeros() == mesh.n_cells());
+  }
 }
 
 }  // namespace test_volume_mesh_complex
