@@ -278,4 +278,25 @@ TEST_CASE("volume mesh complex on the shared cube meshes", "[volume][volume-dec]
   }
 }
 
+TEST_CASE("volume mesh complex: sub-tetrahedra flagged degenerate add nothing to star1..star3",
+          "[volume][volume-dec][volume-mesh-complex]") {
+  const VolumeMesh mesh = test::merge_neighbour_cells(truncated_octahedra_volume(2, {0.15, 37}), 30);
+  VolumeRefinement R = refine_volume(mesh);
+  // Every 7th sub-tetrahedron flagged, as the refinement flags flat ones.
+  for (size_t i = 0; i < R.tets.size(); i += 7) R.tets[i] = SubTet::Degenerate;
+  const SimplexComplex3 refined = volume_refined_complex(mesh, R);
+  const std::array<SparseMatrix, 4> star = volume_mesh_stars(mesh, R);
+  for (int k = 0; k < 4; ++k) {
+    INFO("k = " << k);
+    const SparseMatrix P = volume_mesh_prolongation(mesh, R, refined, k);
+    CHECK(relative_difference(star[size_t(k)], SparseMatrix(P.transpose() * volume_refined_star(mesh, R, refined, k) * P)) <
+          1e-12);
+    if (k > 0) CHECK(positive_definite(star[size_t(k)]));
+  }
+  const VolumeLaplacian L = assemble_volume_laplacian(mesh, R);
+  const SparseMatrix d0 = volume_mesh_d(mesh, 0);
+  CHECK(relative_difference(SparseMatrix(-d0.transpose() * star[1] * d0), L.S) < 1e-12);
+  CHECK(relative_difference(star[0], L.M) < 1e-12);
+}
+
 }  // namespace test_volume_mesh_complex
