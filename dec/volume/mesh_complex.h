@@ -55,7 +55,7 @@ SparseMatrix volume_mesh_d(const VolumeMesh& mesh, int k);
 
 // P_k (k = 0..3) of the mesh complex, rows in the numbering of `refined` (volume_refined_complex
 // of the same mesh and refinement); P0 is volume_prolongation. std::invalid_argument for a cell
-// whose boundary is not a sphere.
+// whose boundary is not a sphere or whose sub-tetrahedra have no positive total volume.
 SparseMatrix volume_mesh_prolongation(const VolumeMesh& mesh, const VolumeRefinement& refinement,
                                       const SimplexComplex3& refined, int k,
                                       SpokeRule rule = SpokeRule::AreaConsistent);

@@ -192,6 +192,10 @@ TEST_CASE("volume mesh complex in VolumeDec: every degree, equal to the building
       CHECK(relative_difference(D.star[k], stars[size_t(k)]) < 1e-15);
     }
   }
+  // The mesh complex's forms are independent: the reduced basis keeps every coarse cell.
+  const VolumeDec D = volume_dec(mesh, R, VolumeDecOptions{.max_degree = 3, .complex = DecComplex::Mesh});
+  const int counts[4] = {mesh.n_vertices(), mesh.n_edges(), mesh.n_faces(), mesh.n_cells()};
+  for (int k = 1; k <= 3; ++k) CHECK(int(volume_form_span(D, mesh, R, k).cells.size()) == counts[k]);
   // The integer overload stays the complete complex.
   const VolumeMesh hexes = hex_grid_volume(1, 1, 1);
   const VolumeDec C = volume_dec(hexes, refine_volume(hexes), 1);
