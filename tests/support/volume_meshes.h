@@ -166,9 +166,10 @@ inline VolumeMesh prism_volume(int n, double height = 0.8) {
 }
 
 // Merges pairs of neighbouring cells into one (their shared face removed), greedily over the
-// interior faces in order: a pair is merged when neither cell is merged yet and together they have
-// at least `min_vertices` vertices. Two balls glued along a disk are a ball, so every cell stays a
-// valid polyhedron; on truncated_octahedra_volume(3) this makes Voronoi-like cells of up to 42 vertices.
+// interior faces in order: a pair is merged when neither cell is merged yet, they share only this
+// face and together they have at least `min_vertices` vertices. Two balls glued along a disk are
+// a ball, so every cell stays a valid polyhedron; on truncated_octahedra_volume(3) this makes
+// Voronoi-like cells of up to 42 vertices (applied twice, up to 70).
 inline VolumeMesh merge_neighbour_cells(const VolumeMesh& mesh, int min_vertices) {
   std::vector<int> group(size_t(mesh.n_cells()), -1);
   std::vector<char> removed(size_t(mesh.n_faces()), 0);
@@ -180,6 +181,13 @@ inline VolumeMesh merge_neighbour_cells(const VolumeMesh& mesh, int min_vertices
     v.insert(v.end(), mesh.cell_vertices(cells[1]).begin(), mesh.cell_vertices(cells[1]).end());
     std::sort(v.begin(), v.end());
     if (int(std::unique(v.begin(), v.end()) - v.begin()) < min_vertices) continue;
+    // Only neighbours through a single face (glued along two disks they would make a solid torus).
+    int shared = 0;
+    for (int hf : mesh.cell(cells[0])) {
+      const auto other = mesh.face_cells(hf / 2);
+      shared += (other[0] == cells[1] || other[1] == cells[1]) ? 1 : 0;
+    }
+    if (shared != 1) continue;
     group[size_t(cells[0])] = group[size_t(cells[1])] = n_groups++;
     removed[size_t(f)] = 1;
   }

@@ -49,6 +49,8 @@ std::vector<Case> meshes() {
   out.push_back({"hex solid torus", test::hex_solid_torus(6)});
   out.push_back({"prism over a 100-gon", test::prism_volume(100)});
   out.push_back({"merged truncated octahedra", test::merge_neighbour_cells(truncated_octahedra_volume(3, {0.15, 13}), 30)});
+  out.push_back({"twice merged truncated octahedra",
+                 test::merge_neighbour_cells(test::merge_neighbour_cells(truncated_octahedra_volume(2, {0.2, 5}), 30), 50)});
   return out;
 }
 
@@ -138,8 +140,9 @@ TEST_CASE("volume mesh complex: planar faces give star3 = 1 / cell volume", "[vo
 }
 
 TEST_CASE("volume mesh complex: large cells, minimum-norm face rule", "[volume][volume-dec][volume-mesh-complex]") {
-  const VolumeMesh merged = test::merge_neighbour_cells(truncated_octahedra_volume(3, {0.15, 13}), 30);
-  CHECK(largest_cell(merged) >= 40);
+  const VolumeMesh merged =
+      test::merge_neighbour_cells(test::merge_neighbour_cells(truncated_octahedra_volume(3, {0.2, 5}), 30), 50);
+  CHECK(largest_cell(merged) >= 60);
   const VolumeMesh prism = test::prism_volume(100);
   for (const VolumeMesh* mesh : {&merged, &prism}) {
     const VolumeRefinement R = refine_volume(*mesh);
