@@ -133,14 +133,21 @@ void build_cell(const VolumeMesh& mesh, const VolumeRefinement& R, int c, int de
   W.faces.resize(size_t(nFc));
   W.Z.resize(nFc);
   W.edges.clear();
+  // side_edge[l][k]: the global, then the local edge of side k of face l (corner k to k+1).
+  std::vector<std::vector<int>> side_edge(static_cast<size_t>(nFc));
   for (int l = 0; l < nFc; ++l) {
     W.faces[size_t(l)] = hfs[size_t(l)] / 2;
     W.Z[l] = (hfs[size_t(l)] & 1) ? -1.0 : 1.0;
     const auto face = mesh.face(W.faces[size_t(l)]);
-    for (size_t k = 0; k < face.size(); ++k) W.edges.push_back(global_edge(E, face[k], face[(k + 1) % face.size()]));
+    for (size_t k = 0; k < face.size(); ++k) {
+      side_edge[size_t(l)].push_back(global_edge(E, face[k], face[(k + 1) % face.size()]));
+      W.edges.push_back(side_edge[size_t(l)].back());
+    }
   }
   std::sort(W.edges.begin(), W.edges.end());
   W.edges.erase(std::unique(W.edges.begin(), W.edges.end()), W.edges.end());
+  for (auto& sides : side_edge)
+    for (int& e : sides) e = local_index(W.edges, e);
   const int nEc = int(W.edges.size());
   if (nVc - nEc + nFc != 2)
     throw std::invalid_argument("volume mesh complex: the boundary of cell " + std::to_string(c) +
@@ -159,7 +166,7 @@ void build_cell(const VolumeMesh& mesh, const VolumeRefinement& R, int c, int de
     const int n = int(face.size());
     for (int k = 0; k < n; ++k) {
       const int a = face[size_t(k)], b = face[size_t((k + 1) % n)];
-      D1(l, local_index(W.edges, global_edge(E, a, b))) += a < b ? 1.0 : -1.0;
+      D1(l, side_edge[size_t(l)][size_t(k)]) += a < b ? 1.0 : -1.0;
     }
     if (degree >= 1) K[size_t(l)] = face_kernel(mesh, R, f, rule);
   }
@@ -226,7 +233,7 @@ void build_cell(const VolumeMesh& mesh, const VolumeRefinement& R, int c, int de
       const int i = int(std::find(face.begin(), face.end(), a) - face.begin());
       for (int k = 0; k < n; ++k) {
         const int p = face[size_t(k)], q = face[size_t((k + 1) % n)];
-        W.P1(r, local_index(W.edges, global_edge(E, p, q))) += (p < q ? 1.0 : -1.0) * K[size_t(l)].spokes(i, k);
+        W.P1(r, side_edge[size_t(l)][size_t(k)]) += (p < q ? 1.0 : -1.0) * K[size_t(l)].spokes(i, k);
       }
     } else {
       interior1.push_back(r);
