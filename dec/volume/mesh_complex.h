@@ -34,10 +34,15 @@
 //              volume, the cell's volume when its faces are planar);
 //       k = 3: then unique, P3 = vol_tau / vol_c.
 //     The rule depends neither on the order of a cell's faces nor on where a face's vertex list
-//     starts (least-norm solutions are invariant under renumbering).
+//     starts (least-norm solutions are invariant under renumbering). The least-norm solves are
+//     dense per cell, through the graph Laplacians D0^T D0, D1 D1^T and that of the
+//     sub-tetrahedra's adjacency, each made definite by adding its one-dimensional kernel (no
+//     rank threshold).
 // Stars, cell by cell from the cell's sub-tetrahedra (dec/volume/whitney.h), memory and time
 // linear in the mesh size: star0 the Galerkin mass M; star1 and star2 blocks over the edges and
-// faces of each cell; star3 diagonal, 1 / vol_c when no sub-tetrahedron is inverted.
+// faces of each cell; star3 diagonal, sum |vol_tau| / vol_c^2, i.e. 1 / vol_c when no
+// sub-tetrahedron is inverted. P1..P3 have full column rank, so star1..star3 are positive
+// definite when no sub-tetrahedron is degenerate.
 // Degenerate sub-tetrahedra (SubTet::Degenerate) add nothing to star1..star3, as in
 // dec/volume/hodge_star.h, so -d0^T star1 d0 = S of operators/volume/laplacian.h exactly.
 #pragma once
