@@ -7,8 +7,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "polydec/dec/volume/whitney.h"
+#include "polydec/dec/volume/mesh_complex.h"
 #include "polydec/dec/volume/prolongation.h"
+#include "polydec/dec/volume/whitney.h"
 
 namespace polydec {
 
@@ -144,8 +145,24 @@ Eigen::SparseMatrix<double> volume_refined_star(const VolumeMesh& mesh, const Vo
 }
 
 VolumeDec volume_dec(const VolumeMesh& mesh, const VolumeRefinement& refinement, int max_degree) {
+  return volume_dec(mesh, refinement, VolumeDecOptions{.max_degree = max_degree});
+}
+
+VolumeDec volume_dec(const VolumeMesh& mesh, const VolumeRefinement& refinement, const VolumeDecOptions& options) {
   check_refinement(mesh, refinement, "volume_dec");
+  const int max_degree = options.max_degree;
+  if (max_degree < 0 || max_degree > 3)
+    throw std::invalid_argument("volume_dec: max_degree " + std::to_string(max_degree) + " (0..3)");
   VolumeDec D;
+  D.complex = options.complex;
+  if (options.complex == DecComplex::Mesh) {
+    D.max_degree = max_degree;
+    D.refined = volume_refined_complex(mesh, refinement);
+    VolumeMeshDec M = volume_mesh_dec(mesh, refinement, D.refined, max_degree, options.spoke_rule);
+    for (int k = 0; k < 3; ++k) D.d[k].swap(M.d[k]);
+    for (int k = 0; k < 4; ++k) D.P[k].swap(M.P[k]), D.star[k].swap(M.star[k]);
+    return D;
+  }
   D.max_degree = max_degree;
   D.coarse = volume_coarse_complex(mesh, max_degree);
   D.refined = volume_refined_complex(mesh, refinement);

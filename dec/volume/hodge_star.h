@@ -19,6 +19,7 @@
 #include <Eigen/Sparse>
 
 #include "polydec/dec/surface/form_span.h"
+#include "polydec/dec/surface/mesh_complex.h"
 #include "polydec/dec/volume/complex.h"
 
 namespace polydec {
@@ -36,16 +37,28 @@ Eigen::SparseMatrix<double> volume_refined_star(const VolumeMesh& mesh, const Vo
 
 // Everything of DEC on a volume mesh, computed once.
 struct VolumeDec {
+  DecComplex complex = DecComplex::Complete;
   int max_degree = 3;                   // d_k for k < max_degree, P_k and star_k for k <= max_degree
-  SimplexComplex3 coarse, refined;
+  SimplexComplex3 coarse;               // the complete complex's simplices; empty for the mesh complex,
+                                        // whose cells are the mesh's (dec/volume/mesh_complex.h)
+  SimplexComplex3 refined;
   Eigen::SparseMatrix<double> d[3];     // coarse d0, d1, d2 (empty beyond max_degree)
   Eigen::SparseMatrix<double> P[4];     // P0..P3
   Eigen::SparseMatrix<double> star[4];  // coarse star0..star3
 };
 
-// Builds the complexes, d_k, P_k and star_k up to degree max_degree (0..3; std::invalid_argument
-// when a cell has more than max_dec_cell_vertices(max_degree) vertices: volume_dec_max_degree
-// tells the largest degree a mesh allows).
+struct VolumeDecOptions {
+  int max_degree = 3;                                // 0..3
+  DecComplex complex = DecComplex::Complete;         // the paper's cells, or the mesh's own
+  SpokeRule spoke_rule = SpokeRule::AreaConsistent;  // the mesh complex's face kernel
+};
+
+// Builds the complexes, d_k, P_k and star_k up to degree max_degree (0..3). On the complete
+// complex std::invalid_argument when a cell has more than max_dec_cell_vertices(max_degree)
+// vertices (volume_dec_max_degree tells the largest degree a mesh allows); on the mesh complex
+// every degree works for cells of any size.
+VolumeDec volume_dec(const VolumeMesh& mesh, const VolumeRefinement& refinement, const VolumeDecOptions& options);
+// The complete complex up to max_degree.
 VolumeDec volume_dec(const VolumeMesh& mesh, const VolumeRefinement& refinement, int max_degree = 3);
 
 // The reduced basis of the coarse Whitney k-forms (k = 1, 2, 3; docs/volumes.md): the coarse

@@ -1,7 +1,7 @@
 // tests/support/volume_meshes.h — small procedural polyhedral meshes for the volume operator
 // and DEC tests, built through PolyhedronSoup from cells given as outward polygons: single cells
 // (tetrahedron, hexahedron, pyramid), hexahedral and 6-tets-per-cube grids (optionally sheared or
-// jittered), and a hexahedral solid torus.
+// jittered), a hexahedral solid torus, and large cells made by merging neighbours.
 #pragma once
 
 #include <Eigen/Core>
@@ -163,6 +163,65 @@ inline VolumeMesh prism_volume(int n, double height = 0.8) {
   faces.push_back(top);
   for (int k = 0; k < n; ++k) faces.push_back({k, (k + 1) % n, n + (k + 1) % n, n + k});
   return volume_from_cells(X, {faces});
+}
+
+// Merges pairs of neighbouring cells into one (their shared face removed), greedily over the
+// interior faces in order: a pair is merged when neither cell is merged yet, they share only this
+// face and together they have at least `min_vertices` vertices. Two balls glued along a disk are
+// a ball, so every cell stays a valid polyhedron; on truncated_octahedra_volume(3) this makes
+// Voronoi-like cells of up to 42 vertices (applied twice, up to 70).
+inline VolumeMesh merge_neighbour_cells(const VolumeMesh& mesh, int min_vertices) {
+  std::vector<int> group(size_t(mesh.n_cells()), -1);
+  std::vector<char> removed(size_t(mesh.n_faces()), 0);
+  int n_groups = 0;
+  for (int f = 0; f < mesh.n_faces(); ++f) {
+    const auto cells = mesh.face_cells(f);
+    if (cells[0] < 0 || cells[1] < 0 || group[size_t(cells[0])] >= 0 || group[size_t(cells[1])] >= 0) continue;
+    std::vector<int> v(mesh.cell_vertices(cells[0]).begin(), mesh.cell_vertices(cells[0]).end());
+    v.insert(v.end(), mesh.cell_vertices(cells[1]).begin(), mesh.cell_vertices(cells[1]).end());
+    std::sort(v.begin(), v.end());
+    if (int(std::unique(v.begin(), v.end()) - v.begin()) < min_vertices) continue;
+    // Only neighbours through a single face (glued along two disks they would make a solid torus).
+    int shared = 0;
+    for (int hf : mesh.cell(cells[0])) {
+      const auto other = mesh.face_cells(hf / 2);
+      shared += (other[0] == cells[1] || other[1] == cells[1]) ? 1 : 0;
+    }
+    if (shared != 1) continue;
+    group[size_t(cells[0])] = group[size_t(cells[1])] = n_groups++;
+    removed[size_t(f)] = 1;
+  }
+  for (int c = 0; c < mesh.n_cells(); ++c)
+    if (group[size_t(c)] < 0) group[size_t(c)] = n_groups++;
+  PolyhedronSoup soup;
+  soup.positions = mesh.positions();
+  std::vector<int> new_face(size_t(mesh.n_faces()), -1);
+  for (int f = 0; f < mesh.n_faces(); ++f)
+    if (!removed[size_t(f)]) new_face[size_t(f)] = soup.add_face(mesh.face(f));
+  std::vector<std::vector<int>> cells(static_cast<size_t>(n_groups));
+  for (int c = 0; c < mesh.n_cells(); ++c)
+    for (int hf : mesh.cell(c))
+      if (!removed[size_t(hf / 2)]) cells[size_t(group[size_t(c)])].push_back(2 * new_face[size_t(hf / 2)] + (hf & 1));
+  for (const auto& hf : cells) soup.add_cell(hf);
+  return VolumeMesh(std::move(soup));
+}
+
+// The same mesh with every face's vertex list rotated (face f starts at its corner f mod n) and
+// every cell's half-faces in reverse order: the same complex, numbered alike, listed differently.
+inline VolumeMesh relisted_volume(const VolumeMesh& mesh) {
+  PolyhedronSoup soup;
+  soup.positions = mesh.positions();
+  for (int f = 0; f < mesh.n_faces(); ++f) {
+    std::vector<int> face(mesh.face(f).begin(), mesh.face(f).end());
+    std::rotate(face.begin(), face.begin() + f % int(face.size()), face.end());
+    soup.add_face(face);
+  }
+  for (int c = 0; c < mesh.n_cells(); ++c) {
+    std::vector<int> hf(mesh.cell(c).begin(), mesh.cell(c).end());
+    std::reverse(hf.begin(), hf.end());
+    soup.add_cell(hf);
+  }
+  return VolumeMesh(std::move(soup));
 }
 
 }  // namespace polydec::test

@@ -1,0 +1,559 @@
+// dec/volume/mesh_complex.cpp — the volume mesh complex (dec/volume/mesh_complex.h): d0..d2,
+// the commuting prolongations P1..P3 solved cell by cell with small dense systems, and the stars
+// assembled cell by cell from the sub-tetrahedra.
+#include "polydec/dec/volume/mesh_complex.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "polydec/dec/volume/prolongation.h"
+#include "polydec/dec/volume/whitney.h"
+
+namespace polydec {
+
+namespace volume_mesh_complex_detail {
+namespace {
+
+using Triplet = Eigen::Triplet<double>;
+
+int local_index(const std::vector<int>& sorted, int value) {
+  const auto it = std::lower_bound(sorted.begin(), sorted.end(), value);
+  if (it == sorted.end() || *it != value) throw std::logic_error("volume mesh complex: local cell missing");
+  return int(it - sorted.begin());
+}
+
+template <size_t K>
+int local_simplex(const std::vector<std::array<int, K>>& sorted, const std::array<int, K>& s) {
+  const auto it = std::lower_bound(sorted.begin(), sorted.end(), s);
+  if (it == sorted.end() || *it != s) throw std::logic_error("volume mesh complex: refined simplex missing");
+  return int(it - sorted.begin());
+}
+
+// Global edge of the vertex pair (a, b), by binary search in the lexicographic VolumeMesh::edges().
+int global_edge(const Eigen::MatrixX2i& E, int a, int b) {
+  if (a > b) std::swap(a, b);
+  int lo = 0, hi = int(E.rows());
+  while (lo < hi) {
+    const int mid = (lo + hi) / 2;
+    if (E(mid, 0) < a || (E(mid, 0) == a && E(mid, 1) < b))
+      lo = mid + 1;
+    else
+      hi = mid;
+  }
+  if (lo == E.rows() || E(lo, 0) != a || E(lo, 1) != b) throw std::logic_error("volume mesh complex: edge missing");
+  return lo;
+}
+
+// The per-polygon kernel of face f: its weights and its fan triangles' areas signed along the
+// face's unit vector-area normal (as signed_fan_areas on surfaces).
+PolygonCochainMaps face_kernel(const VolumeMesh& mesh, const VolumeRefinement& R, int f, SpokeRule rule) {
+  const auto face = mesh.face(f);
+  const int n = int(face.size());
+  const Eigen::Vector3d xf = R.face_points.row(f).transpose();
+  std::vector<Eigen::Vector3d> cross(static_cast<size_t>(n));
+  Eigen::Vector3d N = Eigen::Vector3d::Zero();
+  for (int k = 0; k < n; ++k) {
+    cross[size_t(k)] = (mesh.position(face[size_t(k)]) - xf).cross(mesh.position(face[size_t((k + 1) % n)]) - xf);
+    N += cross[size_t(k)];
+  }
+  const double len = N.norm();
+  const Eigen::Vector3d unit = len > 0 ? Eigen::Vector3d(N / len) : Eigen::Vector3d::Zero();
+  std::vector<double> areas(static_cast<size_t>(n));
+  for (int k = 0; k < n; ++k) areas[size_t(k)] = 0.5 * cross[size_t(k)].dot(unit);
+  return polygon_cochain_maps(R.weights_of_face(mesh, f), areas, rule);
+}
+
+// Sign of the refined simplex s (sorted) against the ordered tuple it came from.
+template <size_t K>
+int permutation_sign(std::array<int, K> a) {
+  int sign = 1;
+  for (size_t i = 0; i < K; ++i)
+    for (size_t j = i + 1; j < K; ++j)
+      if (a[i] > a[j]) sign = -sign;
+  return sign;
+}
+
+template <size_t K>
+std::array<int, K> sorted(std::array<int, K> a) {
+  std::sort(a.begin(), a.end());
+  return a;
+}
+
+// Everything of one cell: its local coarse cells, its sub-tetrahedra and the rows of P0..P3 of
+// every refined simplex of its sub-tetrahedra over the local coarse cells.
+struct CellMaps {
+  std::vector<int> verts;     // cell_vertices(c), ascending (global)
+  std::vector<int> edges;     // global edges of the closure, ascending
+  std::vector<int> faces;     // global faces, in half-face order
+  Eigen::VectorXd Z;          // +1 for half-face 2f, -1 for 2f+1 (row c of d2)
+  struct Tet {
+    std::array<int, 4> v;     // sorted refined vertices
+    int o;                    // +1 when (x_i, x_{i+1}, x_f, x_c) in outward order is the sorted orientation
+    SubTet quality;
+    double volume;            // signed, along the sorted orientation
+  };
+  std::vector<Tet> tets;
+  std::vector<std::array<int, 2>> s1;
+  std::vector<std::array<int, 3>> s2;
+  Eigen::MatrixXd P0;  // (nVc + nFc + 1) x nVc: rows of the cell's vertices, face points (local order), cell point
+  Eigen::MatrixXd P1;  // s1 x edges
+  Eigen::MatrixXd P2;  // s2 x faces
+  Eigen::VectorXd P3;  // per tet (order of `tets`), over the cell itself
+  int n_vertices = 0, n_faces = 0;  // of the mesh
+
+  // Local row of refined vertex r in P0.
+  int p0_row(int r) const {
+    if (r < n_vertices) return local_index(verts, r);
+    if (r < n_vertices + n_faces) {
+      const auto it = std::find(faces.begin(), faces.end(), r - n_vertices);
+      if (it == faces.end()) throw std::logic_error("volume mesh complex: face point missing");
+      return int(verts.size()) + int(it - faces.begin());
+    }
+    return int(verts.size() + faces.size());
+  }
+};
+
+// Builds the maps of cell c up to degree `degree` (P_k for k <= degree; P2 needs the
+// sub-tetrahedra's targets, so degree >= 2 computes the c_rho in any case).
+void build_cell(const VolumeMesh& mesh, const VolumeRefinement& R, int c, int degree, SpokeRule rule,
+                CellMaps& W) {
+  const int nV = mesh.n_vertices(), nF = mesh.n_faces();
+  const int cp = nV + nF + c;
+  const Eigen::MatrixX2i& E = mesh.edges();
+  W.n_vertices = nV;
+  W.n_faces = nF;
+  const auto cv = mesh.cell_vertices(c);
+  W.verts.assign(cv.begin(), cv.end());
+  const auto hfs = mesh.cell(c);
+  const int nFc = int(hfs.size()), nVc = int(W.verts.size());
+  W.faces.resize(size_t(nFc));
+  W.Z.resize(nFc);
+  W.edges.clear();
+  // side_edge[l][k]: the global, then the local edge of side k of face l (corner k to k+1).
+  std::vector<std::vector<int>> side_edge(static_cast<size_t>(nFc));
+  for (int l = 0; l < nFc; ++l) {
+    W.faces[size_t(l)] = hfs[size_t(l)] / 2;
+    W.Z[l] = (hfs[size_t(l)] & 1) ? -1.0 : 1.0;
+    const auto face = mesh.face(W.faces[size_t(l)]);
+    for (size_t k = 0; k < face.size(); ++k) {
+      side_edge[size_t(l)].push_back(global_edge(E, face[k], face[(k + 1) % face.size()]));
+      W.edges.push_back(side_edge[size_t(l)].back());
+    }
+  }
+  std::sort(W.edges.begin(), W.edges.end());
+  W.edges.erase(std::unique(W.edges.begin(), W.edges.end()), W.edges.end());
+  for (auto& sides : side_edge)
+    for (int& e : sides) e = local_index(W.edges, e);
+  const int nEc = int(W.edges.size());
+  if (nVc - nEc + nFc != 2)
+    throw std::invalid_argument("volume mesh complex: the boundary of cell " + std::to_string(c) +
+                                " is not a sphere (V - E + F = " + std::to_string(nVc - nEc + nFc) + ")");
+
+  // Local incidence: D0 (nEc x nVc), D1 (nFc x nEc).
+  Eigen::MatrixXd D0 = Eigen::MatrixXd::Zero(nEc, nVc), D1 = Eigen::MatrixXd::Zero(nFc, nEc);
+  for (int e = 0; e < nEc; ++e) {
+    D0(e, local_index(W.verts, E(W.edges[size_t(e)], 0))) = -1.0;
+    D0(e, local_index(W.verts, E(W.edges[size_t(e)], 1))) = 1.0;
+  }
+  std::vector<PolygonCochainMaps> K(static_cast<size_t>(nFc));
+  for (int l = 0; l < nFc; ++l) {
+    const int f = W.faces[size_t(l)];
+    const auto face = mesh.face(f);
+    const int n = int(face.size());
+    for (int k = 0; k < n; ++k) {
+      const int a = face[size_t(k)], b = face[size_t((k + 1) % n)];
+      D1(l, side_edge[size_t(l)][size_t(k)]) += a < b ? 1.0 : -1.0;
+    }
+    if (degree >= 1) K[size_t(l)] = face_kernel(mesh, R, f, rule);
+  }
+
+  // P0 rows of the cell's refined vertices.
+  W.P0 = Eigen::MatrixXd::Zero(nVc + nFc + 1, nVc);
+  for (int i = 0; i < nVc; ++i) W.P0(i, i) = 1.0;
+  for (int l = 0; l < nFc; ++l) {
+    const int f = W.faces[size_t(l)];
+    const auto face = mesh.face(f);
+    const auto w = R.weights_of_face(mesh, f);
+    for (size_t k = 0; k < face.size(); ++k) W.P0(nVc + l, local_index(W.verts, face[k])) += w[k];
+  }
+  {
+    const auto w = R.weights_of_cell(c);
+    for (int i = 0; i < nVc; ++i) W.P0(nVc + nFc, i) = w[size_t(i)];
+  }
+
+  // Sub-tetrahedra, in the order of VolumeRefinement::tets.
+  W.tets.clear();
+  {
+    int t = R.tet_offsets[size_t(c)];
+    std::vector<int> hv;
+    for (int l = 0; l < nFc; ++l) {
+      const auto face = mesh.face(W.faces[size_t(l)]);
+      hv.assign(face.begin(), face.end());
+      if (hfs[size_t(l)] & 1) std::reverse(hv.begin(), hv.end());
+      const int n = int(hv.size());
+      for (int i = 0; i < n; ++i, ++t) {
+        const std::array<int, 4> ordered = {hv[size_t(i)], hv[size_t((i + 1) % n)], nV + W.faces[size_t(l)], cp};
+        CellMaps::Tet tet;
+        tet.v = sorted(ordered);
+        tet.o = permutation_sign(ordered);
+        tet.quality = R.tets[size_t(t)];
+        Eigen::Vector3d p[4];
+        for (int a = 0; a < 4; ++a) p[a] = refined_position(mesh, R, tet.v[size_t(a)]);
+        tet.volume = tet_signed_volume(p[0], p[1], p[2], p[3]);
+        W.tets.push_back(tet);
+      }
+    }
+  }
+  if (degree < 1) return;
+
+  // P1.
+  W.s1.clear();
+  for (const auto& tet : W.tets)
+    for (int a = 0; a < 4; ++a)
+      for (int b = a + 1; b < 4; ++b) W.s1.push_back({tet.v[size_t(a)], tet.v[size_t(b)]});
+  std::sort(W.s1.begin(), W.s1.end());
+  W.s1.erase(std::unique(W.s1.begin(), W.s1.end()), W.s1.end());
+  const int n1 = int(W.s1.size());
+  W.P1 = Eigen::MatrixXd::Zero(n1, nEc);
+  std::vector<int> interior1;
+  for (int r = 0; r < n1; ++r) {
+    const int a = W.s1[size_t(r)][0], b = W.s1[size_t(r)][1];
+    if (b < nV) {
+      W.P1(r, local_index(W.edges, global_edge(E, a, b))) = 1.0;  // sorted a < b: the edge's way
+    } else if (b < nV + nF) {
+      // Spoke (a, x_f): row of corner a in face f's side basis.
+      const int f = b - nV;
+      const int l = int(std::find(W.faces.begin(), W.faces.end(), f) - W.faces.begin());
+      const auto face = mesh.face(f);
+      const int n = int(face.size());
+      const int i = int(std::find(face.begin(), face.end(), a) - face.begin());
+      for (int k = 0; k < n; ++k) {
+        const int p = face[size_t(k)], q = face[size_t((k + 1) % n)];
+        W.P1(r, side_edge[size_t(l)][size_t(k)]) += (p < q ? 1.0 : -1.0) * K[size_t(l)].spokes(i, k);
+      }
+    } else {
+      interior1.push_back(r);
+    }
+  }
+  {
+    // r D0 = g with g = P0(b) - P0(a): r^T = D0 (L + 1 1^T / n)^-1 g^T (g sums to 0, so this is
+    // D0 L^+ g^T, the least-norm solution).
+    const int m = int(interior1.size());
+    Eigen::MatrixXd G(nVc, m);
+    for (int j = 0; j < m; ++j) {
+      const auto& s = W.s1[size_t(interior1[size_t(j)])];
+      G.col(j) = (W.P0.row(W.p0_row(s[1])) - W.P0.row(W.p0_row(s[0]))).transpose();
+    }
+    Eigen::MatrixXd L = D0.transpose() * D0;
+    L.array() += 1.0 / nVc;
+    const Eigen::MatrixXd Y = L.ldlt().solve(G);
+    const Eigen::MatrixXd rows = (D0 * Y).transpose();
+    for (int j = 0; j < m; ++j) W.P1.row(interior1[size_t(j)]) = rows.row(j);
+  }
+  if (degree < 2) return;
+
+  // P2.
+  W.s2.clear();
+  for (const auto& tet : W.tets)
+    for (int missing = 0; missing < 4; ++missing) {
+      std::array<int, 3> tri;
+      for (int a = 0, k = 0; a < 4; ++a)
+        if (a != missing) tri[size_t(k++)] = tet.v[size_t(a)];
+      W.s2.push_back(tri);
+    }
+  std::sort(W.s2.begin(), W.s2.end());
+  W.s2.erase(std::unique(W.s2.begin(), W.s2.end()), W.s2.end());
+  const int n2 = int(W.s2.size());
+  W.P2 = Eigen::MatrixXd::Zero(n2, nFc);
+  std::vector<int> interior2, slot2(size_t(n2), -1);
+  for (int r = 0; r < n2; ++r) {
+    const auto& s = W.s2[size_t(r)];
+    if (s[2] < nV + nF) {
+      // Fan triangle (a, b, x_f): side k of face f runs between a and b.
+      const int f = s[2] - nV;
+      const int l = int(std::find(W.faces.begin(), W.faces.end(), f) - W.faces.begin());
+      const auto face = mesh.face(f);
+      const int n = int(face.size());
+      const int i = int(std::find(face.begin(), face.end(), s[0]) - face.begin());
+      const int k = face[size_t((i + 1) % n)] == s[1] ? i : (i + n - 1) % n;
+      const int p = face[size_t(k)], q = face[size_t((k + 1) % n)];
+      W.P2(r, l) = (p < q ? 1.0 : -1.0) * K[size_t(l)].fractions[k];
+    } else {
+      slot2[size_t(r)] = int(interior2.size());
+      interior2.push_back(r);
+    }
+  }
+  const int m2 = int(interior2.size());
+  {
+    // Minimum norm: r^T = (D1 D1^T + Z Z^T)^-1 D1 b^T, b = sum_i (-1)^i P1(rho without i).
+    Eigen::MatrixXd B(nEc, m2);
+    for (int j = 0; j < m2; ++j) {
+      const auto& s = W.s2[size_t(interior2[size_t(j)])];
+      B.col(j) = (W.P1.row(local_simplex(W.s1, {s[1], s[2]})) - W.P1.row(local_simplex(W.s1, {s[0], s[2]})) +
+                  W.P1.row(local_simplex(W.s1, {s[0], s[1]})))
+                     .transpose();
+    }
+    const Eigen::MatrixXd A = D1 * D1.transpose() + W.Z * W.Z.transpose();
+    const Eigen::MatrixXd Y = A.ldlt().solve(D1 * B);
+    for (int j = 0; j < m2; ++j) W.P2.row(interior2[size_t(j)]) = Y.col(j).transpose();
+  }
+  // The c_rho: every tetrahedron tau has P3 row s_tau = (d^tet_2 P2)_tau . Z / |Z|^2
+  // = s0_tau + sum over its interior triangles of their sign times c_rho; ask s_tau = vol_tau / vol_c
+  // and take the least-norm c = B3^T (B3 B3^T + o o^T)^-1 (t - s0), B3 the tetrahedra x interior
+  // triangles incidence, o its left kernel (the tetrahedra's signs against the cell).
+  const int nt = int(W.tets.size());
+  double vol_c = 0;
+  for (const auto& tet : W.tets) vol_c -= tet.o * tet.volume;  // (x_i, x_{i+1}, x_f, x_c) outward is negative
+  if (!(vol_c > 0))
+    throw std::invalid_argument("volume mesh complex: cell " + std::to_string(c) +
+                                " has non-positive refined volume");
+  const double zz = W.Z.squaredNorm();
+  Eigen::VectorXd y(nt);
+  Eigen::MatrixXd L3 = Eigen::MatrixXd::Zero(nt, nt);
+  std::vector<std::array<std::pair<int, int>, 4>> tri_of(static_cast<size_t>(nt));  // (local triangle, sign)
+  std::vector<std::vector<std::pair<int, int>>> tets_of(static_cast<size_t>(m2));
+  for (int t = 0; t < nt; ++t) {
+    const auto& v = W.tets[size_t(t)].v;
+    double s0 = 0;
+    for (int missing = 0; missing < 4; ++missing) {
+      std::array<int, 3> tri;
+      for (int a = 0, k = 0; a < 4; ++a)
+        if (a != missing) tri[size_t(k++)] = v[size_t(a)];
+      const int r = local_simplex(W.s2, tri), sign = missing % 2 == 0 ? 1 : -1;
+      tri_of[size_t(t)][size_t(missing)] = {r, sign};
+      s0 += sign * W.P2.row(r).dot(W.Z) / zz;
+      if (slot2[size_t(r)] >= 0) tets_of[size_t(slot2[size_t(r)])].push_back({t, sign});
+    }
+    y[t] = W.tets[size_t(t)].volume / vol_c - s0;
+  }
+  for (const auto& list : tets_of)
+    for (const auto& [t, s] : list)
+      for (const auto& [u, q] : list) L3(t, u) += double(s * q);
+  for (int t = 0; t < nt; ++t)
+    for (int u = 0; u < nt; ++u) L3(t, u) += double(W.tets[size_t(t)].o * W.tets[size_t(u)].o);
+  const Eigen::VectorXd z = L3.ldlt().solve(y);
+  for (int j = 0; j < m2; ++j) {
+    double cj = 0;
+    for (const auto& [t, s] : tets_of[size_t(j)]) cj += s * z[t];
+    W.P2.row(interior2[size_t(j)]) += cj * W.Z.transpose();
+  }
+  if (degree < 3) return;
+
+  // P3 from the commutation.
+  W.P3.resize(nt);
+  for (int t = 0; t < nt; ++t) {
+    double s = 0;
+    for (const auto& [r, sign] : tri_of[size_t(t)]) s += sign * W.P2.row(r).dot(W.Z);
+    W.P3[t] = s / zz;
+  }
+}
+
+void check_degree(int k, int lo, int hi, const char* caller) {
+  if (k < lo || k > hi)
+    throw std::invalid_argument(std::string(caller) + ": k = " + std::to_string(k) + " (" + std::to_string(lo) +
+                                ".." + std::to_string(hi) + ")");
+}
+
+// What one pass over the cells assembles: P_k for the k in `prolongations` (1..3, rows in the
+// numbering of `refined`), the stars up to `star_degree` (-1: none).
+struct Request {
+  bool prolongations[4] = {false, false, false, false};
+  int star_degree = -1;
+};
+
+struct Assembled {
+  SparseMatrix P[4];
+  std::array<SparseMatrix, 4> star;
+};
+
+// Appends the rows of P_k of cell c's refined simplices not emitted yet (a face's rows are the
+// same from both of its cells).
+void emit_prolongation(const CellMaps& W, int c, int k, const SimplexComplex3& refined, std::vector<char>& done,
+                       std::vector<Triplet>& t) {
+  auto emit = [&](int row, auto values, const std::vector<int>& cols) {
+    if (row < 0 || row >= int(done.size()))
+      throw std::invalid_argument("volume_mesh_prolongation: the refined complex does not belong to this mesh");
+    if (done[size_t(row)]) return;
+    done[size_t(row)] = 1;
+    for (Eigen::Index j = 0; j < values.size(); ++j)
+      if (values[j] != 0.0) t.emplace_back(row, cols[size_t(j)], values[j]);
+  };
+  if (k == 1) {
+    for (size_t r = 0; r < W.s1.size(); ++r) emit(refined.index(W.s1[r]), W.P1.row(Eigen::Index(r)), W.edges);
+  } else if (k == 2) {
+    for (size_t r = 0; r < W.s2.size(); ++r) emit(refined.index(W.s2[r]), W.P2.row(Eigen::Index(r)), W.faces);
+  } else {
+    const std::vector<int> self{c};
+    for (size_t r = 0; r < W.tets.size(); ++r)
+      emit(refined.index(W.tets[r].v), W.P3.segment(Eigen::Index(r), 1), self);
+  }
+}
+
+// Adds cell c's blocks of star_0..star_max_degree: P_k^T star_k^tet P_k over its sub-tetrahedra.
+void add_cell_stars(const VolumeMesh& mesh, const VolumeRefinement& R, const CellMaps& W, int c, int max_degree,
+                    std::vector<Triplet> (&t)[4], std::vector<double>& s3) {
+  const int nVc = int(W.verts.size()), nEc = int(W.edges.size()), nFc = int(W.faces.size());
+  Eigen::MatrixXd local[3];
+  local[0].setZero(nVc, nVc);
+  if (max_degree >= 1) local[1].setZero(nEc, nEc);
+  if (max_degree >= 2) local[2].setZero(nFc, nFc);
+  Eigen::Matrix<double, 4, Eigen::Dynamic> R0(4, nVc), R2(4, nFc);
+  Eigen::Matrix<double, 6, Eigen::Dynamic> R1(6, nEc);
+  for (size_t i = 0; i < W.tets.size(); ++i) {
+    const auto& tet = W.tets[i];
+    const auto& v = tet.v;
+    Eigen::Vector3d p[4];
+    for (int a = 0; a < 4; ++a) p[a] = refined_position(mesh, R, v[size_t(a)]);
+    for (int a = 0; a < 4; ++a) R0.row(a) = W.P0.row(W.p0_row(v[size_t(a)]));
+    local[0].noalias() += R0.transpose() * tet_whitney0_mass(p[0], p[1], p[2], p[3]) * R0;
+    if (tet.quality == SubTet::Degenerate) continue;
+    if (max_degree >= 1) {
+      for (int a = 0; a < 4; ++a)
+        for (int b = a + 1; b < 4; ++b)
+          R1.row(tet_local_edge(a, b)) = W.P1.row(local_simplex(W.s1, {v[size_t(a)], v[size_t(b)]}));
+      local[1].noalias() += R1.transpose() * tet_whitney1_mass(p[0], p[1], p[2], p[3]) * R1;
+    }
+    if (max_degree >= 2) {
+      for (int missing = 0; missing < 4; ++missing) {
+        std::array<int, 3> tri;
+        for (int a = 0, k = 0; a < 4; ++a)
+          if (a != missing) tri[size_t(k++)] = v[size_t(a)];
+        R2.row(tet_local_triangle_without(missing)) = W.P2.row(local_simplex(W.s2, tri));
+      }
+      local[2].noalias() += R2.transpose() * tet_whitney2_mass(p[0], p[1], p[2], p[3]) * R2;
+    }
+    if (max_degree >= 3)
+      s3[size_t(c)] += W.P3[Eigen::Index(i)] * W.P3[Eigen::Index(i)] * tet_whitney3_mass(p[0], p[1], p[2], p[3]);
+  }
+  const std::vector<int>* index[3] = {&W.verts, &W.edges, &W.faces};
+  for (int k = 0; k <= std::min(max_degree, 2); ++k) {
+    const std::vector<int>& g = *index[k];
+    const int n = int(g.size());
+    for (int b = 0; b < n; ++b)
+      for (int a = 0; a < n; ++a) t[k].emplace_back(g[size_t(a)], g[size_t(b)], local[k](a, b));
+  }
+}
+
+// One pass over the cells, each cell's maps built once, up to the highest degree asked for.
+Assembled assemble(const VolumeMesh& mesh, const VolumeRefinement& R, const SimplexComplex3* refined,
+                   const Request& request, SpokeRule rule) {
+  int degree = std::max(request.star_degree, 0);
+  for (int k = 1; k < 4; ++k)
+    if (request.prolongations[k]) degree = std::max(degree, k);
+  const int nV = mesh.n_vertices(), nF = mesh.n_faces(), nC = mesh.n_cells();
+  if (degree > 0 && refined && refined->n_vertices() != nV + nF + nC)
+    throw std::invalid_argument("volume_mesh_prolongation: the refined complex does not belong to this mesh");
+  std::vector<char> done[4];
+  std::vector<Triplet> pt[4], st[4];
+  for (int k = 1; k < 4; ++k)
+    if (request.prolongations[k]) done[k].assign(size_t(refined->n_simplices(k)), 0);
+  std::vector<double> s3(size_t(nC), 0.0);
+  CellMaps W;
+  for (int c = 0; c < nC; ++c) {
+    build_cell(mesh, R, c, degree, rule, W);
+    for (int k = 1; k < 4; ++k)
+      if (request.prolongations[k]) emit_prolongation(W, c, k, *refined, done[k], pt[k]);
+    if (request.star_degree >= 0) add_cell_stars(mesh, R, W, c, request.star_degree, st, s3);
+  }
+  Assembled out;
+  const int sizes[4] = {nV, mesh.n_edges(), nF, nC};
+  for (int k = 1; k < 4; ++k)
+    if (request.prolongations[k]) {
+      out.P[k].resize(refined->n_simplices(k), sizes[k]);
+      out.P[k].setFromTriplets(pt[k].begin(), pt[k].end());
+    }
+  for (int c = 0; request.star_degree >= 3 && c < nC; ++c) st[3].emplace_back(c, c, s3[size_t(c)]);
+  for (int k = 0; k <= request.star_degree; ++k) {
+    out.star[size_t(k)].resize(sizes[k], sizes[k]);
+    out.star[size_t(k)].setFromTriplets(st[k].begin(), st[k].end());
+  }
+  return out;
+}
+
+}  // namespace
+}  // namespace volume_mesh_complex_detail
+
+SparseMatrix volume_mesh_d(const VolumeMesh& mesh, int k) {
+  using namespace volume_mesh_complex_detail;
+  check_degree(k, 0, 2, "volume_mesh_d");
+  std::vector<Triplet> t;
+  SparseMatrix d;
+  if (k == 0) {
+    const Eigen::MatrixX2i& E = mesh.edges();
+    for (int e = 0; e < E.rows(); ++e) {
+      t.emplace_back(e, E(e, 0), -1.0);
+      t.emplace_back(e, E(e, 1), 1.0);
+    }
+    d.resize(mesh.n_edges(), mesh.n_vertices());
+  } else if (k == 1) {
+    for (int f = 0; f < mesh.n_faces(); ++f) {
+      const auto face = mesh.face(f);
+      const size_t n = face.size();
+      for (size_t i = 0; i < n; ++i) {
+        const int a = face[i], b = face[(i + 1) % n];
+        t.emplace_back(f, global_edge(mesh.edges(), a, b), a < b ? 1.0 : -1.0);
+      }
+    }
+    d.resize(mesh.n_faces(), mesh.n_edges());
+  } else {
+    for (int c = 0; c < mesh.n_cells(); ++c)
+      for (int hf : mesh.cell(c)) t.emplace_back(c, hf / 2, (hf & 1) ? -1.0 : 1.0);
+    d.resize(mesh.n_cells(), mesh.n_faces());
+  }
+  d.setFromTriplets(t.begin(), t.end());
+  return d;
+}
+
+SparseMatrix volume_mesh_prolongation(const VolumeMesh& mesh, const VolumeRefinement& refinement,
+                                      const SimplexComplex3& refined, int k, SpokeRule rule) {
+  using namespace volume_mesh_complex_detail;
+  check_refinement(mesh, refinement, "volume_mesh_prolongation");
+  check_degree(k, 0, 3, "volume_mesh_prolongation");
+  if (k == 0) return volume_prolongation(mesh, refinement);
+  Request request;
+  request.prolongations[k] = true;
+  Assembled a = assemble(mesh, refinement, &refined, request, rule);
+  SparseMatrix P;
+  P.swap(a.P[k]);
+  return P;
+}
+
+SparseMatrix volume_mesh_prolongation(const VolumeMesh& mesh, const VolumeRefinement& refinement, int k,
+                                      SpokeRule rule) {
+  volume_mesh_complex_detail::check_degree(k, 0, 3, "volume_mesh_prolongation");
+  if (k == 0) return volume_prolongation(mesh, refinement);
+  return volume_mesh_prolongation(mesh, refinement, volume_refined_complex(mesh, refinement), k, rule);
+}
+
+std::array<SparseMatrix, 4> volume_mesh_stars(const VolumeMesh& mesh, const VolumeRefinement& refinement,
+                                              int max_degree, SpokeRule rule) {
+  using namespace volume_mesh_complex_detail;
+  check_refinement(mesh, refinement, "volume_mesh_stars");
+  check_degree(max_degree, 0, 3, "volume_mesh_stars");
+  Request request;
+  request.star_degree = max_degree;
+  return assemble(mesh, refinement, nullptr, request, rule).star;
+}
+
+VolumeMeshDec volume_mesh_dec(const VolumeMesh& mesh, const VolumeRefinement& refinement,
+                              const SimplexComplex3& refined, int max_degree, SpokeRule rule) {
+  using namespace volume_mesh_complex_detail;
+  check_refinement(mesh, refinement, "volume_mesh_dec");
+  check_degree(max_degree, 0, 3, "volume_mesh_dec");
+  Request request;
+  for (int k = 1; k <= max_degree; ++k) request.prolongations[k] = true;
+  request.star_degree = max_degree;
+  Assembled a = assemble(mesh, refinement, &refined, request, rule);
+  VolumeMeshDec D;
+  for (int k = 0; k < max_degree; ++k) D.d[k] = volume_mesh_d(mesh, k);
+  D.P[0] = volume_prolongation(mesh, refinement);
+  for (int k = 1; k <= max_degree; ++k) D.P[k].swap(a.P[k]);  // swap: std::move copies an Eigen 3.4 SparseMatrix
+  for (int k = 0; k <= max_degree; ++k) D.star[k].swap(a.star[size_t(k)]);
+  return D;
+}
+
+}  // namespace polydec
