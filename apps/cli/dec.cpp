@@ -6,7 +6,8 @@
 // vertices in its orientation). Volume meshes (.ovm, .vtk, .mesh, or --volume): d0, d1, d2, star0..star3,
 // P0..P3 of the polyhedral refinement (dec/volume/hodge_star.h) and the coarse cell lists
 // edges.txt, triangles.txt, tetrahedra.txt (vertex pairs, triples, quadruples sharing a cell), up
-// to the degree the cells' sizes allow (--max-degree; dec/volume/complex.h).
+// to the degree the cells' sizes allow (--max-degree; dec/volume/complex.h); with --complex mesh on
+// the mesh's edges, faces and cells, every degree (dec/volume/mesh_complex.h).
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
@@ -121,8 +122,100 @@ void run_surface_mesh_complex(const Options& o, const Mesh& mesh, const Refineme
   fmt::print("wrote d0 d1 star0 star1 star2 P0 P1 P2 (.mtx), edges.txt, faces.txt to {}\n", o.out);
 }
 
+// The volume mesh complex: d0..d2, P0..P3, star0..star3 on the mesh's edges, faces and cells (every
+// degree for every cell size), edges.txt, faces.txt and cells.txt (one cell a line: its half-faces
+// h, face h / 2 as listed in faces.txt when h is even (then d2 = +1), reversed when odd (d2 = -1)).
+void run_volume_mesh_complex(const Options& o, const VolumeMesh& mesh, const VolumeRefinement& r, double read_seconds) {
+  SpokeRule rule;
+  try {
+    rule = parse_spoke_rule(o.spoke_rule);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  const int degree = o.max_degree < 0 ? 3 : o.max_degree;
+  auto t0 = std::chrono::steady_clock::now();
+  VolumeDec D;
+  try {
+    D = volume_dec(mesh, r, VolumeDecOptions{.max_degree = degree, .complex = DecComplex::Mesh, .spoke_rule = rule});
+  } catch (const std::invalid_argument& e) {  // a cell that is not a ball: the file's content
+    throw FileError(o.mesh, 0, -1, e.what());
+  }
+  const double build_seconds = seconds_since(t0);
+  t0 = std::chrono::steady_clock::now();
+  std::filesystem::create_directories(o.out);
+  const std::string d = o.out + "/";
+  std::vector<std::string> files;
+  auto write = [&](const std::string& name, const SparseMatrix& A) {
+    write_matrix_market(d + name, A);
+    files.push_back(name);
+  };
+  for (int k = 0; k < degree; ++k) write(fmt::format("d{}.mtx", k), D.d[k]);
+  if (o.lumped) {
+    const Eigen::VectorXd rows = D.star[0] * Eigen::VectorXd::Ones(mesh.n_vertices());
+    write("star0.mtx", SparseMatrix(rows.asDiagonal()));
+  } else {
+    write("star0.mtx", D.star[0]);
+  }
+  for (int k = 1; k <= degree; ++k) write(fmt::format("star{}.mtx", k), D.star[k]);
+  for (int k = 0; k <= degree; ++k) write(fmt::format("P{}.mtx", k), D.P[k]);
+  write_cells(d + "edges.txt", mesh.edges());
+  files.push_back("edges.txt");
+  {
+    std::ofstream out(d + "faces.txt"), cells(d + "cells.txt");
+    if (!out || !cells) throw FileError(d + "faces.txt", 0, -1, "cannot open file for writing");
+    for (int f = 0; f < mesh.n_faces(); ++f) {
+      const auto face = mesh.face(f);
+      for (size_t k = 0; k < face.size(); ++k) out << (k ? " " : "") << face[k];
+      out << '\n';
+    }
+    for (int c = 0; c < mesh.n_cells(); ++c) {
+      const auto cell = mesh.cell(c);
+      for (size_t k = 0; k < cell.size(); ++k) cells << (k ? " " : "") << cell[k];
+      cells << '\n';
+    }
+    if (!out || !cells) throw FileError(d + "faces.txt", 0, -1, "write failed");
+  }
+  files.push_back("faces.txt");
+  files.push_back("cells.txt");
+  const double write_seconds = seconds_since(t0);
+  nlohmann::json nonzeros = nlohmann::json::object();
+  for (int k = 0; k <= degree; ++k) nonzeros[fmt::format("star{}", k)] = D.star[k].nonZeros();
+  nlohmann::json j = {{"mesh", o.mesh},
+                      {"out", o.out},
+                      {"complex", "mesh"},
+                      {"spoke_rule", to_string(rule)},
+                      {"vertices", mesh.n_vertices()},
+                      {"edges", mesh.n_edges()},
+                      {"faces", mesh.n_faces()},
+                      {"cells", mesh.n_cells()},
+                      {"max_degree", degree},
+                      {"star0", o.lumped ? "lumped" : "galerkin"},
+                      {"nonzeros", nonzeros},
+                      {"subtet_degenerate", r.quality.n_degenerate},
+                      {"subtet_inverted", r.quality.n_inverted},
+                      {"seconds", {{"read", read_seconds}, {"operators", build_seconds}, {"write", write_seconds}}},
+                      {"files", files}};
+  if (o.json) {
+    print_json(j);
+    return;
+  }
+  fmt::print("{}: {} vertices, {} edges, {} faces, {} cells\n", o.mesh, mesh.n_vertices(), mesh.n_edges(),
+             mesh.n_faces(), mesh.n_cells());
+  fmt::print("mesh complex up to degree {}: positive definite stars (star3 diagonal)\n", degree);
+  fmt::print("sub-tetrahedra: {} degenerate, {} inverted\n", r.quality.n_degenerate, r.quality.n_inverted);
+  fmt::print("wrote {} to {}\n", fmt::join(files, " "), o.out);
+}
+
 void run_volume(const Options& o) {
+  DecComplex complex;
+  try {
+    complex = parse_dec_complex(o.complex);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  const auto t_read = std::chrono::steady_clock::now();
   const VolumeMesh mesh = load_volume_mesh(o.mesh);
+  const double read_seconds = seconds_since(t_read);
   VolumeRefinementOptions ropt;
   try {
     ropt.cell_rule = parse_cell_point_rule(o.cell_rule);
@@ -131,6 +224,7 @@ void run_volume(const Options& o) {
   }
   if (o.max_degree < -1 || o.max_degree > 3) throw UsageError("--max-degree must be 0, 1, 2 or 3");
   const VolumeRefinement r = refine_volume(mesh, ropt);
+  if (complex == DecComplex::Mesh) return run_volume_mesh_complex(o, mesh, r, read_seconds);
   const int allowed = volume_dec_max_degree(mesh);
   const int degree = o.max_degree < 0 ? allowed : o.max_degree;
   if (degree < 3 && o.max_degree < 0)

@@ -48,8 +48,8 @@ int global_edge(const Eigen::MatrixX2i& E, int a, int b) {
   return lo;
 }
 
-// The per-polygon kernel of face f: its weights and its fan triangles' areas signed along the
-// face's unit vector-area normal (as signed_fan_areas on surfaces).
+// The per-polygon kernel of face f: its weights and its fan triangles' areas, negative for a fan
+// triangle against the face's vector area (as signed_fan_areas on surfaces).
 PolygonCochainMaps face_kernel(const VolumeMesh& mesh, const VolumeRefinement& R, int f, SpokeRule rule) {
   const auto face = mesh.face(f);
   const int n = int(face.size());
@@ -60,10 +60,8 @@ PolygonCochainMaps face_kernel(const VolumeMesh& mesh, const VolumeRefinement& R
     cross[size_t(k)] = (mesh.position(face[size_t(k)]) - xf).cross(mesh.position(face[size_t((k + 1) % n)]) - xf);
     N += cross[size_t(k)];
   }
-  const double len = N.norm();
-  const Eigen::Vector3d unit = len > 0 ? Eigen::Vector3d(N / len) : Eigen::Vector3d::Zero();
   std::vector<double> areas(static_cast<size_t>(n));
-  for (int k = 0; k < n; ++k) areas[size_t(k)] = 0.5 * cross[size_t(k)].dot(unit);
+  for (int k = 0; k < n; ++k) areas[size_t(k)] = (cross[size_t(k)].dot(N) < 0 ? -0.5 : 0.5) * cross[size_t(k)].norm();
   return polygon_cochain_maps(R.weights_of_face(mesh, f), areas, rule);
 }
 

@@ -21,7 +21,7 @@
 //   - inside a mesh edge: the edge itself, a unit row;
 //   - inside a face f (spokes (v, x_f), fan triangles (v_i, v_{i+1}, x_f)): polygon_cochain_maps
 //     of the face (dec/surface/mesh_complex.h) with the face weights of the refinement and the fan
-//     triangles' areas signed along the face's vector-area normal, exactly as on surfaces;
+//     triangles' areas (negative when against the face's vector area), exactly as on surfaces;
 //   - inside a cell c (edges (v, x_c), (x_f, x_c); triangles (v_i, v_j, x_c) over the cell's
 //     edges and (v, x_f, x_c) over its face corners; the sub-tetrahedra): the row r of a refined
 //     k-simplex rho over the coarse k-cells of the cell's closure solves r D_{k-1} = row rho of

@@ -265,18 +265,23 @@ def volume_dec_max_degree(mesh):
     return _polydec.volume_dec_max_degree(_mesh(mesh))
 
 
-def volume_dec(mesh, max_degree=None, cell_point="squared-volume"):
+def volume_dec(mesh, max_degree=None, cell_point="squared-volume", complex="complete", spoke_rule="area"):
     """DEC on a volume mesh from one refinement (dec/volume/hodge_star.h) -> dict with d0, d1, d2
     (d_k for k < max_degree; integer-valued, d_{k+1} @ d_k = 0 exactly), P0..P3 and star0..star3
     (for k <= max_degree; star0 is the Galerkin mass, S = -d0.T @ star1 @ d0), all csc_matrix,
     the coarse cell lists pairs, triples, quads ((n, k+1) int32, increasing indices,
     lexicographic: the numbering of d and star) and max_degree. max_degree=None: the largest the
     cells allow (volume_dec_max_degree); a larger one raises ValueError naming the cell.
-    cell_point: "squared-volume" (default, method "ours") or "polylaplace"."""
+    cell_point: "squared-volume" (default, method "ours") or "polylaplace".
+    complex="mesh": on the mesh's own edges, faces and cells (dec/volume/mesh_complex.h), every
+    degree for every cell size (max_degree=None: 3), positive definite stars, star3 diagonal; the
+    dict then also holds the lists d, P, star (d[k], P[k], star[k]), edges ((|E|, 2) int32, i < j),
+    faces (vertex lists, each in its orientation) and cells (half-face lists: h // 2 is the face,
+    even h as listed (d2 = +1), odd reversed (d2 = -1))."""
     k = -1 if max_degree is None else int(max_degree)
     if max_degree is not None and not 0 <= k <= 3:
         raise ValueError(f"max_degree must be 0..3, got {max_degree}")
-    return _polydec.volume_dec(_mesh(mesh), k, str(cell_point))
+    return _polydec.volume_dec(_mesh(mesh), k, str(cell_point), str(complex), str(spoke_rule))
 
 
 # ---------------------------------------------------------------------------------------- solvers

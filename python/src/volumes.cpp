@@ -239,13 +239,18 @@ void register_volumes(py::module_& m) {
   m.def("volume_operators", &volume_operator_dict);
 
   m.def("volume_dec_max_degree", &volume_dec_max_degree);
-  m.def("volume_dec", [](const VolumeMesh& mesh, int max_degree, const std::string& cell_point) {
+  m.def("volume_dec", [](const VolumeMesh& mesh, int max_degree, const std::string& cell_point,
+                         const std::string& complex, const std::string& spoke_rule) {
     const VolumeRefinementOptions ropt = refinement_options(cell_point);
+    VolumeDecOptions options;
+    options.complex = parse_dec_complex(complex);
+    options.spoke_rule = parse_spoke_rule(spoke_rule);
     VolumeDec D;
     {
       py::gil_scoped_release release;
-      if (max_degree < 0) max_degree = volume_dec_max_degree(mesh);
-      D = volume_dec(mesh, refine_volume(mesh, ropt), max_degree);
+      if (max_degree < 0) max_degree = options.complex == DecComplex::Mesh ? 3 : volume_dec_max_degree(mesh);
+      options.max_degree = max_degree;
+      D = volume_dec(mesh, refine_volume(mesh, ropt), options);
     }
     py::dict d;
     d["max_degree"] = D.max_degree;
@@ -256,6 +261,25 @@ void register_volumes(py::module_& m) {
       if (k < D.max_degree) d[d_names[k]] = D.d[k];
       d[P_names[k]] = D.P[k];
       d[star_names[k]] = D.star[k];
+    }
+    d["complex"] = to_string(D.complex);
+    if (D.complex == DecComplex::Mesh) {
+      py::list d_list, P_list, star_list;
+      for (int k = 0; k < D.max_degree; ++k) d_list.append(D.d[k]);
+      for (int k = 0; k <= D.max_degree; ++k) {
+        P_list.append(D.P[k]);
+        star_list.append(D.star[k]);
+      }
+      d["d"] = d_list;
+      d["P"] = P_list;
+      d["star"] = star_list;
+      d["edges"] = Eigen::MatrixX2i(mesh.edges());
+      py::list faces, cells;
+      for (int f = 0; f < mesh.n_faces(); ++f) faces.append(std::vector<int>(mesh.face(f).begin(), mesh.face(f).end()));
+      for (int c = 0; c < mesh.n_cells(); ++c) cells.append(std::vector<int>(mesh.cell(c).begin(), mesh.cell(c).end()));
+      d["faces"] = faces;
+      d["cells"] = cells;
+      return d;
     }
     if (D.max_degree >= 1) d["pairs"] = D.coarse.simplices(1);
     if (D.max_degree >= 2) d["triples"] = D.coarse.simplices(2);

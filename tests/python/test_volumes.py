@@ -140,6 +140,23 @@ def test_dec_degree_limited_by_cell_size():
         polydec.volume_dec(mesh, max_degree=3)
 
 
+def test_dec_on_the_mesh_complex_has_every_degree_and_definite_stars():
+    mesh = polydec.truncated_octahedra_volume(1)          # 24-vertex cells
+    d = polydec.volume_dec(mesh, complex="mesh")
+    assert d["complex"] == "mesh" and d["max_degree"] == 3
+    d0, d1, d2 = d["d"]
+    assert d0.shape[0] == d["edges"].shape[0] and d1.shape[0] == len(d["faces"]) and d2.shape[0] == len(d["cells"])
+    assert abs(d1 @ d0).max() == 0 and abs(d2 @ d1).max() == 0
+    S = polydec.volume_stiffness(mesh)
+    assert abs(S + d0.T @ d["star"][1] @ d0).max() <= 1e-12 * abs(S).max()
+    for k in (1, 2, 3):
+        assert np.linalg.eigvalsh(d["star"][k].toarray()).min() > 0
+    assert d["star"][3].nnz == d2.shape[0]                 # diagonal
+    for c, halffaces in enumerate(d["cells"]):
+        for h in halffaces:
+            assert d2[c, h // 2] == (1 if h % 2 == 0 else -1)
+
+
 @pytest.mark.parametrize("method", METHODS)
 def test_neumann_spectrum_starts_at_zero_with_a_constant(method):
     mesh = MESHES["hex"]

@@ -10,6 +10,10 @@
 #include "polydec/apps/applications/hodge_decomposition.h"
 #include "polydec/dec/surface/hodge_star.h"
 #include "polydec/dec/io/mesh_io.h"
+#include "polydec/dec/io/volume_io.h"
+#include "polydec/dec/mesh/volume_generators.h"
+#include "polydec/dec/volume/hodge_star.h"
+#include <sstream>
 #include "tests/apps/cli/cli_run.h"
 #include "tests/support/feec_meshes.h"
 
@@ -161,6 +165,41 @@ TEST_CASE("polydec dec, hodge and spectrum on the mesh complex", "[feec][mesh-co
   CHECK(test::run_cli_in(dir, "dec " + dir + "/torus.obj --complex full --out " + dir + "/x").code == 2);
   CHECK(test::run_cli_in(dir, "dec " + dir + "/torus.obj --complex mesh --spoke-rule x --out " + dir + "/x").code == 2);
   CHECK(test::run_cli_in(dir, "hodge " + dir + "/torus.obj --complex full").code == 2);
+}
+
+TEST_CASE("polydec dec --complex mesh on a volume mesh: every degree, cells with their orientations",
+          "[feec][volume-mesh-complex]") {
+  const test::ScratchDir scratch("feec_volume_mesh_complex");
+  const std::string dir = scratch.dir.string();
+  write_volume_mesh(truncated_octahedra_volume(2), dir + "/octahedra.ovm");
+  const VolumeMesh m = read_volume_mesh(dir + "/octahedra.ovm");
+  const test::CliRun r =
+      test::run_cli_in(dir, "dec " + dir + "/octahedra.ovm --complex mesh --out " + dir + "/out --json");
+  REQUIRE(r.code == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  CHECK(j["max_degree"] == 3);  // 24-vertex cells: the complete complex stops at degree 1
+  CHECK(j["cells"] == m.n_cells());
+  const VolumeDec D =
+      volume_dec(m, refine_volume(m), VolumeDecOptions{.max_degree = 3, .complex = DecComplex::Mesh});
+  for (int k = 0; k < 3; ++k)
+    CHECK(test::relative_difference(read_matrix_market(dir + fmt::format("/out/d{}.mtx", k)), D.d[k]) == 0.0);
+  for (int k = 0; k <= 3; ++k) {
+    CHECK(test::relative_difference(read_matrix_market(dir + fmt::format("/out/star{}.mtx", k)), D.star[k]) <= 1e-15);
+    CHECK(test::relative_difference(read_matrix_market(dir + fmt::format("/out/P{}.mtx", k)), D.P[k]) <= 1e-15);
+  }
+  // cells.txt: the half-faces of each cell; d2 has +1 for an even one, -1 for an odd one.
+  std::ifstream cells(dir + "/out/cells.txt");
+  for (int c = 0; c < m.n_cells(); ++c) {
+    std::string line;
+    std::getline(cells, line);
+    std::istringstream in(line);
+    int h = 0, count = 0;
+    while (in >> h) {
+      CHECK(D.d[2].coeff(c, h / 2) == (h % 2 == 0 ? 1.0 : -1.0));
+      ++count;
+    }
+    CHECK(count == m.cell_size(c));
+  }
 }
 
 }  // namespace test_cli_feec
