@@ -27,7 +27,7 @@ newest_header=$(ls -t $(find "$ROOT"/dec "$ROOT"/operators -name "*.h") | head -
 stale=()
 SOURCES=(dec/io/mesh_io.cpp dec/io/obj.cpp dec/io/off.cpp dec/io/ply.cpp dec/io/matrix_market.cpp dec/mesh/mesh.cpp
          dec/surface/virtual_vertex.cpp dec/surface/refinement.cpp dec/surface/refinement_check.cpp dec/volume/refinement_check.cpp dec/surface/complex.cpp dec/surface/prolongation.cpp
-         operators/surface/local_matrices.cpp operators/surface/laplacian.cpp operators/surface/gradient.cpp
+         operators/surface/local_matrices.cpp operators/surface/laplacian.cpp operators/surface/gradient.cpp dec/surface/whitney.cpp
          dec/mesh/volume_mesh.cpp dec/mesh/polyhedron_builder.cpp dec/mesh/volume_cells.cpp dec/io/volume_io.cpp dec/io/ovm.cpp
          dec/io/vtk.cpp dec/io/medit.cpp)
 for rel in "${SOURCES[@]}"; do
