@@ -375,10 +375,11 @@ class VolumeHodgeDecomposer:
     part: meshes of up to a few thousand coarse pairs, cells of at most 16 vertices).
 
     decompose(omega) with omega (|C1|,) on the pairs -> HodgeParts. Attributes pairs, d0, star1,
-    harmonic_basis (|C1|, first Betti number), star1-orthonormal."""
+    harmonic_basis (|C1|, first Betti number), star1-orthonormal. complex="mesh": on the mesh's own
+    edges (pairs = the mesh edges), positive definite star1, cells of any size."""
 
-    def __init__(self, mesh, cell_point="squared-volume"):
-        self._h = _polydec.VolumeHodgeDecomposer(_mesh(mesh), str(cell_point))
+    def __init__(self, mesh, cell_point="squared-volume", complex="complete"):
+        self._h = _polydec.VolumeHodgeDecomposer(_mesh(mesh), str(cell_point), str(complex))
         self.pairs = self._h.pairs
         self.d0 = self._h.d0
         self.star1 = self._h.star1

@@ -341,14 +341,15 @@ void register_volumes(py::module_& m) {
   });
 
   py::class_<VolumeHodgeDecomposer>(m, "VolumeHodgeDecomposer")
-      .def(py::init([](const VolumeMesh& mesh, const std::string& cell_point) {
+      .def(py::init([](const VolumeMesh& mesh, const std::string& cell_point, const std::string& complex) {
         const VolumeRefinementOptions options = refinement_options(cell_point);
+        const DecComplex kind = parse_dec_complex(complex);
         py::gil_scoped_release release;
-        return std::make_unique<VolumeHodgeDecomposer>(mesh, options);
+        return std::make_unique<VolumeHodgeDecomposer>(mesh, options, kind);
       }))
       .def("decompose", &decompose_to_dict<VolumeHodgeDecomposer>)
       .def_property_readonly("pairs",
-                             [](const VolumeHodgeDecomposer& h) { return h.dec().coarse.simplices(1); })
+                             [](const VolumeHodgeDecomposer& h) { return Eigen::MatrixX2i(h.cells()); })
       .def_property_readonly("d0", [](const VolumeHodgeDecomposer& h) { return h.dec().d[0]; })
       .def_property_readonly("star1", [](const VolumeHodgeDecomposer& h) { return h.dec().star[1]; })
       .def_property_readonly("harmonic_basis", &VolumeHodgeDecomposer::harmonic_basis);

@@ -229,10 +229,13 @@ def test_franke_poisson_error_decreases():
     assert e[1] < 0.5 * e[0]
 
 
-@pytest.mark.parametrize("name,betti", [("hex", 0), ("torus", 1)])
-def test_hodge_decomposition(name, betti):
+@pytest.mark.parametrize("name,betti,complex", [("hex", 0, "complete"), ("torus", 1, "complete"),
+                                                ("hex", 0, "mesh"), ("torus", 1, "mesh")])
+def test_hodge_decomposition(name, betti, complex):
     mesh = polydec.hex_grid_volume(2, 2, 2, jitter=0.2) if name == "hex" else polydec.hex_torus_volume(6, 1)
-    h = polydec.VolumeHodgeDecomposer(mesh)
+    h = polydec.VolumeHodgeDecomposer(mesh, complex=complex)
+    if complex == "mesh":
+        assert np.array_equal(h.pairs, polydec.volume_dec(mesh, 1, complex="mesh")["edges"])
     assert h.harmonic_basis.shape == (h.pairs.shape[0], betti)
     omega = np.random.default_rng(3).standard_normal(h.pairs.shape[0])
     p = h.decompose(omega)

@@ -9,11 +9,13 @@
 
 namespace polydec {
 
-VolumeHodgeDecomposer::VolumeHodgeDecomposer(const VolumeMesh& mesh, const VolumeRefinementOptions& options) {
+VolumeHodgeDecomposer::VolumeHodgeDecomposer(const VolumeMesh& mesh, const VolumeRefinementOptions& options,
+                                             DecComplex complex) {
   if (mesh.n_cells() == 0)
     throw InvalidMeshError("cell", 0, "volume Hodge decomposition: the mesh has no cells");
   const VolumeRefinement refinement = refine_volume(mesh, options);
-  dec_ = volume_dec(mesh, refinement, 2);  // 1-forms need d1 and star2, not the 3-forms
+  // 1-forms need d1 and star2, not the 3-forms.
+  dec_ = volume_dec(mesh, refinement, VolumeDecOptions{.max_degree = 2, .complex = complex});
   const SparseMatrix& d0 = dec_.d[0];
   const SparseMatrix& star1 = dec_.star[1];
 
@@ -22,9 +24,11 @@ VolumeHodgeDecomposer::VolumeHodgeDecomposer(const VolumeMesh& mesh, const Volum
   std::vector<int> parent(nV);
   for (int v = 0; v < nV; ++v) parent[v] = v;
   std::vector<unsigned char> used(nV, 0);
-  for (const auto& p : dec_.coarse.pairs()) {
-    used[p[0]] = used[p[1]] = 1;
-    parent[find_root(parent, p[0])] = find_root(parent, p[1]);
+  edges_ = complex == DecComplex::Mesh ? mesh.edges() : Eigen::MatrixX2i(dec_.coarse.simplices(1));
+  const Eigen::MatrixX2i& edges = edges_;
+  for (long e = 0; e < edges.rows(); ++e) {
+    used[edges(e, 0)] = used[edges(e, 1)] = 1;
+    parent[find_root(parent, edges(e, 0))] = find_root(parent, edges(e, 1));
   }
   pinned_.assign(nV, 0);
   std::vector<unsigned char> has_pin(nV, 0);
@@ -37,8 +41,14 @@ VolumeHodgeDecomposer::VolumeHodgeDecomposer(const VolumeMesh& mesh, const Volum
   poisson_ =
       std::make_unique<SparseCholesky>(pin_to_identity(A, pinned_), "Poisson matrix d0^T star1 d0 (pinned)");
 
-  // Closed Whitney forms on the span: the null space of R^T d1^T star2 d1 R.
-  const FormSpan span = volume_form_span(dec_, mesh, refinement, 1);
+  // Closed Whitney forms on the span: the null space of R^T d1^T star2 d1 R (R = I on the mesh complex).
+  FormSpan span;
+  if (complex == DecComplex::Mesh) {
+    span.R = SparseMatrix(star1.rows(), star1.rows());
+    span.R.setIdentity();
+  } else {
+    span = volume_form_span(dec_, mesh, refinement, 1);
+  }
   const SparseMatrix d1R = dec_.d[1] * span.R;
   const Eigen::MatrixXd C = Eigen::MatrixXd(SparseMatrix(d1R.transpose() * dec_.star[2] * d1R));
   const Eigen::MatrixXd G = Eigen::MatrixXd(SparseMatrix(span.R.transpose() * star1 * span.R));
@@ -80,7 +90,8 @@ HodgeParts VolumeHodgeDecomposer::decompose(const Eigen::VectorXd& omega) const 
   const SparseMatrix& star1 = dec_.star[1];
   if (omega.size() != star1.rows())
     throw std::invalid_argument("1-form has " + std::to_string(omega.size()) + " values, the mesh has " +
-                                std::to_string(star1.rows()) + " coarse pairs");
+                                std::to_string(star1.rows()) +
+                                (dec_.complex == DecComplex::Mesh ? " edges" : " coarse pairs"));
   if (!omega.allFinite()) throw std::invalid_argument("1-form has non-finite values");
   return hodge_parts(omega, exact_potential(d0.transpose() * (star1 * omega)), d0, star1, H_);
 }

@@ -12,7 +12,9 @@
 // The closed forms are found by a dense eigen-decomposition on the span of the 1-forms, so the
 // constructor is meant for meshes of up to a few thousand coarse pairs (it throws
 // std::invalid_argument above volume_form_span's limit). It builds DEC up to degree 2 (no 3-forms),
-// so cells of up to max_dec_cell_vertices(2) = 16 vertices.
+// so cells of up to max_dec_cell_vertices(2) = 16 vertices. On the mesh complex (DecComplex::Mesh,
+// dec/volume/mesh_complex.h) the 1-forms live on the mesh edges, star1 and star2 are positive
+// definite, the reduced basis is the identity and cells of any size are allowed.
 #pragma once
 
 #include <Eigen/Dense>
@@ -27,12 +29,16 @@ namespace polydec {
 
 class VolumeHodgeDecomposer {
  public:
-  explicit VolumeHodgeDecomposer(const VolumeMesh& mesh, const VolumeRefinementOptions& options = {});
+  explicit VolumeHodgeDecomposer(const VolumeMesh& mesh, const VolumeRefinementOptions& options = {},
+                                 DecComplex complex = DecComplex::Complete);
 
-  // omega: one value per coarse pair (std::invalid_argument on a size mismatch or non-finite values).
+  // omega: one value per coarse pair, or per mesh edge on the mesh complex (std::invalid_argument
+  // on a size mismatch or non-finite values).
   HodgeParts decompose(const Eigen::VectorXd& omega) const;
 
   const VolumeDec& dec() const { return dec_; }
+  // The 1-cells' vertices (i, j), i < j: the complete complex's pairs, or the mesh edges.
+  const Eigen::MatrixX2i& cells() const { return edges_; }
   const Eigen::MatrixXd& harmonic_basis() const { return H_; }  // star1-orthonormal, |C1| x dim
   int harmonic_dimension() const { return int(H_.cols()); }
 
@@ -40,6 +46,7 @@ class VolumeHodgeDecomposer {
   Eigen::VectorXd exact_potential(const Eigen::VectorXd& rhs) const;
 
   VolumeDec dec_;
+  Eigen::MatrixX2i edges_;
   std::vector<unsigned char> pinned_;
   std::unique_ptr<SparseCholesky> poisson_;
   Eigen::MatrixXd H_;

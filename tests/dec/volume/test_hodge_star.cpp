@@ -221,8 +221,8 @@ TEST_CASE("volume DEC: ranks of the stars, positive definite on the span, solvin
   }
 }
 
-TEST_CASE("volume Hodge decomposition: harmonic dimension is the first Betti number",
-          "[volume][volume-dec]") {
+TEST_CASE("volume Hodge decomposition: harmonic dimension is the first Betti number, on both complexes",
+          "[volume][volume-dec][volume-mesh-complex]") {
   Eigen::MatrixX3d Z = test::grid_positions(2, 2, 2);
   test::jitter_interior(Z, 2, 2, 2, 0.2, 6);
   struct Case {
@@ -231,11 +231,16 @@ TEST_CASE("volume Hodge decomposition: harmonic dimension is the first Betti num
   };
   const Case cases[] = {{test::hex_grid_mesh(2, 2, 2, &Z), 0},
                         {test::tet_grid_mesh(2, 1, 1), 0},
-                        {test::hex_solid_torus(6), 1}, {hex_torus_volume(8, 2, 1.0, 0.4, {0.15, 2}), 1}};
+                        {test::hex_solid_torus(6), 1}, {hex_torus_volume(8, 2, 1.0, 0.4, {0.15, 2}), 1},
+                        {truncated_octahedra_volume(1), 0}};  // 24-vertex cells: the mesh complex only
   std::mt19937 rng(3);
   std::normal_distribution<double> g;
+  for (DecComplex complex : {DecComplex::Complete, DecComplex::Mesh})
   for (const Case& c : cases) {
-    const VolumeHodgeDecomposer hodge(c.mesh);
+    if (complex == DecComplex::Complete && volume_dec_max_degree(c.mesh) < 2) continue;
+    INFO(to_string(complex) << " complex, " << c.mesh.n_cells() << " cells");
+    const VolumeHodgeDecomposer hodge(c.mesh, {}, complex);
+    if (complex == DecComplex::Mesh) CHECK(hodge.dec().star[1].rows() == c.mesh.n_edges());
     CHECK(hodge.harmonic_dimension() == c.betti1);
     const VolumeDec& D = hodge.dec();
     const SparseMatrix& star1 = D.star[1];
