@@ -63,4 +63,14 @@ struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// parse(text) of an option's value, its std::invalid_argument turned into a UsageError (exit 2).
+template <class Parse>
+auto parse_option(Parse parse, const std::string& text) {
+  try {
+    return parse(text);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+}
+
 }  // namespace polydec::cli

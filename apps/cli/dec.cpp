@@ -67,12 +67,7 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 // The surface mesh complex: d, P and the stars on the mesh's edges and faces.
 void run_surface_mesh_complex(const Options& o, const Mesh& mesh, const Refinement& r, double read_seconds) {
-  SpokeRule rule;
-  try {
-    rule = parse_spoke_rule(o.spoke_rule);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
-  }
+  const SpokeRule rule = parse_option(parse_spoke_rule, o.spoke_rule);
   auto t0 = std::chrono::steady_clock::now();
   const SurfaceDec D = surface_dec(mesh, r, {.max_degree = 2, .complex = DecComplex::Mesh, .spoke_rule = rule});
   const double build_seconds = seconds_since(t0);
@@ -126,12 +121,7 @@ void run_surface_mesh_complex(const Options& o, const Mesh& mesh, const Refineme
 // degree for every cell size), edges.txt, faces.txt and cells.txt (one cell a line: its half-faces
 // h, face h / 2 as listed in faces.txt when h is even (then d2 = +1), reversed when odd (d2 = -1)).
 void run_volume_mesh_complex(const Options& o, const VolumeMesh& mesh, const VolumeRefinement& r, double read_seconds) {
-  SpokeRule rule;
-  try {
-    rule = parse_spoke_rule(o.spoke_rule);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
-  }
+  const SpokeRule rule = parse_option(parse_spoke_rule, o.spoke_rule);
   const int degree = o.max_degree < 0 ? 3 : o.max_degree;
   auto t0 = std::chrono::steady_clock::now();
   VolumeDec D;
@@ -207,12 +197,7 @@ void run_volume_mesh_complex(const Options& o, const VolumeMesh& mesh, const Vol
 }
 
 void run_volume(const Options& o) {
-  DecComplex complex;
-  try {
-    complex = parse_dec_complex(o.complex);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
-  }
+  const DecComplex complex = parse_option(parse_dec_complex, o.complex);
   const auto t_read = std::chrono::steady_clock::now();
   const VolumeMesh mesh = load_volume_mesh(o.mesh);
   const double read_seconds = seconds_since(t_read);
@@ -306,12 +291,7 @@ void run(const Options& o) {
     run_volume(o);
     return;
   }
-  DecComplex complex;
-  try {
-    complex = parse_dec_complex(o.complex);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
-  }
+  const DecComplex complex = parse_option(parse_dec_complex, o.complex);
   const auto t_read = std::chrono::steady_clock::now();
   const Mesh mesh = load_mesh(o.mesh, o.repair);
   const double read_seconds = seconds_since(t_read);

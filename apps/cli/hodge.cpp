@@ -73,12 +73,7 @@ Eigen::VectorXd builtin_form(const Mesh& mesh, const Eigen::MatrixX2i& cells, do
 
 void run(const Options& o) {
   if (!(o.noise >= 0) || !std::isfinite(o.noise)) throw UsageError("--noise must be a finite number >= 0");
-  DecComplex complex;
-  try {
-    complex = parse_dec_complex(o.complex);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
-  }
+  const DecComplex complex = parse_option(parse_dec_complex, o.complex);
   const bool on_mesh = complex == DecComplex::Mesh;
   const Mesh mesh = load_mesh(o.mesh, o.repair);
   if (!on_mesh && mesh.max_face_size() > kHighValence)

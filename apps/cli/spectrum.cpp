@@ -192,12 +192,7 @@ void run_form(const Options& o) {
   if (o.k < 1) throw UsageError("--k must be positive");
   if (!o.png.empty() && (o.png_index < 0 || o.png_index >= o.k))
     throw UsageError("--png-index must lie in [0, k)");
-  DecComplex complex;
-  try {
-    complex = parse_dec_complex(o.complex);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
-  }
+  const DecComplex complex = parse_option(parse_dec_complex, o.complex);
   const bool on_mesh = complex == DecComplex::Mesh;
   const Mesh mesh = load_mesh(o.mesh, o.repair);
   FormSpectrumOptions fo;
