@@ -27,6 +27,7 @@
 #include "polydec/dec/io/mesh_io.h"
 #include "polydec/dec/io/volume_io.h"
 #include "polydec/dec/mesh/volume_generators.h"
+#include "polydec/dec/volume/hodge_star.h"
 #include "polydec/operators/solvers/cholesky.h"
 #include "polydec/operators/surface/laplacian.h"
 #include "polydec/operators/volume/laplacian.h"
@@ -47,6 +48,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 #include <set>
+#include <sstream>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -600,6 +602,78 @@ void bench_volumes(int big, int reps) {
   }
 }
 
+// Building a whole DEC bundle (d, P, stars) in a child process: wall ms of the build (the mesh
+// generated before the clock starts) and the child's peak RSS above what it had after generating
+// the mesh, so that each row's memory is its own. `build` returns a short description.
+struct ChildRun {
+  double ms = -1, peak_mb = -1;
+  std::string what;
+};
+ChildRun in_child(const std::function<std::string()>& build) {
+  int fd[2];
+  if (pipe(fd) != 0) return {};
+  const pid_t pid = fork();
+  if (pid == 0) {
+    close(fd[0]);
+    rusage before{};
+    getrusage(RUSAGE_SELF, &before);
+    std::string what;
+    const double ms = wall_ms([&] { what = build(); });
+    rusage after{};
+    getrusage(RUSAGE_SELF, &after);
+    const std::string msg = fmt::format("{} {} {}", ms, (after.ru_maxrss - before.ru_maxrss) / 1024.0, what);
+    if (write(fd[1], msg.data(), msg.size()) < 0) _exit(1);
+    _exit(0);
+  }
+  close(fd[1]);
+  std::string text;
+  char buf[512];
+  for (ssize_t n; (n = read(fd[0], buf, sizeof buf)) > 0;) text.append(buf, size_t(n));
+  close(fd[0]);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ChildRun r;
+  std::istringstream in(text);
+  in >> r.ms >> r.peak_mb;
+  std::getline(in, r.what);
+  return r;
+}
+
+// d, P and the stars of the mesh complex (up to degree 2 on surfaces, 3 on volumes) against the
+// complete complex where it runs: time and peak memory, each in its own process.
+void bench_dec(bool with_big) {
+  auto surface_row = [&](const std::string& name, const std::function<Mesh()>& make) {
+    for (DecComplex complex : {DecComplex::Complete, DecComplex::Mesh}) {
+      if (complex == DecComplex::Complete && name.rfind("QUAD", 0) == 0) continue;  // minutes and GBs
+      const ChildRun r = in_child([&] {
+        const Mesh mesh = make();
+        const Refinement R = refine(mesh);
+        const SurfaceDec D = surface_dec(mesh, R, {.max_degree = 2, .complex = complex});
+        return fmt::format("{} faces; star1 {} x {} ({} nz), star2 {} nz", mesh.n_faces(), D.star[1].rows(),
+                           D.star[1].cols(), D.star[1].nonZeros(), D.star[2].nonZeros());
+      });
+      add({"DEC bundle to degree 2, " + to_string(complex) + " complex", name, "", "surface_dec (refine included)", 0,
+           r.ms, 0, 0, fmt::format("peak {:.0f} MB above the mesh;{}", r.peak_mb, r.what)});
+    }
+  };
+  surface_row("HEX SPHERE", [] { return hex_sphere_mesh(); });
+  if (with_big) surface_row("QUAD 1000k", [] { return cube_sphere(409); });
+  auto volume_row = [&](const std::string& name, const std::function<VolumeMesh()>& make) {
+    const ChildRun r = in_child([&] {
+      const VolumeMesh mesh = make();
+      const VolumeRefinement R = refine_volume(mesh);
+      const VolumeDec D = volume_dec(mesh, R, VolumeDecOptions{.max_degree = 3, .complex = DecComplex::Mesh});
+      return fmt::format("{} cells; star1 {} nz, star2 {} nz, star3 diagonal {}", mesh.n_cells(), D.star[1].nonZeros(),
+                         D.star[2].nonZeros(), D.star[3].rows());
+    });
+    add({"DEC bundle to degree 3, mesh complex", name, "", "volume_dec (refine included)", 0, r.ms, 0, 0,
+         fmt::format("peak {:.0f} MB above the mesh;{}", r.peak_mb, r.what)});
+  };
+  volume_row("hex grid 32^3", [] { return hex_grid_volume(32, 32, 32, {.amplitude = 0.2, .seed = 1}); });
+  volume_row("Voronoi BCC n=17", [] { return truncated_octahedra_volume(17, {.amplitude = 0.15, .seed = 2}); });
+  if (with_big) volume_row("hex grid 100^3", [] { return hex_grid_volume(100, 100, 100); });
+}
+
 // A process spinning on the CPU until killed (its pid; the caller kills exactly it).
 pid_t spin() {
   const pid_t pid = fork();
@@ -683,7 +757,7 @@ void print_table() {
                 r.baseline.c_str(), r.ours.c_str(), r.base_ms > 0 ? fmt::format("{:.2f}", r.base_ms).c_str() : "",
                 r.ours_ms > 0 ? fmt::format("{:.2f}", r.ours_ms).c_str() : "",
                 r.ratio > 0 ? fmt::format("{:.2f}x", r.ratio).c_str() : "", req.c_str(),
-                r.ratio > 0 ? status(r).c_str() : "skipped", r.note.c_str());
+                r.ratio > 0 || r.ours_ms > 0 ? status(r).c_str() : "skipped", r.note.c_str());
   }
 }
 
@@ -780,6 +854,10 @@ int main(int argc, char** argv) {
       print_table();
     }
     else if (only == "geodesics") bench_geodesics("FINE SPHERE", fine, 9);
+    else if (only == "dec") {
+      bench_dec(with_big);
+      print_table();
+    }
     else if (only == "cholesky") bench_cholesky("FINE SPHERE", assemble_all(fine, 1), 3);
     else if (only == "volume") {
       bench_volumes(volume_big, reps);
