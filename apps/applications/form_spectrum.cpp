@@ -114,15 +114,14 @@ FormSpectrum form_spectrum(const Mesh& mesh, const FormSpectrumOptions& options)
   FormSpan span1;
   if (on_mesh) {
     // The mesh complex: positive definite stars, so the reduced bases are the identity.
-    SurfaceDec D = surface_dec(mesh, ref, SurfaceDecOptions{.max_degree = 2, .complex = DecComplex::Mesh});
-    d0.swap(D.d[0]);
-    d1.swap(D.d[1]);
-    H.star0.swap(D.star[0]);
-    H.star1.swap(D.star[1]);
-    H.star2.swap(D.star[2]);
-    H.star0_lumped = Eigen::VectorXd::Zero(mesh.n_vertices());
-    for (int j = 0; j < H.star0.outerSize(); ++j)
-      for (SpMat::InnerIterator it(H.star0, j); it; ++it) H.star0_lumped[it.row()] += it.value();
+    HodgeStarParts parts;
+    parts.star1 = parts.star2 = false;
+    H = hodge_stars(mesh, ref, cx, parts);  // star0 and its lumped version
+    MeshComplexForms F = mesh_complex_forms(mesh, ref, SpokeRule::AreaConsistent, {.star1 = true, .star2 = true});
+    H.star1.swap(F.star1);
+    H.star2 = SpMat(F.star2.asDiagonal());
+    d0 = mesh_d0(mesh);
+    d1 = mesh_d1(mesh);
     span1.R = SpMat(mesh.n_edges(), mesh.n_edges());
     span1.R.setIdentity();
   } else {

@@ -147,16 +147,23 @@ double suggested_time_factor(double factor, const HeatDiagnostics& diagnostics, 
   return std::max(factor, 0.25 / (s * s));
 }
 
-Eigen::VectorXd HeatGeodesics::distance(std::span<const int> sources, HeatDiagnostics* diagnostics) const {
-  const int nv = int(ops_.S.rows()), n_out = ops_.n_input_vertices;
+void HeatGeodesics::check_sources(std::span<const int> sources) const {
+  const int n_out = ops_.n_input_vertices;
   if (sources.empty()) throw std::out_of_range("heat geodesics: no source vertex given");
-  Eigen::VectorXd delta = Eigen::VectorXd::Zero(nv);
-  std::vector<unsigned char> reached_component(nv + 1, 0);
   for (int s : sources) {
     if (s < 0 || s >= n_out)
       throw std::out_of_range(fmt::format("heat geodesics: source vertex {} out of range [0, {})", s, n_out));
     if (component_[s] < 0)
       throw std::out_of_range(fmt::format("heat geodesics: source vertex {} carries no stiffness (unreferenced, or only in zero-area faces)", s));
+  }
+}
+
+Eigen::VectorXd HeatGeodesics::distance(std::span<const int> sources, HeatDiagnostics* diagnostics) const {
+  const int nv = int(ops_.S.rows()), n_out = ops_.n_input_vertices;
+  check_sources(sources);
+  Eigen::VectorXd delta = Eigen::VectorXd::Zero(nv);
+  std::vector<unsigned char> reached_component(nv + 1, 0);
+  for (int s : sources) {
     delta[s] = 1.0;
     reached_component[component_[s]] = 1;
   }
@@ -211,13 +218,7 @@ Eigen::VectorXd HeatGeodesics::distance(std::span<const int> sources, HeatDiagno
 Eigen::MatrixXd HeatGeodesics::distances(std::span<const int> sources, int block) const {
   const int nv = int(ops_.S.rows()), n_out = ops_.n_input_vertices, k = int(sources.size());
   if (block < 1) throw std::invalid_argument(fmt::format("heat geodesics: block size {} must be positive", block));
-  if (sources.empty()) throw std::out_of_range("heat geodesics: no source vertex given");
-  for (int s : sources) {
-    if (s < 0 || s >= n_out)
-      throw std::out_of_range(fmt::format("heat geodesics: source vertex {} out of range [0, {})", s, n_out));
-    if (component_[s] < 0)
-      throw std::out_of_range(fmt::format("heat geodesics: source vertex {} carries no stiffness (unreferenced, or only in zero-area faces)", s));
-  }
+  check_sources(sources);
   // G row by row (a gather per gradient entry) and D column by column (a scatter into the small
   // right-hand side): one pass over both for all columns of a block.
   const Eigen::SparseMatrix<double, Eigen::RowMajor> Gr = ops_.G;

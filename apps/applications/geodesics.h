@@ -75,6 +75,9 @@ class HeatGeodesics {
   const OperatorSet& operators() const { return ops_; }
 
  private:
+  // std::out_of_range for no source, or one outside the mesh or without stiffness.
+  void check_sources(std::span<const int> sources) const;
+
   OperatorSet ops_;
   HeatGeodesicsOptions options_;
   double t_ = 0;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <chrono>
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -62,6 +63,11 @@ void add_repair_flag(CLI::App& app, bool& flag);
 struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
+
+// Seconds since t0 on the steady clock (the phases' times of --json).
+inline double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
 
 // parse(text) of an option's value, its std::invalid_argument turned into a UsageError (exit 2).
 template <class Parse>

@@ -50,19 +50,17 @@ void write_simplices(const std::string& path, const SimplexComplex3& K, int k) {
   write_cells(path, K.simplices(k));
 }
 
-void write_faces(const std::string& path, const Mesh& mesh) {
+// Variable-length lists, one a line: list(i) for i < n (faces' vertices, cells' half-faces).
+template <class List>
+void write_lists(const std::string& path, int n, List list) {
   std::ofstream out(path);
   if (!out) throw FileError(path, 0, -1, "cannot open file for writing");
-  for (int f = 0; f < mesh.n_faces(); ++f) {
-    const auto face = mesh.face(f);
-    for (size_t k = 0; k < face.size(); ++k) out << (k ? " " : "") << face[k];
+  for (int i = 0; i < n; ++i) {
+    const auto items = list(i);
+    for (size_t k = 0; k < items.size(); ++k) out << (k ? " " : "") << items[k];
     out << '\n';
   }
   if (!out) throw FileError(path, 0, -1, "write failed");
-}
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 // The surface mesh complex: d, P and the stars on the mesh's edges and faces.
@@ -86,7 +84,7 @@ void run_surface_mesh_complex(const Options& o, const Mesh& mesh, const Refineme
   write_matrix_market(d + "star2.mtx", D.star[2]);
   for (int k = 0; k < 3; ++k) write_matrix_market(d + fmt::format("P{}.mtx", k), D.P[k]);
   write_cells(d + "edges.txt", mesh.edges());
-  write_faces(d + "faces.txt", mesh);
+  write_lists(d + "faces.txt", mesh.n_faces(), [&](int f) { return mesh.face(f); });
   const double write_seconds = seconds_since(t0);
   nlohmann::json j = {{"mesh", o.mesh},
                       {"out", o.out},
@@ -150,21 +148,8 @@ void run_volume_mesh_complex(const Options& o, const VolumeMesh& mesh, const Vol
   for (int k = 0; k <= degree; ++k) write(fmt::format("P{}.mtx", k), D.P[k]);
   write_cells(d + "edges.txt", mesh.edges());
   files.push_back("edges.txt");
-  {
-    std::ofstream out(d + "faces.txt"), cells(d + "cells.txt");
-    if (!out || !cells) throw FileError(d + "faces.txt", 0, -1, "cannot open file for writing");
-    for (int f = 0; f < mesh.n_faces(); ++f) {
-      const auto face = mesh.face(f);
-      for (size_t k = 0; k < face.size(); ++k) out << (k ? " " : "") << face[k];
-      out << '\n';
-    }
-    for (int c = 0; c < mesh.n_cells(); ++c) {
-      const auto cell = mesh.cell(c);
-      for (size_t k = 0; k < cell.size(); ++k) cells << (k ? " " : "") << cell[k];
-      cells << '\n';
-    }
-    if (!out || !cells) throw FileError(d + "faces.txt", 0, -1, "write failed");
-  }
+  write_lists(d + "faces.txt", mesh.n_faces(), [&](int f) { return mesh.face(f); });
+  write_lists(d + "cells.txt", mesh.n_cells(), [&](int c) { return mesh.cell(c); });
   files.push_back("faces.txt");
   files.push_back("cells.txt");
   const double write_seconds = seconds_since(t0);

@@ -7,7 +7,6 @@
 
 #include <fmt/format.h>
 
-#include <chrono>
 #include <cmath>
 
 #include "polydec/apps/cli/command.h"
@@ -92,10 +91,6 @@ Stats stats(const Eigen::VectorXd& d) {
 double euclidean_rmse(const Eigen::MatrixX3d& X, int source, const Eigen::VectorXd& d) {
   const Eigen::VectorXd e = (X.rowwise() - X.row(source)).rowwise().norm();
   return rmse(d, e.array() - e.minCoeff());
-}
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 // --per-source: the distance field of every source (HeatGeodesics::distances, blocks of

@@ -121,95 +121,96 @@ SparseMatrix mesh_d1(const Mesh& mesh) {
   return d;
 }
 
-SparseMatrix mesh_prolongation1(const Mesh& mesh, const Refinement& refinement, SpokeRule rule) {
-  check_sizes(mesh, refinement, "mesh_prolongation1");
-  const int nE = mesh.n_edges();
+MeshComplexForms mesh_complex_forms(const Mesh& mesh, const Refinement& refinement, SpokeRule rule,
+                                    MeshComplexParts parts) {
+  check_sizes(mesh, refinement, "mesh complex");
+  const int nE = mesh.n_edges(), nF = mesh.n_faces(), nH = mesh.n_halfedges();
   const Eigen::VectorXd areas = signed_fan_areas(mesh, refinement);
-  std::vector<Triplet> t;
-  t.reserve(size_t(nE) + size_t(mesh.n_halfedges()) * 6);
-  for (int e = 0; e < nE; ++e) t.emplace_back(e, e, 1.0);
-  for (int f = 0; f < mesh.n_faces(); ++f) {
-    const int h0 = mesh.face_offsets()[f], n = mesh.face_size(f);
-    const PolygonCochainMaps K = face_maps(mesh, refinement, areas, f, rule);
-    for (int i = 0; i < n; ++i)
-      for (int k = 0; k < n; ++k)
-        if (K.spokes(i, k) != 0.0)
-          t.emplace_back(nE + h0 + i, mesh.halfedge_edge(h0 + k), side_sign(mesh, h0 + k) * K.spokes(i, k));
+  std::vector<Triplet> p1, p2, s1;
+  if (parts.P1) {
+    p1.reserve(size_t(nE) + size_t(nH) * 6);
+    for (int e = 0; e < nE; ++e) p1.emplace_back(e, e, 1.0);
   }
-  SparseMatrix P(nE + mesh.n_halfedges(), nE);
-  P.setFromTriplets(t.begin(), t.end());
-  return P;
-}
-
-SparseMatrix mesh_prolongation2(const Mesh& mesh, const Refinement& refinement, SpokeRule rule) {
-  check_sizes(mesh, refinement, "mesh_prolongation2");
-  const Eigen::VectorXd areas = signed_fan_areas(mesh, refinement);
-  std::vector<Triplet> t;
-  t.reserve(size_t(mesh.n_halfedges()));
-  for (int f = 0; f < mesh.n_faces(); ++f) {
-    const int h0 = mesh.face_offsets()[f], n = mesh.face_size(f);
-    const PolygonCochainMaps K = face_maps(mesh, refinement, areas, f, rule);
-    // Refined triangle h is oriented by increasing index; side_sign says whether that is the face's way.
-    for (int k = 0; k < n; ++k)
-      if (K.fractions[k] != 0.0) t.emplace_back(h0 + k, f, side_sign(mesh, h0 + k) * K.fractions[k]);
+  if (parts.P2) p2.reserve(size_t(nH));
+  if (parts.star1) {
+    size_t bound = 0;
+    for (int f = 0; f < nF; ++f) bound += size_t(mesh.face_size(f)) * size_t(mesh.face_size(f));
+    s1.reserve(bound);
   }
-  SparseMatrix P(mesh.n_halfedges(), mesh.n_faces());
-  P.setFromTriplets(t.begin(), t.end());
-  return P;
-}
-
-SparseMatrix mesh_star1(const Mesh& mesh, const Refinement& refinement, SpokeRule rule) {
-  check_sizes(mesh, refinement, "mesh_star1");
-  const Eigen::VectorXd areas = signed_fan_areas(mesh, refinement);
-  std::vector<Triplet> t;
-  size_t bound = 0;
-  for (int f = 0; f < mesh.n_faces(); ++f) bound += size_t(mesh.face_size(f)) * size_t(mesh.face_size(f));
-  t.reserve(bound);
+  MeshComplexForms out;
+  if (parts.star2) out.star2 = Eigen::VectorXd::Zero(nF);
   Eigen::MatrixXd local, R;
-  for (int f = 0; f < mesh.n_faces(); ++f) {
+  for (int f = 0; f < nF; ++f) {
     const int h0 = mesh.face_offsets()[f], n = mesh.face_size(f);
-    const PolygonCochainMaps K = face_maps(mesh, refinement, areas, f, rule);
+    const PolygonCochainMaps K = face_maps(mesh, refinement, areas, f, rule);  // once per face for every part
     const Eigen::Vector3d xf = virtual_point(refinement, f);
+    auto corner = [&](int k) { return mesh.position(mesh.halfedge_source(h0 + k)); };
+    auto next = [&](int k) { return mesh.position(mesh.halfedge_target(h0 + k)); };
+    if (parts.P1)
+      for (int i = 0; i < n; ++i)
+        for (int k = 0; k < n; ++k)
+          if (K.spokes(i, k) != 0.0)
+            p1.emplace_back(nE + h0 + i, mesh.halfedge_edge(h0 + k), side_sign(mesh, h0 + k) * K.spokes(i, k));
+    // Refined triangle h is oriented by increasing index; side_sign says whether that is the face's way.
+    if (parts.P2)
+      for (int k = 0; k < n; ++k)
+        if (K.fractions[k] != 0.0) p2.emplace_back(h0 + k, f, side_sign(mesh, h0 + k) * K.fractions[k]);
+    if (parts.star2)
+      for (int k = 0; k < n; ++k)
+        if (refinement.fan[h0 + k] != FanTriangle::Degenerate)
+          out.star2[f] += K.fractions[k] * K.fractions[k] * whitney2_mass(corner(k), next(k), xf);
+    if (!parts.star1) continue;
     local.setZero(n, n);
     R.resize(3, n);
     // Fan triangle k = (x_k, x_{k+1}, x_f): its Whitney edges (0,1), (0,2), (1,2) are side k,
     // spoke k and spoke k+1, each oriented as in the face's basis.
     for (int k = 0; k < n; ++k) {
       if (refinement.fan[h0 + k] == FanTriangle::Degenerate) continue;
-      const int k1 = (k + 1) % n;
       R.row(0).setZero();
       R(0, k) = 1.0;
       R.row(1) = K.spokes.row(k);
-      R.row(2) = K.spokes.row(k1);
-      const Eigen::Matrix3d W =
-          whitney1_mass(mesh.position(mesh.halfedge_source(h0 + k)), mesh.position(mesh.halfedge_target(h0 + k)), xf);
-      local.noalias() += R.transpose() * W * R;
+      R.row(2) = K.spokes.row((k + 1) % n);
+      local.noalias() += R.transpose() * whitney1_mass(corner(k), next(k), xf) * R;
     }
     local = 0.5 * (local + local.transpose()).eval();  // exactly symmetric
     for (int b = 0; b < n; ++b)
       for (int a = 0; a < n; ++a)
-        t.emplace_back(mesh.halfedge_edge(h0 + a), mesh.halfedge_edge(h0 + b),
-                       side_sign(mesh, h0 + a) * side_sign(mesh, h0 + b) * local(a, b));
+        s1.emplace_back(mesh.halfedge_edge(h0 + a), mesh.halfedge_edge(h0 + b),
+                        side_sign(mesh, h0 + a) * side_sign(mesh, h0 + b) * local(a, b));
   }
-  SparseMatrix S(mesh.n_edges(), mesh.n_edges());
-  S.setFromTriplets(t.begin(), t.end());
+  auto assemble = [](SparseMatrix& A, long rows, long cols, const std::vector<Triplet>& t) {
+    A.resize(rows, cols);
+    A.setFromTriplets(t.begin(), t.end());
+  };
+  if (parts.P1) assemble(out.P1, nE + nH, nE, p1);
+  if (parts.P2) assemble(out.P2, nH, nF, p2);
+  if (parts.star1) assemble(out.star1, nE, nE, s1);
+  return out;
+}
+
+SparseMatrix mesh_prolongation1(const Mesh& mesh, const Refinement& refinement, SpokeRule rule) {
+  MeshComplexForms F = mesh_complex_forms(mesh, refinement, rule, {.P1 = true});
+  SparseMatrix P;
+  P.swap(F.P1);  // swap, not move: Eigen 3.4's SparseMatrix copies on move
+  return P;
+}
+
+SparseMatrix mesh_prolongation2(const Mesh& mesh, const Refinement& refinement, SpokeRule rule) {
+  MeshComplexForms F = mesh_complex_forms(mesh, refinement, rule, {.P2 = true});
+  SparseMatrix P;
+  P.swap(F.P2);
+  return P;
+}
+
+SparseMatrix mesh_star1(const Mesh& mesh, const Refinement& refinement, SpokeRule rule) {
+  MeshComplexForms F = mesh_complex_forms(mesh, refinement, rule, {.star1 = true});
+  SparseMatrix S;
+  S.swap(F.star1);
   return S;
 }
 
 Eigen::VectorXd mesh_star2_diagonal(const Mesh& mesh, const Refinement& refinement, SpokeRule rule) {
-  check_sizes(mesh, refinement, "mesh_star2_diagonal");
-  const Eigen::VectorXd areas = signed_fan_areas(mesh, refinement);
-  Eigen::VectorXd s = Eigen::VectorXd::Zero(mesh.n_faces());
-  for (int f = 0; f < mesh.n_faces(); ++f) {
-    const int h0 = mesh.face_offsets()[f], n = mesh.face_size(f);
-    const PolygonCochainMaps K = face_maps(mesh, refinement, areas, f, rule);
-    const Eigen::Vector3d xf = virtual_point(refinement, f);
-    for (int k = 0; k < n; ++k)
-      if (refinement.fan[h0 + k] != FanTriangle::Degenerate)
-        s[f] += K.fractions[k] * K.fractions[k] *
-                whitney2_mass(mesh.position(mesh.halfedge_source(h0 + k)), mesh.position(mesh.halfedge_target(h0 + k)), xf);
-  }
-  return s;
+  return mesh_complex_forms(mesh, refinement, rule, {.star2 = true}).star2;
 }
 
 }  // namespace polydec

@@ -77,6 +77,19 @@ Eigen::VectorXd signed_fan_areas(const Mesh& mesh, const Refinement& refinement)
 SparseMatrix mesh_d0(const Mesh& mesh);
 SparseMatrix mesh_d1(const Mesh& mesh);
 
+// What mesh_complex_forms computes.
+struct MeshComplexParts {
+  bool P1 = false, P2 = false, star1 = false, star2 = false;
+};
+struct MeshComplexForms {
+  SparseMatrix P1, P2, star1;  // empty unless asked for
+  Eigen::VectorXd star2;       // the diagonal of star2
+};
+// The requested prolongations and stars (below) in one pass over the faces, each face's kernel
+// computed once; the functions below are its shorthands.
+MeshComplexForms mesh_complex_forms(const Mesh& mesh, const Refinement& refinement, SpokeRule rule,
+                                    MeshComplexParts parts);
+
 // P1: (|E| + |H|) x |E|; P2: |H| x |F| (refined numbering of dec/surface/complex.h).
 SparseMatrix mesh_prolongation1(const Mesh& mesh, const Refinement& refinement,
                                 SpokeRule rule = SpokeRule::AreaConsistent);

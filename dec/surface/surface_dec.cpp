@@ -27,15 +27,13 @@ SurfaceDec surface_dec(const Mesh& mesh, const Refinement& refinement, const Sur
     parts.star0_lumped = parts.star1 = parts.star2 = false;
     HodgeStars stars = hodge_stars(mesh, refinement, CoarseComplex(), parts);
     D.star[0].swap(stars.star0);
-    if (max_degree >= 1) {
-      D.P[1] = mesh_prolongation1(mesh, refinement, options.spoke_rule);
-      D.star[1] = mesh_star1(mesh, refinement, options.spoke_rule);
-    }
-    if (max_degree >= 2) {
-      D.P[2] = mesh_prolongation2(mesh, refinement, options.spoke_rule);
-      const Eigen::VectorXd s2 = mesh_star2_diagonal(mesh, refinement, options.spoke_rule);
-      D.star[2] = SparseMatrix(s2.asDiagonal());
-    }
+    MeshComplexForms F = mesh_complex_forms(
+        mesh, refinement, options.spoke_rule,
+        {.P1 = max_degree >= 1, .P2 = max_degree >= 2, .star1 = max_degree >= 1, .star2 = max_degree >= 2});
+    D.P[1].swap(F.P1);
+    D.star[1].swap(F.star1);
+    D.P[2].swap(F.P2);
+    if (max_degree >= 2) D.star[2] = SparseMatrix(F.star2.asDiagonal());
     return D;
   }
   D.coarse = CoarseComplex(mesh);
