@@ -30,6 +30,7 @@ AnyMesh with_global_options(AnyMesh mesh) {
 }  // namespace load_detail
 
 Mesh load_mesh(const std::string& path, bool repair_first, std::vector<int>* vertex_map) {
+  global_options().last_input = path;
   if (!repair_first) {
     const Mesh mesh = load_detail::with_global_options(read_mesh(path));
     if (vertex_map) {
@@ -52,6 +53,7 @@ Mesh load_mesh(const std::string& path, bool repair_first, std::vector<int>* ver
 }
 
 VolumeMesh load_volume_mesh(const std::string& path) {
+  global_options().last_input = path;
   return load_detail::with_global_options(read_volume_mesh(path));
 }
 

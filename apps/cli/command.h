@@ -53,6 +53,9 @@ struct GlobalOptions {
   // --planarity-tolerance: > 0 overrides the coordinate precision that load_mesh() records,
   // so that a face whose out-of-plane extent is at most this fraction of its size counts as planar.
   double planarity_tolerance = 0.0;
+  // The mesh file read last (load_mesh, load_volume_mesh): an InvalidMeshError raised after reading
+  // (an operator the mesh's scale cannot hold, say) is reported with it.
+  std::string last_input;
 };
 GlobalOptions& global_options();
 

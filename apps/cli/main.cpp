@@ -61,7 +61,10 @@ int main(int argc, char** argv) {
     std::cerr << "polydec: bad input: " << e.what() << "\n";
     return kBadInput;
   } catch (const polydec::InvalidMeshError& e) {
-    std::cerr << "polydec: bad input: " << e.what() << "\n";
+    const std::string& input = polydec::cli::global_options().last_input;
+    const std::string what = e.what();
+    const bool named = input.empty() || what.find(input) != std::string::npos;
+    std::cerr << "polydec: bad input: " << (named ? "" : input + ": ") << what << "\n";
     return kBadInput;
   } catch (const polydec::SolverError& e) {
     std::cerr << "polydec: solver failure: " << e.what() << "\n";

@@ -59,6 +59,11 @@ VolumeMesh validate(PolyhedronRead r, const std::string& name) {
   const auto face_where = std::move(r.face_where);
   const auto cell_where = std::move(r.cell_where);
   const bool byte_offsets = r.where_is_byte_offset;
+  // A file without cells would give empty operators and exit 0: refused, saying what it held.
+  if (r.soup.n_cells() == 0)
+    throw FileError(name, 0, -1,
+                    fmt::format("no volume cells ({} vertices, {} faces): a volume mesh needs at least one cell",
+                                r.soup.positions.rows(), r.soup.face_offsets.empty() ? 0 : r.soup.face_offsets.size() - 1));
   try {
     return VolumeMesh(std::move(r.soup));
   } catch (const InvalidMeshError& e) {

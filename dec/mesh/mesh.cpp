@@ -1,5 +1,7 @@
 // dec/mesh/mesh.cpp — validation of a polygon soup and derivation of the mesh connectivity.
 #include "polydec/dec/mesh/mesh.h"
+
+#include "polydec/dec/detail/scale.h"
 #include "polydec/dec/detail/union_find.h"
 
 #include <algorithm>
@@ -223,6 +225,10 @@ Mesh Mesh::with_precision(const CoordinatePrecision& precision) const {
 
 double rms_radius(const Eigen::MatrixX3d& X) {
   if (X.rows() == 0) return 0.0;
+  // Coordinates far outside the ordinary sizes (volumes accept up to kMaxVolumeCoordinate): in
+  // units of 2^e, so that the squares hold.
+  const int e = detail::normalizing_exponent(X.cwiseAbs().maxCoeff());
+  if (e != 0) return std::ldexp(rms_radius(X * std::ldexp(1.0, -e)), e);
   const Eigen::RowVector3d c = X.colwise().mean();
   return std::sqrt((X.rowwise() - c).rowwise().squaredNorm().mean());
 }

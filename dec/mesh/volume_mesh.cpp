@@ -9,6 +9,7 @@
 #include <limits>
 #include <numeric>
 
+#include "polydec/dec/detail/scale.h"
 #include "polydec/dec/detail/union_find.h"
 
 namespace polydec {
@@ -18,10 +19,10 @@ namespace {
 void check_position(const Eigen::MatrixX3d& X, long v) {
   if (!X.row(v).allFinite())
     throw InvalidMeshError("vertex", v, fmt::format("vertex {} has a non-finite coordinate", v));
-  if (X.row(v).cwiseAbs().maxCoeff() > kMaxCoordinate)
+  if (X.row(v).cwiseAbs().maxCoeff() > kMaxVolumeCoordinate)
     throw InvalidMeshError("vertex", v,
                            fmt::format("vertex {} has a coordinate of magnitude {:g}, above the limit {:g}",
-                                       v, X.row(v).cwiseAbs().maxCoeff(), kMaxCoordinate));
+                                       v, X.row(v).cwiseAbs().maxCoeff(), kMaxVolumeCoordinate));
 }
 
 void check_offsets(const std::vector<int>& offsets, size_t n_indices, const char* element) {
@@ -34,27 +35,38 @@ void check_offsets(const std::vector<int>& offsets, size_t n_indices, const char
                              fmt::format("{} offsets decrease at {} {}", element, element, k));
 }
 
-// Signed volume of the closed surface given by half-faces `hf`: each face split into triangles
-// (c_f, x_i, x_{i+1}) around its vertex centroid c_f (independent of where the face's vertex
-// cycle starts), tetrahedra to the origin `o` (the first vertex of the first face):
-// 1/6 sum (c - o) . ((a - o) x (b - o)).
-double signed_volume(const Eigen::MatrixX3d& X, const std::vector<int>& fo, const std::vector<int>& fi,
-                     std::span<const int> hf) {
-  if (hf.empty()) return 0.0;
+// Signed volume of the closed surface given by half-faces `hf`, as v 2^(3 e): each face split into
+// triangles (c_f, x_i, x_{i+1}) around its vertex centroid c_f (independent of where the face's
+// vertex cycle starts), tetrahedra to the origin `o` (the first vertex of the first face):
+// 1/6 sum (c - o) . ((a - o) x (b - o)), in coordinates relative to o scaled by 2^-e (e = 0 for
+// ordinary sizes, dec/detail/scale.h), so that cells of any representable size get a volume.
+struct ScaledVolume {
+  double v = 0;
+  int e = 0;
+};
+ScaledVolume signed_volume(const Eigen::MatrixX3d& X, const std::vector<int>& fo, const std::vector<int>& fi,
+                           std::span<const int> hf) {
+  if (hf.empty()) return {};
   const Eigen::Vector3d o = X.row(fi[fo[hf[0] / 2]]).transpose();
+  double extent = 0;
+  for (int h : hf)
+    for (int k = fo[h / 2]; k < fo[h / 2 + 1]; ++k) extent = std::fmax(extent, (X.row(fi[k]).transpose() - o).cwiseAbs().maxCoeff());
+  const int e = detail::normalizing_exponent(extent);
+  const double inv = std::ldexp(1.0, -e);
+  auto at = [&](int k) -> Eigen::Vector3d { return (X.row(fi[k]).transpose() - o) * inv; };
   double v6 = 0.0;
   for (int h : hf) {
     const int f = h / 2, b = fo[f], n = fo[f + 1] - b;
     Eigen::Vector3d c = Eigen::Vector3d::Zero();
     for (int k = 0; k < n; ++k) c += X.row(fi[b + k]).transpose();
-    c = c / double(n) - o;
+    c = (c / double(n) - o) * inv;
     for (int k = 0; k < n; ++k) {
-      Eigen::Vector3d p = X.row(fi[b + k]).transpose() - o, q = X.row(fi[b + (k + 1) % n]).transpose() - o;
+      Eigen::Vector3d p = at(b + k), q = at(b + (k + 1) % n);
       if (h & 1) std::swap(p, q);
       v6 += c.dot(p.cross(q));
     }
   }
-  return v6 / 6.0;
+  return {v6 / 6.0, e};
 }
 
 }  // namespace
@@ -202,11 +214,16 @@ VolumeMesh::VolumeMesh(PolyhedronSoup soup) {
   }
 
   // Orientation: consistently inward cells (negative total volume) are flipped once.
-  double total = 0.0;
+  // The cells' volumes summed in the units of the largest cell (ordinary meshes: all in units of 1).
+  std::vector<ScaledVolume> volumes(static_cast<size_t>(nc));
+  int largest = std::numeric_limits<int>::min();
   for (int c = 0; c < nc; ++c) {
     const int b = soup.cell_offsets[c], e = soup.cell_offsets[c + 1];
-    total += signed_volume(soup.positions, fo, fi, {soup.cell_halffaces.data() + b, size_t(e - b)});
+    volumes[size_t(c)] = signed_volume(soup.positions, fo, fi, {soup.cell_halffaces.data() + b, size_t(e - b)});
+    largest = std::max(largest, volumes[size_t(c)].e);
   }
+  double total = 0.0;
+  for (const ScaledVolume& v : volumes) total += std::ldexp(v.v, 3 * (v.e - largest));
   if (total < 0) {
     for (int& h : soup.cell_halffaces) h ^= 1;
     for (auto& u : use) std::swap(u[0], u[1]);
@@ -302,7 +319,8 @@ Mesh VolumeMesh::boundary_surface() const {
 }
 
 double VolumeMesh::cell_volume(int c) const {
-  return signed_volume(positions_, topo_->face_offsets, topo_->face_indices, cell(c));
+  const ScaledVolume v = signed_volume(positions_, topo_->face_offsets, topo_->face_indices, cell(c));
+  return std::ldexp(v.v, 3 * v.e);
 }
 
 double VolumeMesh::volume() const {
@@ -314,15 +332,50 @@ double VolumeMesh::volume() const {
 double VolumeMesh::mean_edge_length() const {
   const auto& E = edges();
   if (E.rows() == 0) return 0.0;
+  // Lengths in units of 2^s when the mesh is far outside the ordinary sizes (their squares would not hold).
+  const int s = detail::normalizing_exponent(bounding_box_diagonal());
+  const double inv = std::ldexp(1.0, -s);
   double sum = 0.0;
   for (Eigen::Index e = 0; e < E.rows(); ++e)
-    sum += (positions_.row(E(e, 1)) - positions_.row(E(e, 0))).norm();
-  return sum / double(E.rows());
+    sum += ((positions_.row(E(e, 1)) - positions_.row(E(e, 0))) * inv).norm();
+  return std::ldexp(sum / double(E.rows()), s);
 }
 
 double VolumeMesh::bounding_box_diagonal() const {
   if (positions_.rows() == 0) return 0.0;
-  return (positions_.colwise().maxCoeff() - positions_.colwise().minCoeff()).norm();
+  const Eigen::RowVector3d d = positions_.colwise().maxCoeff() - positions_.colwise().minCoeff();
+  const int s = detail::normalizing_exponent(d.cwiseAbs().maxCoeff());
+  return std::ldexp((d * std::ldexp(1.0, -s)).norm(), s);
+}
+
+void check_length_power(const VolumeMesh& mesh, int power, const std::string& what) {
+  if (power == 0) return;
+  // Each edge's binary exponent from its largest coordinate difference (no squares that could
+  // overflow); the length is within sqrt(3) of it.
+  const auto& E = mesh.edges();
+  const auto& X = mesh.positions();
+  int lo = std::numeric_limits<int>::max(), hi = std::numeric_limits<int>::min();
+  Eigen::Index e_lo = -1, e_hi = -1;
+  for (Eigen::Index e = 0; e < E.rows(); ++e) {
+    const double d = (X.row(E(e, 1)) - X.row(E(e, 0))).cwiseAbs().maxCoeff();
+    if (!(d > 0)) continue;
+    const int k = std::ilogb(d);
+    if (k < lo) lo = k, e_lo = e;
+    if (k > hi) hi = k, e_hi = e;
+  }
+  constexpr int kLimit = 960;
+  for (const Eigen::Index e : {e_lo, e_hi}) {
+    if (e < 0) continue;
+    const double d = (X.row(E(e, 1)) - X.row(E(e, 0))).cwiseAbs().maxCoeff();
+    const long p = long(power) * std::ilogb(d);
+    if (p > kLimit || p < -kLimit)
+      throw InvalidMeshError(
+          "edge", long(e),
+          fmt::format("edge {} has a length of about {:.3g}: {} scale as length^{} and would reach about "
+                      "1e{:+.0f}, outside what double holds with full precision (about 1e-289 .. 1e289); "
+                      "rescale the mesh",
+                      e, d, what, power, double(power) * std::log10(d)));
+  }
 }
 
 }  // namespace polydec

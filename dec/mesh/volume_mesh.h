@@ -36,7 +36,7 @@ struct PolyhedronSoup {
 // A validated polyhedral mesh (throws InvalidMeshError, element "vertex", "face", "cell" or
 // "edge" with its index, on the first violation).
 //
-// Validation: finite coordinates of magnitude at most kMaxCoordinate; faces with at least 3
+// Validation: finite coordinates of magnitude at most kMaxVolumeCoordinate; faces with at least 3
 // distinct vertices in range; every face used by one or two cells, at most once per cell; each
 // cell closed (every edge of its half-faces used exactly twice, in opposite directions) and
 // connected; a face shared by two cells appears as 2f in one and 2f+1 in the other (consistent
@@ -45,6 +45,12 @@ struct PolyhedronSoup {
 // signed volume, as in the OVM files of polyLaplace), every half-face is flipped once; the
 // per-cell signed volumes are not otherwise used to reorient, so a mesh whose cells disagree
 // with each other is rejected rather than silently repaired.
+// Largest accepted coordinate magnitude of a volume mesh: the volume kernels work in coordinates
+// relative to each element, scaled by a power of two (dec/detail/scale.h), so they need only the
+// differences and sums of a cell's coordinates to stay finite. What an operator's entries (length^k)
+// cannot represent is refused when it is built (check_length_power()).
+inline constexpr double kMaxVolumeCoordinate = 1e300;
+
 class VolumeMesh {
  public:
   VolumeMesh() = default;
@@ -131,5 +137,12 @@ class VolumeMesh {
   CoordinatePrecision precision_;
   std::shared_ptr<const Topology> topo_ = std::make_shared<Topology>();
 };
+
+// Throws InvalidMeshError (element "edge": the shortest or the longest edge) when quantities that
+// scale as length^power (a mass or star0: 3, a stiffness or star1: 1, a gradient: -1, star3: -3)
+// cannot be held in double with full precision on this mesh: that edge's length^power must lie
+// within 2^-960 .. 2^960. `what` names the quantity in the message. Called by the volume
+// operators and stars before they are assembled.
+void check_length_power(const VolumeMesh& mesh, int power, const std::string& what);
 
 }  // namespace polydec

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "polydec/dec/detail/scale.h"
 #include "polydec/dec/volume/prolongation.h"
 #include "polydec/dec/volume/whitney.h"
 
@@ -183,9 +184,16 @@ void build_cell(const VolumeMesh& mesh, const VolumeRefinement& R, int c, int de
     for (int i = 0; i < nVc; ++i) W.P0(nVc + nFc, i) = w[size_t(i)];
   }
 
-  // Sub-tetrahedra, in the order of VolumeRefinement::tets.
+  // Sub-tetrahedra, in the order of VolumeRefinement::tets. Their volumes serve only as ratios
+  // (P3): a cell far outside the ordinary sizes takes them relative to its cell point in units of
+  // 2^e (dec/detail/scale.h), where they cannot overflow.
   W.tets.clear();
   {
+    const Eigen::Vector3d xc = R.cell_points.row(c).transpose();
+    double extent = 0;
+    for (int v : W.verts) extent = std::fmax(extent, (mesh.position(v) - xc).cwiseAbs().maxCoeff());
+    const int e = detail::normalizing_exponent(extent);
+    const double inv = std::ldexp(1.0, -e);
     int t = R.tet_offsets[size_t(c)];
     std::vector<int> hv;
     for (int l = 0; l < nFc; ++l) {
@@ -200,7 +208,10 @@ void build_cell(const VolumeMesh& mesh, const VolumeRefinement& R, int c, int de
         tet.o = permutation_sign(ordered);
         tet.quality = R.tets[size_t(t)];
         Eigen::Vector3d p[4];
-        for (int a = 0; a < 4; ++a) p[a] = refined_position(mesh, R, tet.v[size_t(a)]);
+        for (int a = 0; a < 4; ++a) {
+          p[a] = refined_position(mesh, R, tet.v[size_t(a)]);
+          if (e != 0) p[a] = (p[a] - xc) * inv;
+        }
         tet.volume = tet_signed_volume(p[0], p[1], p[2], p[3]);
         W.tets.push_back(tet);
       }
@@ -532,6 +543,7 @@ std::array<SparseMatrix, 4> volume_mesh_stars(const VolumeMesh& mesh, const Volu
   using namespace volume_mesh_complex_detail;
   check_refinement(mesh, refinement, "volume_mesh_stars");
   check_degree(max_degree, 0, 3, "volume_mesh_stars");
+  for (int k = 0; k <= max_degree; ++k) check_length_power(mesh, 3 - 2 * k, "star" + std::to_string(k) + "'s entries");
   Request request;
   request.star_degree = max_degree;
   return assemble(mesh, refinement, nullptr, request, rule).star;

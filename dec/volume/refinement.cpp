@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "polydec/dec/detail/huge_pages.h"
+#include "polydec/dec/detail/scale.h"
 #include "polydec/dec/detail/threads.h"
 #include "polydec/dec/surface/virtual_vertex.h"
 
@@ -219,8 +220,13 @@ VolumeRefinement refine_volume(const VolumeMesh& mesh, const VolumeRefinementOpt
   const double planarity =
       options.planarity_tolerance > 0 ? options.planarity_tolerance : mesh.precision().planarity_tolerance;
   const double noise = mesh.coordinate_noise();
+  // A face or cell far outside the ordinary sizes (dec/detail/scale.h) is computed in coordinates
+  // scaled by 2^-e (e its exponent, 0 otherwise: then every factor below is 1 and the results are
+  // those of the unscaled formulas bit for bit); a face's moment is kept in its own units, times
+  // 2^-4e, with e in face_exponent.
+  std::vector<short> face_exponent(size_t(nF), 0);
   run_on_threads(T, [&](int t) {
-    std::vector<double> corners, work;
+    std::vector<double> corners, work, scaled;
     for (int f = int(long(nF) * t / T); f < int(long(nF) * (t + 1) / T); ++f) {
       const auto face = mesh.face(f);
       const int n = int(face.size());
@@ -228,27 +234,42 @@ VolumeRefinement refine_volume(const VolumeMesh& mesh, const VolumeRefinementOpt
       work.resize(3 * size_t(n));
       for (int k = 0; k < n; ++k)
         for (int d = 0; d < 3; ++d) corners[3 * k + d] = P(face[k], d);
-      double* w = R.face_weights.data() + mesh.face_offsets()[f];
-      squared_area_weights(corners.data(), n, w, work.data(),
-                           planarity_cut(planarity, noise, corners.data(), n));
+      PlanarityCut cut = planarity_cut(planarity, noise, corners.data(), n);
       // x_f = c + sum_k w_k (x_k - c) with c the corners' mean: far from the origin no digits are
       // lost, and a face in a coordinate plane keeps that coordinate exactly.
-      double c[3] = {0, 0, 0}, x[3];
+      double c[3] = {0, 0, 0}, x[3], extent = 0;
       for (int k = 0; k < n; ++k)
         for (int d = 0; d < 3; ++d) c[d] += corners[3 * k + d];
       for (int d = 0; d < 3; ++d) x[d] = c[d] /= n;
+      for (int k = 0; k < n; ++k)
+        for (int d = 0; d < 3; ++d) extent = std::fmax(extent, std::fabs(corners[3 * k + d] - c[d]));
+      const int e = detail::normalizing_exponent(extent);
+      const double inv = std::ldexp(1.0, -e);
+      double* w = R.face_weights.data() + mesh.face_offsets()[f];
+      if (e == 0) {
+        squared_area_weights(corners.data(), n, w, work.data(), cut);
+      } else {
+        // The weights are affine: the same for the centred corners scaled by 2^-e (and the noise with them).
+        scaled.resize(3 * size_t(n));
+        for (int k = 0; k < n; ++k)
+          for (int d = 0; d < 3; ++d) scaled[3 * k + d] = (corners[3 * k + d] - c[d]) * inv;
+        if (cut.relative <= 0) cut.noise *= inv;
+        squared_area_weights(scaled.data(), n, w, work.data(), cut);
+      }
       for (int k = 0; k < n; ++k)
         for (int d = 0; d < 3; ++d) x[d] += w[k] * (corners[3 * k + d] - c[d]);
       for (int d = 0; d < 3; ++d) R.face_points(f, d) = x[d];
       Sym3 Nf{};
       const double* last = corners.data() + 3 * (n - 1);
-      double a0 = last[0] - x[0], a1 = last[1] - x[1], a2 = last[2] - x[2];
+      double a0 = (last[0] - x[0]) * inv, a1 = (last[1] - x[1]) * inv, a2 = (last[2] - x[2]) * inv;
       for (int k = 0; k < n; ++k) {
-        const double b0 = corners[3 * k] - x[0], b1 = corners[3 * k + 1] - x[1], b2 = corners[3 * k + 2] - x[2];
+        const double b0 = (corners[3 * k] - x[0]) * inv, b1 = (corners[3 * k + 1] - x[1]) * inv,
+                     b2 = (corners[3 * k + 2] - x[2]) * inv;
         add_outer(Nf, a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0);
         a0 = b0, a1 = b1, a2 = b2;
       }
       moments[size_t(f)] = Nf;
+      face_exponent[size_t(f)] = short(e);
     }
   });
 
@@ -286,10 +307,19 @@ VolumeRefinement refine_volume(const VolumeMesh& mesh, const VolumeRefinementOpt
       for (int v : verts) o[0] += P0[v], o[1] += P1[v], o[2] += P2[v];
       for (double& x : o) x /= double(m);
       Xc.resize(m, 3);
-      double R2 = 0;
+      double extent = 0;
       for (int k = 0; k < m; ++k) {
         const double y0 = P0[verts[k]] - o[0], y1 = P1[verts[k]] - o[1], y2 = P2[verts[k]] - o[2];
         Xc(k, 0) = y0, Xc(k, 1) = y1, Xc(k, 2) = y2;
+        extent = std::fmax(extent, std::fmax(std::fabs(y0), std::fmax(std::fabs(y1), std::fabs(y2))));
+      }
+      // The cell in units of 2^e (e = 0 for ordinary sizes): relative coordinates times inv,
+      // a face's moment (kept in units of 2^e_f) times 2^(4 (e_f - e)).
+      const int e = detail::normalizing_exponent(extent);
+      const double inv = std::ldexp(1.0, -e);
+      double R2 = 0;
+      for (int k = 0; k < m; ++k) {
+        const double y0 = Xc(k, 0) *= inv, y1 = Xc(k, 1) *= inv, y2 = Xc(k, 2) *= inv;
         R2 = std::max(R2, y0 * y0 + y1 * y1 + y2 * y2);
       }
       Sym3 N{};
@@ -297,25 +327,34 @@ VolumeRefinement refine_volume(const VolumeMesh& mesh, const VolumeRefinementOpt
       for (int hf : cell) {
         const int f = hf / 2;
         const Sym3& A = moments[size_t(f)];
-        const double q0 = F0[f] - o[0], q1 = F1[f] - o[1], q2 = F2[f] - o[2];
-        for (int k = 0; k < 6; ++k) N[k] += A[k];
-        r[0] += A[0] * q0 + A[1] * q1 + A[2] * q2;
-        r[1] += A[1] * q0 + A[3] * q1 + A[4] * q2;
-        r[2] += A[2] * q0 + A[4] * q1 + A[5] * q2;
+        const double to_cell = std::ldexp(1.0, 4 * (face_exponent[size_t(f)] - e));
+        const double q0 = (F0[f] - o[0]) * inv, q1 = (F1[f] - o[1]) * inv, q2 = (F2[f] - o[2]) * inv;
+        double a[6];
+        for (int k = 0; k < 6; ++k) N[k] += a[k] = A[k] * to_cell;
+        r[0] += a[0] * q0 + a[1] * q1 + a[2] * q2;
+        r[1] += a[1] * q0 + a[3] * q1 + a[4] * q2;
+        r[2] += a[2] * q0 + a[4] * q1 + a[5] * q2;
         R2 = std::max(R2, q0 * q0 + q1 * q1 + q2 * q2);
       }
       const Eigen::Vector3d xc = solve_squared_volume(N, Eigen::Vector3d(r[0], r[1], r[2]));
-      R.cell_points(c, 0) = o[0] + xc[0], R.cell_points(c, 1) = o[1] + xc[1], R.cell_points(c, 2) = o[2] + xc[2];
+      const double unit = std::ldexp(1.0, e);
+      for (int d = 0; d < 3; ++d) R.cell_points(c, d) = o[d] + xc[d] * unit;
 
       double* w = R.cell_weights.data() + R.cell_weight_offsets[c];
       if (options.cell_rule == CellPointRule::SquaredVolume) {
         centred_affine_weights(Xc, xc, w);
       } else {
-        const Eigen::RowVector3d origin(o[0], o[1], o[2]);
+        // Unscaled cells in the mesh's coordinates (as polyLaplace), scaled ones relative to o
+        // (affine weights do not change).
+        const Eigen::RowVector3d origin = e == 0 ? Eigen::RowVector3d(o[0], o[1], o[2]) : Eigen::RowVector3d::Zero();
         X = Xc.rowwise() + origin;
         const int nf = int(cell.size());
         Eigen::MatrixX3d Qp(nf + m, 3);
-        for (int k = 0; k < nf; ++k) Qp.row(k) = R.face_points.row(cell[k] / 2);
+        for (int k = 0; k < nf; ++k) {
+          const int f = cell[k] / 2;
+          if (e == 0) Qp.row(k) = R.face_points.row(f);
+          else Qp.row(k) << (F0[f] - o[0]) * inv, (F1[f] - o[1]) * inv, (F2[f] - o[2]) * inv;
+        }
         Qp.bottomRows(m) = X;
         const Eigen::VectorXd lambda = last_pinned_affine_weights(Qp, origin.transpose() + xc);
         for (int k = 0; k < m; ++k) w[k] = lambda(nf + k);
@@ -339,12 +378,12 @@ VolumeRefinement refine_volume(const VolumeMesh& mesh, const VolumeRefinementOpt
         const int f = hf / 2;
         const auto face = mesh.face(f);
         const int n = int(face.size());
-        const double q0 = F0[f] - o[0], q1 = F1[f] - o[1], q2 = F2[f] - o[2];
+        const double q0 = (F0[f] - o[0]) * inv, q1 = (F1[f] - o[1]) * inv, q2 = (F2[f] - o[2]) * inv;
         const double h0 = x0 - q0, h1 = x1 - q1, h2 = x2 - q2;
         // Corner i in outward order, relative to o (half-face 2f + 1 runs against the face).
         auto corner = [&](int i, double* y) {
           const int v = hf & 1 ? face[n - 1 - i] : face[i];
-          y[0] = P0[v] - o[0], y[1] = P1[v] - o[1], y[2] = P2[v] - o[2];
+          y[0] = (P0[v] - o[0]) * inv, y[1] = (P1[v] - o[1]) * inv, y[2] = (P2[v] - o[2]) * inv;
         };
         double a[3], b[3];
         corner(0, a);

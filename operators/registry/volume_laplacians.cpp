@@ -93,6 +93,8 @@ OperatorSet build_volume_operators(const VolumeMesh& mesh, const LaplacianChoice
 
 SparseMatrix volume_gradient(const VolumeMesh& mesh, const VolumeRefinement& refinement, Eigen::VectorXd* volumes) {
   check_refinement(mesh, refinement, "volume_gradient");
+  check_length_power(mesh, -1, "the gradient's entries");
+  if (volumes) check_length_power(mesh, 3, "the sub-tetrahedra's volumes");
   const std::vector<RefinedTet> tets = refined_tets(mesh, refinement);
   const int n_refined = mesh.n_vertices() + mesh.n_faces() + mesh.n_cells();
   std::vector<Eigen::Triplet<double>> t;
@@ -114,6 +116,7 @@ SparseMatrix volume_gradient(const VolumeMesh& mesh, const VolumeRefinement& ref
 
 Eigen::VectorXd sub_tet_volumes(const VolumeMesh& mesh, const VolumeRefinement& refinement) {
   check_refinement(mesh, refinement, "sub_tet_volumes");
+  check_length_power(mesh, 3, "the sub-tetrahedra's volumes");
   const std::vector<RefinedTet> tets = refined_tets(mesh, refinement);
   Eigen::VectorXd w = Eigen::VectorXd::Zero(Eigen::Index(tets.size()));
   for (size_t k = 0; k < tets.size(); ++k)

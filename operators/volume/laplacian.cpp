@@ -10,6 +10,7 @@
 
 #include "polydec/dec/detail/element_pattern.h"
 #include "polydec/dec/detail/huge_pages.h"
+#include "polydec/dec/detail/scale.h"
 #include "polydec/dec/detail/threads.h"
 
 namespace polydec {
@@ -195,6 +196,12 @@ void cell_kernel(const VolumeMesh& mesh, const VolumeRefinement& refinement, int
     ws.local[verts[k]] = k;
     for (int d = 0; d < 3; ++d) p[3 * k + d] = X(verts[k], d) - xc[d];
   }
+  // A cell far outside the ordinary sizes is computed in units of 2^e (dec/detail/scale.h) and its
+  // matrices scaled back at the end: S by 2^e, M by 2^3e (e = 0, the usual case: nothing changes).
+  const int e = detail::normalizing_exponent(detail::max_abs(p, 3 * m));
+  const double inv = std::ldexp(1.0, -e);
+  if (e != 0)
+    for (int k = 0; k < 3 * m; ++k) p[k] *= inv;
   S.setZero(m, m);
   M.setZero(m, m);
   std::fill_n(ws.hs.data(), m, 0.0);
@@ -213,8 +220,8 @@ void cell_kernel(const VolumeMesh& mesh, const VolumeRefinement& refinement, int
       ws.corner[i] = ws.local[face[k]];
       ws.weight[i] = wf[k];
     }
-    const double q[3] = {refinement.face_points(f, 0) - xc[0], refinement.face_points(f, 1) - xc[1],
-                         refinement.face_points(f, 2) - xc[2]};
+    const double q[3] = {(refinement.face_points(f, 0) - xc[0]) * inv, (refinement.face_points(f, 1) - xc[1]) * inv,
+                         (refinement.face_points(f, 2) - xc[2]) * inv};
     if (n == 4)
       add_face<4>(flags, n, ws.corner.data(), ws.weight.data(), p, q, m, S.data(), M.data(), ws, as, am);
     else if (n == 3)
@@ -225,6 +232,8 @@ void cell_kernel(const VolumeMesh& mesh, const VolumeRefinement& refinement, int
   }
   const auto w = refinement.weights_of_cell(c);
   add_cell_point(ws.hs.data(), as, ws.hm.data(), am, w, m, S.data(), M.data());
+  if (e != 0)
+    for (long k = 0; k < long(m) * m; ++k) S.data()[k] = std::ldexp(S.data()[k], e), M.data()[k] = std::ldexp(M.data()[k], 3 * e);
 }
 
 }  // namespace
@@ -245,6 +254,8 @@ void cell_matrices(const VolumeMesh& mesh, const VolumeRefinement& refinement, i
 VolumeLaplacian assemble_volume_laplacian(const VolumeMesh& mesh, const VolumeRefinement& refinement,
                                           const SparseMatrix* pattern, int threads) {
   check_refinement(mesh, refinement, "assemble_volume_laplacian");
+  check_length_power(mesh, 1, "the stiffness matrix's entries");
+  check_length_power(mesh, 3, "the mass matrix's entries");
   using namespace volume_laplacian_detail;
   VolumeLaplacian L;
   L.quality = refinement.quality;

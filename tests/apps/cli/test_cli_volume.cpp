@@ -115,3 +115,29 @@ TEST_CASE("polydec convert between volume formats and to the boundary", "[volume
 }
 
 }  // namespace test_cli_volume
+
+namespace test_cli_volume {
+
+TEST_CASE("polydec operators on volumes far outside the ordinary sizes: results or a refusal naming the file",
+          "[volume][cli][volume-scale]") {
+  Scratch s;
+  const VolumeMesh m = hex_grid_volume(2, 2, 2, {0.2, 5});
+  // At 1e63 every entry is representable: S is the unit mesh's times 1e63 (the route before per-cell
+  // scaling gave NaN here).
+  write_volume_mesh(m.with_positions(m.positions() * 1e63), s.path("big.vtk"));
+  write_volume_mesh(m, s.path("unit.vtk"));
+  REQUIRE(run(s.dir, "operators " + s.path("big.vtk") + " --out " + s.path("big")).code == 0);
+  REQUIRE(run(s.dir, "operators " + s.path("unit.vtk") + " --out " + s.path("unit")).code == 0);
+  using Sparse = Eigen::SparseMatrix<double>;
+  const Sparse S = read_matrix_market(s.path("big/S.mtx")), S1 = read_matrix_market(s.path("unit/S.mtx"));
+  CHECK(S.coeffs().allFinite());
+  CHECK(Sparse(Sparse(S / 1e63) - S1).coeffs().cwiseAbs().maxCoeff() <= 1e-12 * S1.coeffs().cwiseAbs().maxCoeff());
+  // At 1e150 the mass (length^3) is not: exit 3, the file, the quantity and the edge named.
+  write_volume_mesh(m.with_positions(m.positions() * 1e150), s.path("huge.vtk"));
+  const Run r = run(s.dir, "operators " + s.path("huge.vtk") + " --out " + s.path("huge"));
+  CHECK(r.code == 3);
+  CHECK_THAT(r.err, Catch::Contains("huge.vtk: edge") && Catch::Contains("mass matrix") &&
+                        Catch::Contains("rescale the mesh"));
+}
+
+}  // namespace test_cli_volume

@@ -248,3 +248,20 @@ TEST_CASE("MEDIT: tetrahedra and hexahedra, references ignored, hostile files", 
 }
 
 }  // namespace test_volume_io
+
+namespace test_volume_io {
+
+TEST_CASE("volume files without cells are refused, in every format", "[volume]") {
+  const std::string ovm = "OVM ASCII\nVertices\n4\n0 0 0\n1 0 0\n0 1 0\n0 0 1\nEdges\n0\nFaces\n0\nPolyhedra\n0\n";
+  const std::string vtk =
+      "# vtk DataFile Version 4.2\np\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 double\n0 0 0 1 0 0 0 1 0 0 0 1\n"
+      "CELLS 0 0\nCELL_TYPES 0\n";
+  const std::string medit = "MeshVersionFormatted 2\nDimension 3\nVertices\n1\n0 0 0 1\nEnd\n";
+  for (const auto& [bytes, format] : {std::pair{ovm, "ovm"}, std::pair{vtk, "vtk"}, std::pair{medit, "mesh"}}) {
+    CAPTURE(format);
+    CHECK_THROWS_WITH(read_volume_mesh_from_memory(bytes, format, "empty"),
+                      Catch::Contains("empty") && Catch::Contains("no volume cells"));
+  }
+}
+
+}  // namespace test_volume_io
