@@ -1,15 +1,20 @@
 // apps/cli/hodge.cpp — `polydec hodge MESH --out FILE`: Hodge decomposition of a 1-form
 // (one value per coarse 1-cell, in the order of `polydec dec`'s edges.txt) into exact,
 // co-exact and harmonic parts, with their star1 norms; --complex mesh: one value per mesh edge.
+// Surfaces and volume meshes (.ovm, .vtk, .mesh or --volume) alike.
 #include <fmt/format.h>
 
 #include <Eigen/Geometry>
+#include <chrono>
 #include <fstream>
 #include <iostream>
 #include <random>
+#include <type_traits>
 
 #include "polydec/apps/cli/command.h"
 #include "polydec/apps/applications/hodge_decomposition.h"
+#include "polydec/apps/applications/volume/hodge_decomposition.h"
+#include "polydec/dec/io/volume_io.h"
 #include "polydec/dec/surface/hodge_star.h"
 #include "polydec/dec/io/mesh_io.h"
 
@@ -22,6 +27,7 @@ struct Options {
   double noise = 0.05;
   unsigned seed = 1;
   bool json = false;
+  bool volume = false;  // --volume
   std::string complex = "complete";
 };
 
@@ -57,61 +63,108 @@ Eigen::VectorXd read_form(const std::string& path, long expected, const char* ce
 
 // d0 of the x coordinate + the rotation about the z axis through the centroid, integrated along
 // each 1-cell (midpoint rule) + uniform noise of amplitude noise * mean edge length.
-Eigen::VectorXd builtin_form(const Mesh& mesh, const Eigen::MatrixX2i& cells, double noise, unsigned seed) {
-  const Eigen::RowVector3d c = mesh.positions().colwise().mean();
+template <class AnyMesh>
+Eigen::VectorXd builtin_form(const AnyMesh& mesh, const Eigen::MatrixX2i& cells, double noise, unsigned seed) {
+  const Eigen::MatrixX3d& X = mesh.positions();
+  const Eigen::RowVector3d c = X.colwise().mean();
   const double h = mesh.mean_edge_length();
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> U(-1.0, 1.0);
   Eigen::VectorXd omega(cells.rows());
   for (int p = 0; p < cells.rows(); ++p) {
-    const Eigen::Vector3d a = mesh.position(cells(p, 0)), b = mesh.position(cells(p, 1));
+    const Eigen::Vector3d a = X.row(cells(p, 0)).transpose(), b = X.row(cells(p, 1)).transpose();
     const Eigen::Vector3d m = 0.5 * (a + b) - c.transpose();
     omega[p] = (b - a).x() + Eigen::Vector3d::UnitZ().cross(m).dot(b - a) + noise * h * U(rng);
   }
   return omega;
 }
 
+// What the decomposition of either kind of mesh reports.
+struct Decomposed {
+  Eigen::MatrixX2i cells;
+  Eigen::VectorXd omega;
+  HodgeParts parts;
+  int harmonic_dimension = 0;
+  std::string counts;  // "V vertices, F faces" (and cells)
+};
+
+// Reads the mesh, builds the decomposer, decomposes the given or built-in form; the phases'
+// seconds go to `seconds`.
+template <class AnyMesh, class Decomposer>
+Decomposed decompose(const Options& o, const AnyMesh& mesh, DecComplex complex, nlohmann::json& seconds) {
+  const bool on_mesh = complex == DecComplex::Mesh;
+  auto t0 = std::chrono::steady_clock::now();
+  const Decomposer hd(mesh, {}, complex);
+  seconds["operators"] = seconds_since(t0);
+  Decomposed r;
+  if constexpr (std::is_same_v<Decomposer, HodgeDecomposer>)
+    r.cells = on_mesh ? mesh.edges() : hd.complex().pairs();
+  else
+    r.cells = hd.cells();
+  const char* cell_name = on_mesh ? "edges" : "coarse 1-cells";
+  r.omega = o.form.empty() ? builtin_form(mesh, r.cells, o.noise, o.seed) : read_form(o.form, r.cells.rows(), cell_name);
+  t0 = std::chrono::steady_clock::now();
+  r.parts = hd.decompose(r.omega);
+  seconds["solves"] = seconds_since(t0);
+  r.harmonic_dimension = hd.harmonic_dimension();
+  return r;
+}
+
 void run(const Options& o) {
   if (!(o.noise >= 0) || !std::isfinite(o.noise)) throw UsageError("--noise must be a finite number >= 0");
   const DecComplex complex = parse_option(parse_dec_complex, o.complex);
   const bool on_mesh = complex == DecComplex::Mesh;
-  const Mesh mesh = load_mesh(o.mesh, o.repair);
-  if (!on_mesh && mesh.max_face_size() > kHighValence)
-    std::cerr << fmt::format("polydec: warning: faces with up to {} corners: star1 grows as n^4 per face\n",
-                             mesh.max_face_size());
-  const HodgeDecomposer hd(mesh, {}, complex);
-  const Eigen::MatrixX2i cells = on_mesh ? mesh.edges() : hd.complex().pairs();
-  const long n1 = cells.rows();
+  const bool volume = o.volume || is_volume_mesh_path(o.mesh);
+  nlohmann::json seconds;
+  auto t0 = std::chrono::steady_clock::now();
+  Decomposed r;
+  if (volume) {
+    if (o.repair) throw UsageError("--repair applies to surface meshes only");
+    const VolumeMesh mesh = load_volume_mesh(o.mesh);
+    seconds["read"] = seconds_since(t0);
+    r = decompose<VolumeMesh, VolumeHodgeDecomposer>(o, mesh, complex, seconds);
+    r.counts = fmt::format("{} vertices, {} faces, {} cells", mesh.n_vertices(), mesh.n_faces(), mesh.n_cells());
+  } else {
+    const Mesh mesh = load_mesh(o.mesh, o.repair);
+    seconds["read"] = seconds_since(t0);
+    if (!on_mesh && mesh.max_face_size() > kHighValence)
+      std::cerr << fmt::format("polydec: warning: faces with up to {} corners: star1 grows as n^4 per face\n",
+                               mesh.max_face_size());
+    r = decompose<Mesh, HodgeDecomposer>(o, mesh, complex, seconds);
+    r.counts = fmt::format("{} vertices, {} faces", mesh.n_vertices(), mesh.n_faces());
+  }
+  const long n1 = r.cells.rows();
   const char* cell_name = on_mesh ? "edges" : "coarse 1-cells";
-  const Eigen::VectorXd omega =
-      o.form.empty() ? builtin_form(mesh, cells, o.noise, o.seed) : read_form(o.form, n1, cell_name);
-  const HodgeParts parts = hd.decompose(omega);
+  const HodgeParts& parts = r.parts;
+  t0 = std::chrono::steady_clock::now();
   if (!o.out.empty()) {
     std::ofstream out(o.out);
     if (!out) throw FileError(o.out, 0, -1, "cannot open file for writing");
     out << fmt::format("# i j omega exact coexact harmonic (one line per {}, i < j, 0-based)\n",
                        on_mesh ? "mesh edge" : "coarse 1-cell");
     for (int p = 0; p < n1; ++p)
-      out << fmt::format("{} {} {:.17g} {:.17g} {:.17g} {:.17g}\n", cells(p, 0), cells(p, 1),
-                         omega[p], parts.exact[p], parts.coexact[p], parts.harmonic[p]);
+      out << fmt::format("{} {} {:.17g} {:.17g} {:.17g} {:.17g}\n", r.cells(p, 0), r.cells(p, 1), r.omega[p],
+                         parts.exact[p], parts.coexact[p], parts.harmonic[p]);
     if (!out) throw FileError(o.out, 0, -1, "write failed");
   }
+  seconds["write"] = seconds_since(t0);
   const nlohmann::json j = {{"mesh", o.mesh},
+                            {"kind", volume ? "volume" : "surface"},
                             {"form", o.form.empty() ? "builtin" : o.form},
                             {"complex", to_string(complex)},
                             {on_mesh ? "edges" : "pairs", n1},
-                            {"harmonic_dimension", hd.harmonic_dimension()},
+                            {"harmonic_dimension", r.harmonic_dimension},
                             {"norm", parts.norm},
                             {"norm_exact", parts.norm_exact},
                             {"norm_coexact", parts.norm_coexact},
                             {"norm_harmonic", parts.norm_harmonic},
-                            {"out", o.out}};
+                            {"out", o.out},
+                            {"seconds", seconds}};
   if (o.json) {
     print_json(j);
     return;
   }
-  fmt::print("{}: {} vertices, {} faces, {} {}, harmonic dimension {}\n", o.mesh, mesh.n_vertices(),
-             mesh.n_faces(), n1, cell_name, hd.harmonic_dimension());
+  fmt::print("{}: {}, {} {}, harmonic dimension {}\n", o.mesh, r.counts, n1, cell_name, r.harmonic_dimension);
   fmt::print("star1 norms: form {:.6g} = sqrt(exact^2 + co-exact^2 + harmonic^2)\n", parts.norm);
   fmt::print("  exact    {:.6g}\n  co-exact {:.6g}\n  harmonic {:.6g}\n", parts.norm_exact,
              parts.norm_coexact, parts.norm_harmonic);
@@ -121,7 +174,7 @@ void run(const Options& o) {
 const RegisterCommand reg(
     "hodge", "Hodge decomposition of a 1-form into exact, co-exact and harmonic parts", [](CLI::App& app) {
       auto o = std::make_shared<Options>();
-      app.add_option("mesh", o->mesh, "input mesh (.obj, .off, .ply)")->required();
+      app.add_option("mesh", o->mesh, "input mesh (.obj, .off, .ply; volumes: .ovm, .vtk, .mesh)")->required();
       app.add_option("--out", o->out, "output text file: i j omega exact coexact harmonic");
       app.add_option("--form", o->form,
                      "1-form file, one value per coarse 1-cell in edges.txt order (default: "
@@ -133,7 +186,8 @@ const RegisterCommand reg(
       app.add_option("--complex", o->complex,
                      "the cells: complete (default; vertex pairs sharing a face) or mesh (the mesh's edges: "
                      "positive definite star1, unique parts)");
-      app.add_flag("--json", o->json, "print one JSON object instead of text");
+      app.add_flag("--volume", o->volume, "read MESH as a volume mesh whatever its extension");
+      app.add_flag("--json", o->json, "print one JSON object instead of text (with the phases' seconds)");
       add_repair_flag(app, o->repair);
       app.callback([o] { run(*o); });
     });

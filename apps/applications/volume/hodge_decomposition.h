@@ -9,12 +9,13 @@
 //             (volume_form_span), minus their exact parts, star1-orthonormalised; dim H is the
 //             first Betti number of the mesh (0 on a ball, 1 on a solid torus);
 //   co-exact: the rest, star1-orthogonal to every closed form.
-// The closed forms are found by a dense eigen-decomposition on the span of the 1-forms, so the
-// constructor is meant for meshes of up to a few thousand coarse pairs (it throws
-// std::invalid_argument above volume_form_span's limit). It builds DEC up to degree 2 (no 3-forms),
-// so cells of up to max_dec_cell_vertices(2) = 16 vertices. On the mesh complex (DecComplex::Mesh,
-// dec/volume/mesh_complex.h) the 1-forms live on the mesh edges, star1 and star2 are positive
-// definite, the reduced basis is the identity and cells of any size are allowed.
+// On the complete complex the closed forms are found by a dense eigen-decomposition on the span
+// of the 1-forms, so the constructor is meant for meshes of up to a few thousand coarse pairs (it
+// throws std::invalid_argument above volume_form_span's limit); it builds DEC up to degree 2 (no
+// 3-forms), so cells of up to max_dec_cell_vertices(2) = 16 vertices. On the mesh complex
+// (DecComplex::Mesh, dec/volume/mesh_complex.h) the 1-forms live on the mesh edges, star1 and
+// star2 are positive definite, cells of any size are allowed, and the closed forms come from
+// closed_edge_generators (sparse: memory and time linear in the mesh for a fixed Betti number).
 #pragma once
 
 #include <Eigen/Dense>
@@ -26,6 +27,14 @@
 #include "polydec/operators/solvers/cholesky.h"
 
 namespace polydec {
+
+// Closed 1-cochains on the edges (|E| x k, k = the first Betti number) that with the exact ones
+// span ker d1, from the coboundaries d0 (|E| x |V|) and d1 (|F| x |E|) of any 2-complex: the
+// cochains vanish on a spanning forest of the edges; faces with exactly one edge not yet fixed fix
+// it (peeling); each edge left free starts one cochain, propagated through the peel, and the closed
+// combinations of those (a dense null space of size free edges) are returned. Not orthonormal,
+// not free of exact parts.
+Eigen::MatrixXd closed_edge_generators(const SparseMatrix& d0, const SparseMatrix& d1);
 
 class VolumeHodgeDecomposer {
  public:
