@@ -231,6 +231,7 @@ class Reader {
   Parsed p_;
   std::vector<std::pair<long long, int>> tags_;  // node tag -> vertex, sorted by tag
   std::map<std::pair<int, int>, int> entity_set_;  // 4.1 (dimension, entity tag) -> group set
+  std::map<std::vector<std::pair<int, int>>, int> set_index_;  // group set -> its index
 
   // Skips an unknown section to its "$End..." line.
   void skip_section(std::string_view t) {
@@ -251,14 +252,14 @@ class Reader {
     const long long n = in_.count("physical name count", 6);
     for (long long k = 0; k < n; ++k) {
       const long long dim = in_.integer("physical group dimension");
-      if (dim < 0 || dim > 3) in_.fail(in_.line(), fmt::format("bad physical group dimension {}", dim));
+      if (dim < 0 || dim > 3) in_.fail(in_.where(), fmt::format("bad physical group dimension {}", dim));
       const long long tag = in_.integer("physical group tag");
-      if (tag < INT_MIN || tag > INT_MAX) in_.fail(in_.line(), fmt::format("physical tag {} out of range", tag));
+      if (tag < INT_MIN || tag > INT_MAX) in_.fail(in_.where(), fmt::format("physical tag {} out of range", tag));
       std::string_view s = in_.rest_of_line();
       while (!s.empty() && is_space(s.front())) s.remove_prefix(1);
       while (!s.empty() && is_space(s.back())) s.remove_suffix(1);
       if (s.size() >= 2 && s.front() == '"' && s.back() == '"') s = s.substr(1, s.size() - 2);
-      if (s.empty()) in_.fail(in_.current_line(), "empty physical name");
+      if (s.empty()) in_.fail(in_.here(), "empty physical name");
       p_.names[{int(dim), int(tag)}] = std::string(s);
     }
     in_.keyword("$EndPhysicalNames");
@@ -269,10 +270,9 @@ class Reader {
     if (set.empty()) return 0;
     std::sort(set.begin(), set.end());
     set.erase(std::unique(set.begin(), set.end()), set.end());
-    const auto it = std::find(p_.group_sets.begin(), p_.group_sets.end(), set);
-    if (it != p_.group_sets.end()) return int(it - p_.group_sets.begin());
-    p_.group_sets.push_back(std::move(set));
-    return int(p_.group_sets.size()) - 1;
+    const auto [it, added] = set_index_.emplace(set, int(p_.group_sets.size()));
+    if (added) p_.group_sets.push_back(std::move(set));
+    return it->second;
   }
 
   int checked_int(long long x, const char* what) {
@@ -615,7 +615,7 @@ void write_header(fmt::memory_buffer& b, const Eigen::MatrixX3d& X, int dim) {
   fmt::format_to(out, "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Entities\n");
   const Eigen::RowVector3d lo = X.rows() ? Eigen::RowVector3d(X.colwise().minCoeff()) : Eigen::RowVector3d::Zero();
   const Eigen::RowVector3d hi = X.rows() ? Eigen::RowVector3d(X.colwise().maxCoeff()) : Eigen::RowVector3d::Zero();
-  fmt::format_to(out, "0 0 {} {}\n1 {} {} {} {} {} {} 0 0\n$EndEntities\n", dim == 2, dim == 3, num(lo[0]),
+  fmt::format_to(out, "0 0 {} {}\n1 {} {} {} {} {} {} 0 0\n$EndEntities\n", int(dim == 2), int(dim == 3), num(lo[0]),
                  num(lo[1]), num(lo[2]), num(hi[0]), num(hi[1]), num(hi[2]));
   const long n = X.rows();
   fmt::format_to(out, "$Nodes\n1 {} 1 {}\n{} 1 0 {}\n", n, n, dim, n);
@@ -624,18 +624,23 @@ void write_header(fmt::memory_buffer& b, const Eigen::MatrixX3d& X, int dim) {
   fmt::format_to(out, "$EndNodes\n");
 }
 
-// The elements, one block per gmsh type (types[k] with the 1-based vertex lists of lists[k]).
+// The elements in their order, one block per run of elements of one gmsh type (so that the file
+// reads back with the same numbering): types[e] and the 0-based vertices of element e.
 void write_elements(fmt::memory_buffer& b, int dim, const std::vector<int>& types,
-                    const std::vector<std::vector<std::vector<int>>>& lists) {
+                    const std::vector<std::vector<int>>& elements) {
   auto out = std::back_inserter(b);
-  size_t blocks = 0, total = 0;
-  for (const auto& l : lists) blocks += !l.empty(), total += l.size();
-  fmt::format_to(out, "$Elements\n{} {} 1 {}\n", blocks, total, total);
-  size_t tag = 0;
-  for (size_t k = 0; k < types.size(); ++k) {
-    if (lists[k].empty()) continue;
-    fmt::format_to(out, "{} 1 {} {}\n", dim, types[k], lists[k].size());
-    for (const auto& vs : lists[k]) fmt::format_to(out, "{} {}\n", ++tag, fmt::join(vs, " "));
+  size_t blocks = 0;
+  for (size_t e = 0; e < types.size(); ++e) blocks += e == 0 || types[e] != types[e - 1];
+  fmt::format_to(out, "$Elements\n{} {} 1 {}\n", blocks, types.size(), types.size());
+  for (size_t e = 0; e < types.size(); ++e) {
+    if (e == 0 || types[e] != types[e - 1]) {
+      size_t run = 1;
+      while (e + run < types.size() && types[e + run] == types[e]) ++run;
+      fmt::format_to(out, "{} 1 {} {}\n", dim, types[e], run);
+    }
+    fmt::format_to(out, "{}", e + 1);
+    for (int v : elements[e]) fmt::format_to(out, " {}", v + 1);
+    fmt::format_to(out, "\n");
   }
   fmt::format_to(out, "$EndElements\n");
 }
@@ -643,7 +648,8 @@ void write_elements(fmt::memory_buffer& b, int dim, const std::vector<int>& type
 }  // namespace
 
 std::string write_msh(const Mesh& mesh, const std::string& name) {
-  std::vector<std::vector<std::vector<int>>> lists(2);
+  std::vector<int> types;
+  std::vector<std::vector<int>> faces;
   for (int f = 0; f < mesh.n_faces(); ++f) {
     const auto vs = mesh.face(f);
     if (vs.size() != 3 && vs.size() != 4)
@@ -651,19 +657,18 @@ std::string write_msh(const Mesh& mesh, const std::string& name) {
                       fmt::format("face {} has {} vertices: gmsh .msh holds triangles and quadrangles only (use .obj, "
                                   ".off or .ply)",
                                   f, vs.size()));
-    std::vector<int> one;
-    for (int v : vs) one.push_back(v + 1);
-    lists[vs.size() - 3].push_back(std::move(one));
+    types.push_back(vs.size() == 3 ? 2 : 3);
+    faces.emplace_back(vs.begin(), vs.end());
   }
   fmt::memory_buffer b;
   write_header(b, mesh.positions(), 2);
-  write_elements(b, 2, {2, 3}, lists);
+  write_elements(b, 2, types, faces);
   return fmt::to_string(b);
 }
 
 std::string write_msh(const VolumeMesh& mesh, const std::string& name) {
-  // gmsh types 4 tetrahedron, 5 hexahedron, 6 prism, 7 pyramid.
-  std::vector<std::vector<std::vector<int>>> lists(4);
+  std::vector<int> types;
+  std::vector<std::vector<int>> cells;
   for (int c = 0; c < mesh.n_cells(); ++c) {
     std::array<int, 8> o;
     const CellShape s = cell_shape(mesh, c, &o);
@@ -672,15 +677,17 @@ std::string write_msh(const VolumeMesh& mesh, const std::string& name) {
                       fmt::format("cell {} is a general polyhedron with {} faces: gmsh .msh holds tetrahedra, "
                                   "hexahedra, prisms and pyramids only (use .vtk or .ovm)",
                                   c, mesh.cell_size(c)));
-    const int k = s == CellShape::tetrahedron ? 0 : s == CellShape::hexahedron ? 1 : s == CellShape::wedge ? 2 : 3;
-    const int n = k == 0 ? 4 : k == 1 ? 8 : k == 2 ? 6 : 5;
-    std::vector<int> one;
-    for (int i = 0; i < n; ++i) one.push_back(1 + (k == 2 ? o[kPrismToVtk[i]] : o[i]));
-    lists[k].push_back(std::move(one));
+    // gmsh types 4 tetrahedron, 5 hexahedron, 6 prism, 7 pyramid.
+    const int type = s == CellShape::tetrahedron ? 4 : s == CellShape::hexahedron ? 5 : s == CellShape::wedge ? 6 : 7;
+    std::vector<int> one(o.begin(), o.begin() + type_nodes(type));
+    if (type == 6)
+      for (int i = 0; i < 6; ++i) one[i] = o[kPrismToVtk[i]];
+    types.push_back(type);
+    cells.push_back(std::move(one));
   }
   fmt::memory_buffer b;
   write_header(b, mesh.positions(), 3);
-  write_elements(b, 3, {4, 5, 6, 7}, lists);
+  write_elements(b, 3, types, cells);
   return fmt::to_string(b);
 }
 

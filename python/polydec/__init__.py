@@ -58,7 +58,7 @@ def _mesh_result(arrays, faces):
 
 
 def read_mesh(path, faces="auto"):
-    """Reads an OBJ, OFF or PLY file (by extension) -> (V, F), in the file's vertex order.
+    """Reads an OBJ, OFF, PLY or gmsh .msh file (by extension) -> (V, F), in the file's vertex order.
 
     V: (|V|, 3) float64. F: with faces="auto" an (|F|, k) int64 array when every face has k
     vertices, else the flat tuple (indices, offsets); "array", "flat" or "list" force a form.

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <regex>
 #include <set>
 
 #include "polydec/dec/io/mesh_groups.h"
@@ -169,9 +170,10 @@ TEST_CASE("gmsh volumes: each cell kind in 2.2 and 4.1, ASCII and binary", "[io]
       {"prism", 39, 28, {{"triangles", 14}}, {{CellShape::wedge, 28}}},
       {"pyramid", 13, 12, {}, {{CellShape::tetrahedron, 10}, {CellShape::hexahedron, 1}, {CellShape::pyramid, 1}}}};
   for (const Kind& k : kinds) {
-    const VolumeMesh ref = read_volume_mesh(fixture(std::string(k.name) + "_41_ascii.msh"));
     for (const char* encoding : kEncodings) {
       const std::string path = fixture(std::string(k.name) + "_" + encoding + ".msh");
+      // gmsh 2.2 orders the elements by type: the ASCII file of the same version is the reference.
+      const VolumeMesh ref = read_volume_mesh(fixture(std::string(k.name) + "_" + std::string(encoding).substr(0, 2) + "_ascii.msh"));
       INFO(path);
       CHECK(is_volume_mesh_path(path));
       MeshGroups g;
@@ -328,7 +330,7 @@ TEST_CASE("gmsh hostile files: the line or byte offset and the reason", "[io][ms
   expect_error(replace(v2, "2.2 0 8", "2.2 0 4"), true, 2, "data size 4 is not supported");
   expect_error(replace(v2, "2.2 0 8", "4.0 0 8"), true, 2, "version '4.0' is not supported");
   expect_error(v2.substr(0, v2.find("$EndElements")), true, 15, "unexpected end of file");
-  expect_error(v2.substr(0, v2.find("3 1 0 0")), true, 7, "unexpected end of file: expected node tag");
+  expect_error(v2.substr(0, v2.find("3 7 2")), true, 14, "unexpected end of file: expected node tag");
   expect_error(replace(v2, "$Elements\n2", "$Elements\n3"), true, 15, "bad element number '$EndElements'");
   expect_error(v2, false, 0, "holds 3-D elements (1 tetrahedra): read it as a volume mesh");
   expect_error(replace(v2, "2 4 2 5 1 10 3 7 2", "2 1 2 5 1 10 3"), true, 0, "holds no 3-D elements");
@@ -430,7 +432,7 @@ TEST_CASE("unknown formats: both messages list every format", "[io][msh]") {
     } catch (const FileError& e) {
       INFO(e.what());
       for (const char* f : {"obj", "off", "ply", "msh", "ovm", "vtk", "mesh", "meshb"})
-        CHECK(e.reason.find(std::string(" ") + f) != std::string::npos);
+        CHECK(std::regex_search(e.reason, std::regex(std::string("[ (]") + f + "[,;)]")));
     }
   }
 }
