@@ -282,6 +282,12 @@ TEST_CASE("meshb: versions 1 and 2 (float and double, 32-bit), both byte orders,
       CHECK(m.volume() == Approx(1.0 / 6).epsilon(1e-15));
     }
   const std::string good = make(2, false);
+  {
+    // Recognized by its code word where the extension says nothing.
+    test::ScratchDir dir("meshb");
+    std::ofstream(dir.path("t.bin"), std::ios::binary) << make(3, true);
+    CHECK(read_volume_mesh(dir.path("t.bin")).n_cells() == 1);
+  }
   auto expect = [](const std::string& bytes, long at, const std::string& reason) {
     try {
       read_volume_mesh_from_memory(bytes, "meshb", "bad");
