@@ -2,8 +2,9 @@
 // format conversion and the generators' transformations, applied in this order: dual, then
 // N Catmull-Clark steps; with --unit-sphere every vertex is projected to the unit sphere after
 // each of these steps (so `--dual --subdivide 1 --unit-sphere` on unit-sphere.off builds the
-// paper's FINE SPHERE, `--dual --unit-sphere` its HEX SPHERE). Volume meshes (.ovm, .vtk, .mesh
-// or --volume) convert between the volume formats, or with --boundary to their boundary surface.
+// paper's FINE SPHERE, `--dual --unit-sphere` its HEX SPHERE). Volume meshes (.ovm, .vtk, .mesh,
+// .meshb, a gmsh .msh with 3-D elements, or --volume) convert between the volume formats (written:
+// .ovm, .vtk, .mesh, .msh), or with --boundary to their boundary surface.
 // --binary writes OUT in its binary form: VTK legacy BINARY (.vtk), PLY binary_little_endian
 // (.ply), OFF BINARY (.off, float32 positions).
 #include "polydec/apps/cli/command.h"
@@ -39,13 +40,21 @@ WriteOptions write_options(const Options& o) {
   return w;
 }
 
+// A gmsh .msh path: a surface or a volume (is_volume_mesh_path judges an existing file by its content).
+bool is_msh(const std::string& path) {
+  std::string ext = path.size() >= 4 ? path.substr(path.size() - 4) : path;
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".msh";
+}
+
 void run_volume(const Options& o) {
   if (o.dual || o.subdivide != 0 || o.unit_sphere || o.repair)
     throw UsageError("--dual, --subdivide, --unit-sphere and --repair apply to surface meshes only");
   const VolumeMesh m = load_volume_mesh(o.in);
   nlohmann::json j = {{"in", o.in}, {"out", o.out}};
   if (o.boundary) {
-    if (is_volume_mesh_path(o.out)) throw UsageError("--boundary writes a surface mesh (.obj, .off, .ply)");
+    if (is_volume_mesh_path(o.out) && !is_msh(o.out))
+      throw UsageError("--boundary writes a surface mesh (.obj, .off, .ply, .msh)");
     const Mesh b = m.boundary_surface();
     write_mesh(o.out, b, {}, write_options(o));
     j["vertices"] = b.n_vertices();
@@ -55,9 +64,9 @@ void run_volume(const Options& o) {
       fmt::print("wrote {}: boundary surface, {} vertices ({} interior ones unreferenced), {} faces\n", o.out,
                  b.n_vertices(), b.n_unreferenced_vertices(), b.n_faces());
   } else {
-    if (!is_volume_mesh_path(o.out))
+    if (!is_volume_mesh_path(o.out) && !is_msh(o.out))
       throw UsageError(
-          fmt::format("{}: a volume mesh is written as .ovm, .vtk or .mesh (or use --boundary)", o.out));
+          fmt::format("{}: a volume mesh is written as .ovm, .vtk, .mesh or .msh (or use --boundary)", o.out));
     write_volume_mesh(m, o.out, write_options(o));
     j["vertices"] = m.n_vertices();
     j["faces"] = m.n_faces();

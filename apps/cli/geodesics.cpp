@@ -1,4 +1,4 @@
-// apps/cli/geodesics.cpp — `polydec geodesics MESH --source V [...] --out FILE.ply`: heat-method
+// apps/cli/geodesics.cpp — `polydec geodesics MESH --source V [...] [--source-group NAME] --out FILE.ply`: heat-method
 // distances (paper section 5.5) written as a per-vertex PLY property and/or a picture (--png);
 // --per-source: one distance field per source, written as a dense |V| x k Matrix Market file; on a
 // volume mesh (.ovm, .vtk, .mesh or --volume) with the volume operators (operators/registry/volume_laplacians.h),
@@ -13,6 +13,7 @@
 #include "polydec/apps/cli/engine.h"
 #include "polydec/apps/pictures/render.h"
 #include "polydec/apps/pictures/volume_cut.h"
+#include "polydec/dec/io/mesh_groups.h"
 #include "polydec/dec/io/mesh_io.h"
 #include "polydec/dec/io/volume_io.h"
 #include "polydec/operators/registry/volume_laplacians.h"
@@ -24,6 +25,7 @@ struct Options {
   bool repair = false;  // --repair
   std::string mesh, out, png;
   std::vector<int> sources;
+  std::vector<std::string> source_groups;  // --source-group
   bool json = false, euclidean = false, delta_source = false, volume = false, per_source = false;
   std::string mass = "lumped", laplacian = "ours", time_step_edges = "input";
   double time_factor = 1.0;  // --time-factor
@@ -301,10 +303,34 @@ void report(const Options& o, const LazyMesh& mesh, const std::vector<int>& sour
   if (!o.png.empty()) fmt::print("wrote {}\n", o.png);
 }
 
+// --source and the vertices of every --source-group (the file's named vertex sets, e.g. gmsh
+// physical groups; dec/io/mesh_groups.h), file vertex indices.
+std::vector<int> all_sources(const Options& o) {
+  std::vector<int> sources = o.sources;
+  if (!o.source_groups.empty()) {
+    const MeshGroups groups = read_mesh_groups(o.mesh);
+    for (const std::string& name : o.source_groups) {
+      const auto it = groups.vertices.find(name);
+      if (it == groups.vertices.end()) {
+        std::vector<std::string> names;
+        for (const auto& [n, vs] : groups.vertices) names.push_back("'" + n + "'");
+        throw UsageError(fmt::format("--source-group: {} has no group '{}' ({})", o.mesh, name,
+                                     names.empty() ? "it has no groups" : "groups " + fmt::format("{}", fmt::join(names, ", "))));
+      }
+      sources.insert(sources.end(), it->second.begin(), it->second.end());
+    }
+  }
+  if (sources.empty()) throw UsageError("geodesics needs --source V or --source-group NAME");
+  return sources;
+}
+
 const RegisterCommand reg("geodesics", "Geodesic distances by the heat method (paper section 5.5)", [](CLI::App& app) {
   auto o = std::make_shared<Options>();
   app.add_option("mesh", o->mesh, "input mesh (.obj, .off, .ply; volumes: .ovm, .vtk, .mesh)")->required();
-  app.add_option("--source", o->sources, "source vertex (0-based; repeat for several)")->required();
+  app.add_option("--source", o->sources, "source vertex (0-based; repeat for several)");
+  app.add_option("--source-group", o->source_groups,
+                 "every vertex of this named group of the file (gmsh physical group) is a source; repeatable, "
+                 "combines with --source");
   app.add_option(
       "--out", o->out,
       "output mesh with a 'distance' vertex property (.ply; volumes: .vtk with POINT_DATA 'distance')");
@@ -333,7 +359,11 @@ const RegisterCommand reg("geodesics", "Geodesic distances by the heat method (p
   app.add_flag("--json", o->json, "print one JSON object instead of text (with the phases' seconds)");
   add_repair_flag(app, o->repair);
   add_engine_options(app, o->engine);
-  app.callback([o] { run(*o); });
+  app.callback([o] {
+    Options with_groups = *o;
+    with_groups.sources = all_sources(*o);
+    run(with_groups);
+  });
 });
 
 }  // namespace

@@ -1,8 +1,11 @@
 // apps/cli/info.cpp — `polydec info MESH`: counts, valence histogram, boundary loops, Euler
 // characteristic and genus, planarity and convexity statistics, fan quality; on a volume mesh
-// (.ovm, .vtk, .mesh or --volume) counts, cell shapes, volumes, boundary and face planarity.
+// (.ovm, .vtk, .mesh, .meshb, a gmsh .msh with 3-D elements, or --volume) counts, cell shapes,
+// volumes, boundary and face planarity; for every kind the file's named groups and the
+// lower-dimensional elements the reader skipped (gmsh .msh, MEDIT .meshb).
 #include "polydec/apps/cli/command.h"
 #include "polydec/apps/applications/mesh_statistics.h"
+#include "polydec/dec/io/mesh_groups.h"
 #include "polydec/dec/io/mesh_io.h"
 #include "polydec/dec/io/volume_io.h"
 #include "polydec/dec/mesh/volume_cells.h"
@@ -41,6 +44,35 @@ double face_nonplanarity(const VolumeMesh& m, int f, double& diameter_out) {
     for (int b = a + 1; b < n; ++b) diameter = std::max(diameter, (X.row(a) - X.row(b)).norm());
   diameter_out = diameter;
   return diameter > 0 ? (Y * normal).cwiseAbs().maxCoeff() / diameter : 0.0;
+}
+
+// The file's groups ("groups": name -> vertex and element counts) and skipped elements
+// ("skipped_elements": kind -> count) added to j when it has any; their text lines are printed by
+// print_groups. `elements` is "faces" or "cells".
+void add_groups(const std::string& path, const char* elements, nlohmann::json& j) {
+  const MeshGroups g = read_mesh_groups(path);
+  if (!g.skipped.empty()) j["skipped_elements"] = g.skipped;
+  if (g.vertices.empty()) return;
+  nlohmann::json groups = nlohmann::json::object();
+  for (const auto& [name, vs] : g.vertices) {
+    const auto it = g.elements.find(name);
+    groups[name] = {{"vertices", vs.size()}, {elements, it == g.elements.end() ? 0 : it->second.size()}};
+  }
+  j["groups"] = groups;
+}
+void print_groups(const nlohmann::json& j, const char* elements) {
+  if (j.contains("skipped_elements")) {
+    std::vector<std::string> parts;
+    for (const auto& [kind, n] : j["skipped_elements"].items()) parts.push_back(fmt::format("{} {}", n.get<long>(), kind));
+    fmt::print("  skipped lower-dimensional elements: {}\n", fmt::join(parts, ", "));
+  }
+  if (j.contains("groups")) {
+    std::vector<std::string> parts;
+    for (const auto& [name, c] : j["groups"].items())
+      parts.push_back(fmt::format("'{}' ({} vertices, {} {})", name, c["vertices"].get<long>(), c[elements].get<long>(),
+                                  elements));
+    fmt::print("  groups: {}\n", fmt::join(parts, ", "));
+  }
 }
 
 void run_volume(const Options& o) {
@@ -89,7 +121,7 @@ void run_volume(const Options& o) {
   nlohmann::json fs = nlohmann::json::object();
   for (const auto& [n, c] : face_sizes) fs[std::to_string(n)] = c;
   const int chi_boundary = boundary_vertices - int(boundary_edges.size()) + boundary_faces;
-  const nlohmann::json j = {{"mesh", o.mesh},
+  nlohmann::json j = {{"mesh", o.mesh},
                             {"kind", "volume"},
                             {"vertices", m.n_vertices()},
                             {"edges", m.n_edges()},
@@ -115,6 +147,7 @@ void run_volume(const Options& o) {
                             {"nonplanar_faces", nonplanar},
                             {"max_nonplanarity", max_np},
                             {"mean_nonplanarity", m.n_faces() ? sum_np / m.n_faces() : 0.0}};
+  add_groups(o.mesh, "cells", j);
   if (o.json) {
     print_json(j);
     return;
@@ -138,6 +171,7 @@ void run_volume(const Options& o) {
   if (noise > 0)
     fmt::print("  coordinate precision: the file's digits resolve {:.3g} ({:.3g} of the rms radius); faces within it count as planar\n",
                noise, m.precision().noise);
+  print_groups(j, "cells");
 }
 
 void run(const Options& o) {
@@ -149,7 +183,7 @@ void run(const Options& o) {
   const MeshStatistics s = mesh_statistics(mesh);
   nlohmann::json hist = nlohmann::json::object();
   for (const auto& [n, c] : s.valence_histogram) hist[std::to_string(n)] = c;
-  const nlohmann::json j = {{"mesh", o.mesh},
+  nlohmann::json j = {{"mesh", o.mesh},
                             {"vertices", s.vertices},
                             {"faces", s.faces},
                             {"edges", s.edges},
@@ -172,6 +206,7 @@ void run(const Options& o) {
                             {"fan_degenerate", s.fan.n_degenerate},
                             {"fan_inverted", s.fan.n_inverted},
                             {"fan_faces_affected", s.fan.n_faces_affected}};
+  add_groups(o.mesh, "faces", j);
   if (o.json) {
     print_json(j);
     return;
@@ -190,12 +225,13 @@ void run(const Options& o) {
   fmt::print("  convexity: {} convex, {} non-convex faces\n", s.convex_faces, s.nonconvex_faces);
   fmt::print("  virtual refinement: {} degenerate and {} inverted fan triangles in {} faces\n", s.fan.n_degenerate,
              s.fan.n_inverted, s.fan.n_faces_affected);
+  print_groups(j, "faces");
 }
 
 const RegisterCommand reg("info", "Print counts, topology, planarity and convexity statistics of a surface or volume mesh",
                           [](CLI::App& app) {
                             auto o = std::make_shared<Options>();
-                            app.add_option("mesh", o->mesh, "input mesh (.obj, .off, .ply; volume: .ovm, .vtk, .mesh)")->required();
+                            app.add_option("mesh", o->mesh, "input mesh (.obj, .off, .ply, .msh; volume: .ovm, .vtk, .mesh, .meshb, .msh)")->required();
                             app.add_flag("--volume", o->volume, "read the file as a volume mesh (implied by .ovm, .vtk, .mesh)");
                             app.add_flag("--json", o->json, "print one JSON object instead of text");
                             add_repair_flag(app, o->repair);

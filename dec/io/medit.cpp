@@ -1,12 +1,14 @@
 // dec/io/medit.cpp — MEDIT ASCII .mesh (INRIA): MeshVersionFormatted, Dimension 3, then sections
 // in any order: Vertices (x y z ref), Tetrahedra (4 indices + ref), Hexahedra (8 indices + ref;
-// both in VTK's vertex order), 1-based; reference numbers ignored. The surface sections
+// both in VTK's vertex order), Prisms (6 + ref; the first triangle's normal points to the second,
+// as gmsh's) and Pyramids (5 + ref; VTK's order), 1-based; reference numbers ignored. The surface sections
 // (Edges, Triangles, Quadrilaterals, Corners, Ridges, Required*, Normals, Tangents ...) are
 // skipped; "End" or the end of the file ends it; '#' starts a comment.
 #include <array>
 #include <climits>
 
 #include "polydec/dec/detail/io_common.h"
+#include "polydec/dec/detail/msh_io.h"
 #include "polydec/dec/detail/volume_io_common.h"
 #include "polydec/dec/mesh/polyhedron_builder.h"
 #include "polydec/dec/mesh/volume_cells.h"
@@ -47,13 +49,7 @@ PolyhedronRead read_medit(std::string_view bytes, const std::string& name) {
   PolyhedronRead r;
   bool have_vertices = false, have_dimension = false;
   long long nv = 0;
-  struct CellBlock {
-    int type;
-    long long count;
-    std::vector<int> ids;
-    std::vector<long> lines;
-  };
-  std::vector<CellBlock> blocks;
+  std::vector<MeditCells> blocks;
   while (in.next(t)) {
     const std::string k = lower(t);
     const long kline = in.line();
@@ -81,30 +77,30 @@ PolyhedronRead read_medit(std::string_view bytes, const std::string& name) {
         in.integer("vertex reference");
       }
       r.soup.precision = digits.precision(r.soup.positions);
-    } else if (k == "tetrahedra" || k == "hexahedra") {
+    } else if (k == "tetrahedra" || k == "hexahedra" || k == "prisms" || k == "pyramids") {
       if (!have_vertices) in.fail(kline, fmt::format("{} before Vertices", t));
-      const int type = k == "tetrahedra" ? kVtkTetra : kVtkHexahedron;
+      const int type = k == "tetrahedra" ? kVtkTetra
+                       : k == "hexahedra" ? kVtkHexahedron
+                       : k == "prisms"    ? kVtkWedge
+                                          : kVtkPyramid;
       const int n = vtk_cell_size(type);
       const std::string section(t);
       const long long count = in.count(section + " count", 2LL * (n + 1));
-      CellBlock b{type, count, {}, {}};
-      b.ids.reserve(count * n);
-      b.lines.reserve(count);
+      MeditCells b{type, {}, {}};
+      b.vertices.reserve(count * n);
+      b.where.reserve(count);
       for (long long c = 0; c < count; ++c) {
         for (int i = 0; i < n; ++i) {
           const long long x = in.integer("vertex index");
-          if (i == 0) b.lines.push_back(in.line());
+          if (i == 0) b.where.push_back(in.line());
           if (x < 1 || x > nv)
             in.fail(in.line(),
                     fmt::format("vertex index {} out of range [1, {}] (MEDIT counts from 1)", x, nv));
-          b.ids.push_back(int(x - 1));
+          b.vertices.push_back(int(x - 1));
         }
         in.integer("element reference");
       }
       blocks.push_back(std::move(b));
-    } else if (k == "prisms" || k == "pyramids") {
-      in.fail(kline,
-              fmt::format("the MEDIT section '{}' is not supported (Tetrahedra and Hexahedra are read)", t));
     } else if (const int m = io_medit_detail::skipped_record_size(k); m > 0) {
       const long long count = in.count(std::string(t) + " count", 2LL * m);
       for (long long i = 0; i < count * m; ++i) in.expect("a number");
@@ -114,23 +110,7 @@ PolyhedronRead read_medit(std::string_view bytes, const std::string& name) {
   }
   if (!have_vertices) in.fail(0, "no Vertices section");
 
-  const CoordinatePrecision precision = r.soup.precision;
-  PolyhedronSoupBuilder builder(std::move(r.soup.positions));
-  for (const auto& b : blocks) {
-    const int n = vtk_cell_size(b.type);
-    for (long long c = 0; c < b.count; ++c) {
-      const std::span<const int> cell(b.ids.data() + c * n, size_t(n));
-      if (!builder.add_vtk_cell(b.type, cell))
-        in.fail(b.lines[c],
-                fmt::format("a face of this element has the vertices of face {} in another cyclic order",
-                            builder.last_face()));
-      while (int(r.face_where.size()) < builder.n_faces()) r.face_where.push_back(b.lines[c]);
-      r.cell_where.push_back(b.lines[c]);
-    }
-  }
-  r.soup = builder.take();
-  r.soup.precision = precision;
-  return r;
+  return build_medit_cells(std::move(r), blocks, name, false);
 }
 
 std::string write_medit(const VolumeMesh& mesh, const std::string& name) {

@@ -10,6 +10,7 @@
 #include <fstream>
 
 #include "polydec/dec/detail/io_common.h"
+#include "polydec/dec/detail/msh_io.h"
 
 namespace polydec {
 
@@ -57,12 +58,31 @@ namespace {
 
 using namespace io_detail;
 
+// Every format polydec reads, for the "unknown format" messages.
+constexpr const char* kFormats = "surfaces: obj, off, ply, msh; volumes: ovm, vtk, mesh, meshb, msh";
+
 SoupRead read_any(std::string_view bytes, std::string_view format, const std::string& name) {
   const std::string f = lower(format);
   if (f == "obj") return read_obj(bytes, name);
   if (f == "off") return read_off(bytes, name);
   if (f == "ply") return read_ply(bytes, name);
-  throw FileError(name, 0, -1, fmt::format("unknown mesh format '{}' (obj, off, ply)", f));
+  if (f == "msh") return read_msh_surface(bytes, name);
+  throw FileError(name, 0, -1, fmt::format("unknown mesh format '{}' ({})", f, kFormats));
+}
+
+// The file's bytes and format: by extension, else by content (gmsh's "$MeshFormat").
+std::pair<std::string, std::string> read_file(const std::string& path) {
+  const std::string ext = extension(path);
+  if (ext == "obj" || ext == "off" || ext == "ply" || ext == "msh") return {slurp(path), ext};
+  const FileError unknown(path, 0, -1, fmt::format("unknown mesh format '.{}' ({})", ext, kFormats));
+  std::string bytes;
+  try {
+    bytes = slurp(path);
+  } catch (const FileError&) {
+    throw unknown;
+  }
+  if (!looks_like_msh(bytes)) throw unknown;
+  return {std::move(bytes), "msh"};
 }
 
 // Validates; an InvalidMeshError about a vertex or face names its line or byte offset.
@@ -87,10 +107,8 @@ Mesh validate(SoupRead r, const std::string& name) {
 
 
 PolygonSoup read_polygon_soup(const std::string& path) {
-  const std::string ext = io_detail::extension(path);
-  if (ext != "obj" && ext != "off" && ext != "ply")
-    throw FileError(path, 0, -1, fmt::format("unknown mesh format '.{}' (obj, off, ply)", ext));
-  return mesh_io_detail::read_any(io_detail::slurp(path), ext, path).soup;
+  const auto [bytes, format] = mesh_io_detail::read_file(path);
+  return mesh_io_detail::read_any(bytes, format, path).soup;
 }
 
 PolygonSoup read_polygon_soup_from_memory(std::string_view bytes, std::string_view format,
@@ -99,10 +117,15 @@ PolygonSoup read_polygon_soup_from_memory(std::string_view bytes, std::string_vi
 }
 
 Mesh read_mesh(const std::string& path) {
-  const std::string ext = io_detail::extension(path);
-  if (ext != "obj" && ext != "off" && ext != "ply")
-    throw FileError(path, 0, -1, fmt::format("unknown mesh format '.{}' (obj, off, ply)", ext));
-  return mesh_io_detail::validate(mesh_io_detail::read_any(io_detail::slurp(path), ext, path), path);
+  const auto [bytes, format] = mesh_io_detail::read_file(path);
+  return mesh_io_detail::validate(mesh_io_detail::read_any(bytes, format, path), path);
+}
+
+Mesh read_mesh_with_groups(const std::string& path, MeshGroups& groups) {
+  const auto [bytes, format] = mesh_io_detail::read_file(path);
+  groups = {};
+  if (format != "msh") return mesh_io_detail::validate(mesh_io_detail::read_any(bytes, format, path), path);
+  return mesh_io_detail::validate(io_detail::read_msh_surface(bytes, path, &groups), path);
 }
 
 Mesh read_mesh_from_memory(std::string_view bytes, std::string_view format, const std::string& name) {
@@ -128,8 +151,10 @@ void write_mesh(const std::string& path, const Mesh& mesh, const VertexScalars& 
                                     mesh.n_vertices()));
     }
     data = io_detail::write_ply(mesh, scalars, options.binary);
+  } else if (ext == "msh") {
+    data = io_detail::write_msh(mesh, path);
   } else {
-    throw FileError(path, 0, -1, fmt::format("unknown mesh format '.{}' (obj, off, ply)", ext));
+    throw FileError(path, 0, -1, fmt::format("unknown mesh format '.{}' (obj, off, ply, msh)", ext));
   }
   std::ofstream out(path, std::ios::binary);
   if (!out) throw FileError(path, 0, -1, "cannot open file for writing");

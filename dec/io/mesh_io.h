@@ -25,11 +25,12 @@ class FileError : public std::runtime_error {
   std::string reason;
 };
 
-// Reads OBJ, OFF or PLY, chosen by the file's extension (case-insensitive). Throws FileError.
+// Reads OBJ, OFF, PLY or gmsh .msh (its triangles and quadrangles), chosen by the file's extension
+// (case-insensitive), or for another extension by the content "$MeshFormat". Throws FileError.
 // No validation beyond what the format needs (indices in range); Mesh validates the rest.
 PolygonSoup read_polygon_soup(const std::string& path);
 
-// The same from bytes in memory; `format` is "obj", "off" or "ply" (case-insensitive) and
+// The same from bytes in memory; `format` is "obj", "off", "ply" or "msh" (case-insensitive) and
 // `name` is used in error messages only.
 PolygonSoup read_polygon_soup_from_memory(std::string_view bytes, std::string_view format,
                                           const std::string& name);
@@ -49,7 +50,7 @@ struct WriteOptions {
   bool binary = false;
 };
 
-// Writers, chosen by extension (.obj, .off, .ply). Scalars are written only to PLY (as
+// Writers, chosen by extension (.obj, .off, .ply, .msh: gmsh 4.1 ASCII of triangles and quadrangles). Scalars are written only to PLY (as
 // `property double NAME`; names must be non-empty without whitespace, one value per vertex).
 // Text positions with 17 significant digits (bit-exact). Throw FileError when the file
 // cannot be written or a scalar field does not fit the mesh.

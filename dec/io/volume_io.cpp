@@ -10,6 +10,7 @@
 #include <fstream>
 
 #include "polydec/dec/detail/io_common.h"
+#include "polydec/dec/detail/msh_io.h"
 #include "polydec/dec/detail/volume_io_common.h"
 
 namespace polydec {
@@ -18,9 +19,9 @@ namespace {
 
 using namespace io_detail;
 
-constexpr const char* kFormats = "ovm, vtk, mesh";
+constexpr const char* kFormats = "ovm, vtk, mesh, meshb, msh; surfaces: obj, off, ply, msh";
 
-bool known(const std::string& f) { return f == "ovm" || f == "vtk" || f == "mesh"; }
+bool known(const std::string& f) { return f == "ovm" || f == "vtk" || f == "mesh" || f == "meshb" || f == "msh"; }
 
 void write_bytes(const std::string& path, const std::string& data) {
   std::ofstream out(path, std::ios::binary);
@@ -41,6 +42,8 @@ std::string checked_format(const std::string& path, std::string_view bytes) {
   if (head.rfind("ovm", 0) == 0) return "ovm";
   if (head.rfind("# vtk", 0) == 0 || head.rfind("#vtk", 0) == 0) return "vtk";
   if (head.rfind("meshversionformatted", 0) == 0) return "mesh";
+  if (looks_like_msh(bytes)) return "msh";
+  if (looks_like_meshb(bytes)) return "meshb";
   throw FileError(
       path, 0, -1,
       fmt::format("unknown volume mesh format '.{}' ({}; nor does the file start like one)", ext, kFormats));
@@ -51,6 +54,8 @@ PolyhedronRead read_any(std::string_view bytes, std::string_view format, const s
   if (f == "ovm") return read_ovm(bytes, name);
   if (f == "vtk") return read_vtk(bytes, name);
   if (f == "mesh") return read_medit(bytes, name);
+  if (f == "meshb") return read_meshb(bytes, name);
+  if (f == "msh") return read_msh_volume(bytes, name);
   throw FileError(name, 0, -1, fmt::format("unknown volume mesh format '{}' ({})", f, kFormats));
 }
 
@@ -83,7 +88,17 @@ VolumeMesh validate(PolyhedronRead r, const std::string& name) {
 
 using namespace io_volume_detail;
 
-bool is_volume_mesh_path(const std::string& path) { return known(extension(path)); }
+bool is_volume_mesh_path(const std::string& path) {
+  const std::string ext = extension(path);
+  if (ext != "msh") return known(ext);
+  std::string bytes;
+  try {
+    bytes = slurp(path);
+  } catch (const FileError&) {
+    return true;  // a .msh to be written, or an unreadable one (the volume reader says why)
+  }
+  return msh_holds_volume(bytes, path) || !looks_like_msh(bytes);
+}
 
 PolyhedronSoup read_polyhedron_soup(const std::string& path) {
   const std::string bytes = slurp(path);
@@ -100,6 +115,27 @@ VolumeMesh read_volume_mesh(const std::string& path) {
   return validate(read_any(bytes, checked_format(path, bytes), path), path);
 }
 
+VolumeMesh read_volume_mesh_with_groups(const std::string& path, MeshGroups& groups) {
+  const std::string bytes = slurp(path);
+  const std::string format = checked_format(path, bytes);
+  groups = {};
+  if (format == "msh") return validate(read_msh_volume(bytes, path, &groups), path);
+  if (format == "meshb") return validate(read_meshb(bytes, path, &groups), path);
+  return validate(read_any(bytes, format, path), path);
+}
+
+MeshGroups read_mesh_groups(const std::string& path) {
+  const std::string ext = extension(path);
+  if (ext != "msh" && ext != "meshb" && (known(ext) || ext == "obj" || ext == "off" || ext == "ply")) return {};
+  const std::string bytes = slurp(path);
+  MeshGroups groups;
+  if (looks_like_msh(bytes))
+    groups = read_msh_groups(bytes, path);
+  else if (ext == "meshb" || looks_like_meshb(bytes))
+    read_meshb(bytes, path, &groups);
+  return groups;
+}
+
 VolumeMesh read_volume_mesh_from_memory(std::string_view bytes, std::string_view format,
                                         const std::string& name) {
   return validate(read_any(bytes, format, name), name);
@@ -111,6 +147,7 @@ std::string write_volume_mesh_to_string(const VolumeMesh& mesh, std::string_view
   if (f == "ovm") return io_detail::write_ovm(mesh);
   if (f == "vtk") return io_detail::write_vtk(mesh, "(memory)", options.binary);
   if (f == "mesh") return io_detail::write_medit(mesh, "(memory)");
+  if (f == "msh") return io_detail::write_msh(mesh, "(memory)");
   throw FileError("(memory)", 0, -1, fmt::format("unknown volume mesh format '{}' ({})", f, kFormats));
 }
 
@@ -118,8 +155,10 @@ void write_volume_mesh(const VolumeMesh& mesh, const std::string& path, const Wr
   const std::string f = extension(path);
   if (!known(f))
     throw FileError(path, 0, -1, fmt::format("unknown volume mesh format '.{}' ({})", f, kFormats));
-  const std::string data = f == "mesh" ? io_detail::write_medit(mesh, path)
+  if (f == "meshb") throw FileError(path, 0, -1, "binary MEDIT .meshb is read, not written (write .mesh)");
+  const std::string data = f == "mesh"  ? io_detail::write_medit(mesh, path)
                            : f == "vtk" ? io_detail::write_vtk(mesh, path, options.binary)
+                           : f == "msh" ? io_detail::write_msh(mesh, path)
                                         : write_volume_mesh_to_string(mesh, f, options);
   write_bytes(path, data);
 }

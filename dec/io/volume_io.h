@@ -12,25 +12,27 @@
 
 namespace polydec {
 
-// True when the path's extension (case-insensitive) is a volume format: .ovm, .vtk or .mesh.
+// True when the path's extension (case-insensitive) is a volume format: .ovm, .vtk, .mesh, .meshb, or
+// .msh unless the file exists and holds no 3-D elements (a gmsh surface).
 bool is_volume_mesh_path(const std::string& path);
 
 // Reads the file's polyhedra without validation beyond what the format needs (indices in
 // range, faces of VTK/MEDIT cells identified by their vertex sets). Throws FileError.
 PolyhedronSoup read_polyhedron_soup(const std::string& path);
-// The same from bytes; `format` is "ovm", "vtk" or "mesh"; `name` is used in messages only.
+// The same from bytes; `format` is "ovm", "vtk", "mesh", "meshb" or "msh"; `name` is used in messages only.
 PolyhedronSoup read_polyhedron_soup_from_memory(std::string_view bytes, std::string_view format,
                                                 const std::string& name);
 
 // Files whose extension is none of these are recognized by their first word ("OVM", "# vtk",
-// "MeshVersionFormatted").
+// "MeshVersionFormatted", "$MeshFormat") or the binary MEDIT code word.
 // read_polyhedron_soup + validation (VolumeMesh); an InvalidMeshError about a vertex, face or
 // cell is reported as a FileError naming the line where that element was read.
 VolumeMesh read_volume_mesh(const std::string& path);
 VolumeMesh read_volume_mesh_from_memory(std::string_view bytes, std::string_view format,
                                         const std::string& name);
 
-// Writes by extension (.ovm, .vtk, .mesh), positions with 17 significant digits. OVM files
+// Writes by extension (.ovm, .vtk, .mesh, .msh: gmsh 4.1 ASCII of tetrahedra, hexahedra, prisms and
+// pyramids, another cell a FileError), positions with 17 significant digits. OVM files
 // are written with outward half-faces (polydec's convention; the reader accepts either).
 // MEDIT holds tetrahedra and hexahedra only: another cell throws FileError. With
 // options.binary, VTK is written as a legacy BINARY file (version 4.2, big-endian float64
@@ -44,7 +46,7 @@ void write_volume_mesh(const VolumeMesh& mesh, const std::string& path, const Wr
 // as the mesh. Throws std::invalid_argument for an array of the wrong size or a name with spaces.
 void write_volume_vtk_with_point_data(const VolumeMesh& mesh, const std::string& path,
                                       const VertexScalars& scalars);
-// The file's bytes for `format` ("ovm", "vtk" or "mesh").
+// The file's bytes for `format` ("ovm", "vtk", "mesh" or "msh").
 std::string write_volume_mesh_to_string(const VolumeMesh& mesh, std::string_view format,
                                         const WriteOptions& options = {});
 

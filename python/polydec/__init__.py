@@ -46,6 +46,7 @@ __all__ = [
     "volume_lumped_mass", "volume_laplacian", "volume_gradient", "volume_divergence", "volume_dec_max_degree",
     "volume_dec", "VolumeHeatGeodesics", "volume_spectrum", "ball_eigenvalues", "volume_poisson",
     "volume_franke_poisson", "VolumeHodgeDecomposer",
+    "read_mesh_groups",
 ]
 
 
@@ -57,7 +58,7 @@ def _mesh_result(arrays, faces):
 
 
 def read_mesh(path, faces="auto"):
-    """Reads an OBJ, OFF or PLY file (by extension) -> (V, F), in the file's vertex order.
+    """Reads an OBJ, OFF, PLY or gmsh .msh file (by extension) -> (V, F), in the file's vertex order.
 
     V: (|V|, 3) float64. F: with faces="auto" an (|F|, k) int64 array when every face has k
     vertices, else the flat tuple (indices, offsets); "array", "flat" or "list" force a form.
@@ -502,3 +503,4 @@ from ._volume import (  # noqa: E402
     truncated_octahedra_volume, volume_dec, volume_dec_max_degree, volume_divergence, volume_franke_poisson,
     volume_gradient, volume_laplacian, volume_laplacian_names, volume_lumped_mass, volume_mass, volume_operators,
     volume_poisson, volume_spectrum, volume_stiffness, write_volume_mesh)
+from ._groups import read_mesh_groups  # noqa: E402

@@ -1,6 +1,7 @@
 // tests/apps/cli/test_cli_volume.cpp — `polydec info` and `polydec convert` on volume meshes:
 // the JSON report against the mesh's own numbers, conversions between the volume formats and
-// to the boundary surface, usage and bad-input exit codes.
+// to the boundary surface, usage and bad-input exit codes; gmsh files (groups and skipped elements
+// in `info`, `geodesics --source-group`, `convert` to .msh and back).
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -13,6 +14,7 @@
 
 #include "polydec/apps/applications/volume/hodge_decomposition.h"
 #include "polydec/dec/io/mesh_io.h"
+#include "polydec/dec/io/mesh_groups.h"
 #include "polydec/dec/io/volume_io.h"
 #include "polydec/dec/mesh/volume_generators.h"
 #include "tests/apps/cli/cli_run.h"
@@ -113,6 +115,71 @@ TEST_CASE("polydec convert between volume formats and to the boundary", "[volume
   r = run(s.dir, "info " + s.path("bad.ovm"));
   CHECK(r.code == 3);
   CHECK_THAT(r.err, Catch::Contains(s.path("bad.ovm") + ":4: a vertex needs 3 coordinates"));
+}
+
+namespace {
+
+std::string msh_fixture(const std::string& name) { return std::string(POLYDEC_TEST_DATA) + "/msh/" + name; }
+
+}  // namespace
+
+TEST_CASE("polydec info, geodesics --source-group and convert on gmsh files", "[cli][msh]") {
+  test::ScratchDir dir("cli_msh");
+  const std::string tet = msh_fixture("tet_41_binary.msh");
+  const MeshGroups groups = read_mesh_groups(tet);
+
+  test::CliRun r = test::run_cli_in(dir.dir, "info '" + tet + "' --json");
+  REQUIRE(r.code == 0);
+  nlohmann::json j = nlohmann::json::parse(r.out);
+  CHECK(j["kind"] == "volume");
+  CHECK(j["cells"] == 90);
+  CHECK(j["volume"].get<double>() == Approx(2.0).epsilon(1e-13));
+  CHECK(j["skipped_elements"] == nlohmann::json({{"lines", 2}, {"points", 1}, {"triangles", 14}}));
+  CHECK(j["groups"]["left"]["vertices"] == groups.vertices.at("left").size());
+  CHECK(j["groups"]["solid"]["cells"] == 90);
+  CHECK(j["groups"]["left"]["cells"] == 0);
+
+  r = test::run_cli_in(dir.dir, "info '" + msh_fixture("quad_22_ascii.msh") + "' --json");
+  REQUIRE(r.code == 0);
+  j = nlohmann::json::parse(r.out);
+  CHECK(j["faces"] == 11);
+  CHECK(j["groups"]["plate"]["faces"] == 11);
+  CHECK(j["skipped_elements"]["lines"] == 2);
+
+  // --source-group edge: the same run as the group's vertices given one by one.
+  std::string listed;
+  for (int v : groups.vertices.at("edge")) listed += " --source " + std::to_string(v);
+  r = test::run_cli_in(dir.dir, "geodesics '" + tet + "' --source-group edge --json");
+  REQUIRE(r.code == 0);
+  const nlohmann::json by_group = nlohmann::json::parse(r.out);
+  r = test::run_cli_in(dir.dir, "geodesics '" + tet + "'" + listed + " --json");
+  REQUIRE(r.code == 0);
+  const nlohmann::json by_index = nlohmann::json::parse(r.out);
+  CHECK(by_group["sources"] == by_index["sources"]);
+  CHECK(by_group["sources"].size() == 3);
+  CHECK(by_group["max"] == by_index["max"]);
+  CHECK(by_group["mean"] == by_index["mean"]);
+
+  r = test::run_cli_in(dir.dir, "geodesics '" + tet + "' --source-group nope");
+  CHECK(r.code == 2);
+  CHECK(r.err.find("has no group 'nope' (groups 'corner', 'edge', 'left', 'solid')") != std::string::npos);
+  r = test::run_cli_in(dir.dir, "geodesics '" + tet + "'");
+  CHECK(r.code == 2);
+  CHECK(r.err.find("--source V or --source-group NAME") != std::string::npos);
+
+  // convert: a volume .msh to a gmsh 4.1 file and back, a surface to .msh.
+  const std::string out = dir.path("out.msh");
+  REQUIRE(test::run_cli_in(dir.dir, "convert '" + msh_fixture("prism_22_binary.msh") + "' '" + out + "'").code == 0);
+  const VolumeMesh a = read_volume_mesh(msh_fixture("prism_22_binary.msh")), b = read_volume_mesh(out);
+  CHECK(a.positions() == b.positions());
+  CHECK(a.n_cells() == b.n_cells());
+  CHECK(b.volume() == Approx(a.volume()).epsilon(1e-14));
+  // The file now exists as a volume; converting a surface over it writes a surface.
+  REQUIRE(test::run_cli_in(dir.dir, "convert '" + msh_fixture("tri_22_binary.msh") + "' '" + out + "'").code == 0);
+  CHECK(!is_volume_mesh_path(out));
+  r = test::run_cli_in(dir.dir, "info '" + out + "' --json");
+  REQUIRE(r.code == 0);
+  CHECK(nlohmann::json::parse(r.out)["faces"] == 14);
 }
 
 }  // namespace test_cli_volume

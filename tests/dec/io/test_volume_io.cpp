@@ -237,7 +237,6 @@ TEST_CASE("MEDIT: tetrahedra and hexahedra, references ignored, hostile files", 
   expect_file_error(replace(g, "2 3 4 5 3\nEnd", "2 3 4 5 End"), "mesh", 17, "bad element reference 'End'");
   expect_file_error(replace(g, "Tetrahedra\n2", "Tetrahedra\n4000"), "mesh", 15,
                     "Tetrahedra count 4000 needs");
-  expect_file_error(replace(g, "Triangles", "Prisms"), "mesh", 11, "'Prisms' is not supported");
   expect_file_error(replace(g, "Triangles", "Bananas"), "mesh", 11, "unknown MEDIT keyword 'Bananas'");
   expect_file_error(
       g.substr(0, g.find("2 3 4 5 3")) + "# cut here, after a comment long enough for the size check\n",

@@ -1,0 +1,37 @@
+// dec/io/mesh_groups.h — what a mesh file carries beside the mesh polydec reads: named element
+// sets (gmsh physical groups) and the counts of the lower-dimensional elements a reader skipped.
+// Formats without such sets (OBJ, OFF, PLY, OVM, VTK) give empty groups.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "polydec/dec/mesh/mesh.h"
+#include "polydec/dec/mesh/volume_mesh.h"
+
+namespace polydec {
+
+struct MeshGroups {
+  // Group name -> the sorted, distinct vertex indices of its elements (of any dimension). A gmsh
+  // physical group is named by its $PhysicalNames entry, else by its number ("7"); groups of
+  // different dimensions with the same name are merged.
+  std::map<std::string, std::vector<int>> vertices;
+  // Group name -> the sorted faces (surface) or cells (volume) among the mesh's own elements;
+  // only groups holding such elements appear.
+  std::map<std::string, std::vector<int>> elements;
+  // Element kind ("points", "lines", "triangles", "quadrangles") -> how many elements of a lower
+  // dimension than the mesh's the reader skipped (boundary triangles beside tetrahedra, ...).
+  std::map<std::string, long> skipped;
+};
+
+// read_mesh / read_volume_mesh (dec/io/mesh_io.h, dec/io/volume_io.h), and the file's groups and
+// skipped elements in `groups`. Throws FileError.
+Mesh read_mesh_with_groups(const std::string& path, MeshGroups& groups);
+VolumeMesh read_volume_mesh_with_groups(const std::string& path, MeshGroups& groups);
+
+// The groups of a surface or volume mesh file (a gmsh .msh file's physical groups), without
+// building or validating its mesh; empty for the other formats. Throws FileError.
+MeshGroups read_mesh_groups(const std::string& path);
+
+}  // namespace polydec
