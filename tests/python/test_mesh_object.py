@@ -47,6 +47,18 @@ def test_mesh_equals_free_functions_and_caches_one_refinement_per_rule():
     assert np.allclose(r["virtual_points"], P0[mesh.n_vertices:] @ V, rtol=0, atol=1e-14)
 
 
+def test_with_positions_starts_a_new_cache():
+    mesh = polydec.hex_grid(4, 4)
+    mesh.stiffness()
+    V2 = mesh.positions + 0.05 * np.sin(5 * mesh.positions[:, [1, 2, 0]])
+    moved = mesh.with_positions(V2)
+    assert moved.n_cached_refinements == 0 and mesh.n_cached_refinements == 1
+    assert same_sparse(moved.stiffness(), polydec.stiffness(V2, mesh.faces))
+    assert not same_sparse(moved.stiffness(), mesh.stiffness())
+    with pytest.raises(ValueError, match="rows"):
+        mesh.with_positions(V2[:-1])
+
+
 def test_solvers_take_a_mesh():
     mesh = polydec.hex_sphere(2)
     V, F = mesh
