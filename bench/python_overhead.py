@@ -2,12 +2,15 @@
 FINE SPHERE (one Catmull-Clark step of HEX SPHERE, projected; HEX SPHERE = dual of
 ../shared/data/unit-sphere.off, projected; without the file, one Catmull-Clark step of
 hex_sphere(5) projected, 61,440 quads), in one run, interleaved rounds: the C++ figure is
-`polydec operators FINE.ply --repeat N --json` (refine + S, M, lumped M; load and validation
-excluded); the Python figures are, on a polydec.Mesh validated once, the extension call for the
+`polydec operators FINE.ply --repeat 3 --json` per round (refine + S, M, lumped M; load and
+validation excluded; its wall and thread-CPU medians); the Python figures are, on a polydec.Mesh validated once, the extension call for the
 same three matrices with the refinement rebuilt every call (the C++ call's work: target under
 1.5x) and with it cached (the Mesh's normal second call), then polydec.laplacian(mesh,
 mass="galerkin") (S and M, public, cached refinement) and polydec.laplacian(V, F, ...) from arrays
-(conversion and validation every call), all medians of N.
+(conversion and validation every call), all medians of N. The extension hands the matrices to
+scipy without copying them. Run it also with MALLOC_TRIM_THRESHOLD_ and MALLOC_MMAP_THRESHOLD_ set
+high (glibc then keeps freed memory instead of returning it to the system: no fresh pages to fault
+in on the next call; the CLI inherits the setting): see docs/benchmarks.md.
 Usage: PYTHONPATH=build/python /usr/bin/python3 bench/python_overhead.py build/polydec [N]"""
 
 import json
@@ -24,9 +27,10 @@ import polydec
 
 
 def seconds(fn):
-    t0 = time.perf_counter()
+    """(wall seconds, CPU seconds of this thread) of fn(); the work runs in this thread (threads=1)."""
+    t0, c0 = time.perf_counter(), time.thread_time()
     fn()
-    return time.perf_counter() - t0
+    return time.perf_counter() - t0, time.thread_time() - c0
 
 
 def main():
@@ -56,22 +60,25 @@ def main():
         for _ in range(n):  # interleaved: each round one C++ run (median of 3 inside) and each Python call
             out = subprocess.run([cli, "operators", str(path), "--repeat", "3", "--json"], check=True,
                                  capture_output=True, text=True).stdout
-            cpp.append(json.loads(out)["median_ms"] / 1e3)
+            j = json.loads(out)
+            cpp.append((j["median_ms"] / 1e3, j["median_thread_cpu_ms"] / 1e3))
             rows["cold"].append(seconds(cold))
             rows["warm"].append(seconds(lambda: polydec._polydec.operators(h, "ours", parts, 1, -1.0)))
             rows["public"].append(seconds(lambda: polydec.laplacian(mesh, mass="galerkin")))
             rows["arrays"].append(seconds(lambda: polydec.laplacian(V, F, mass="galerkin")))
-    c = 1e3 * float(np.median(cpp))
-    med = {k: 1e3 * float(np.median(v)) for k, v in rows.items()}
-    print(f"{name}: {mesh.n_vertices} vertices, {mesh.n_faces} faces; medians of {n} interleaved rounds; "
-          f"load average {os.getloadavg()[0]:.1f}")
-    print(f"C++ (polydec operators --repeat 3, refine + S, M, lumped M): {c:.1f} ms")
-    print(f"Python, Mesh, S, M, lumped M, refinement rebuilt: {med['cold']:.1f} ms ({med['cold'] / c:.2f}x)")
-    print(f"Python, Mesh, S, M, lumped M, refinement cached: {med['warm']:.1f} ms ({med['warm'] / c:.2f}x)")
-    print(f"Python, polydec.laplacian(mesh, mass='galerkin') (S, M): {med['public']:.1f} ms "
-          f"({med['public'] / c:.2f}x)")
-    print(f"Python, polydec.laplacian(V, F, mass='galerkin') from arrays: {med['arrays']:.1f} ms "
-          f"({med['arrays'] / c:.2f}x)")
+    glibc = " (MALLOC_TRIM/MMAP_THRESHOLD_ set)" if os.environ.get("MALLOC_TRIM_THRESHOLD_") else ""
+    print(f"{name}: {mesh.n_vertices} vertices, {mesh.n_faces} faces; medians of {n} interleaved rounds{glibc}; "
+          f"load average {os.getloadavg()[0]:.1f}; wall time, and CPU time of the calling thread (robust to a "
+          "busy machine)")
+    c = [1e3 * float(np.median([x[i] for x in cpp])) for i in (0, 1)]
+    print(f"C++ (polydec operators --repeat 3, refine + S, M, lumped M): {c[0]:.1f} ms, CPU {c[1]:.1f} ms")
+    labels = {"cold": "Python, Mesh, S, M, lumped M, refinement rebuilt",
+              "warm": "Python, Mesh, S, M, lumped M, refinement cached",
+              "public": "Python, polydec.laplacian(mesh, mass='galerkin') (S, M)",
+              "arrays": "Python, polydec.laplacian(V, F, mass='galerkin') from arrays"}
+    for k, label in labels.items():
+        w, t = (1e3 * float(np.median([x[i] for x in rows[k]])) for i in (0, 1))
+        print(f"{label}: {w:.1f} ms ({w / c[0]:.2f}x), CPU {t:.1f} ms ({t / c[1]:.2f}x)")
 
 
 if __name__ == "__main__":

@@ -63,6 +63,14 @@ class MeshHandle {
 // (positions |V| x 3, indices, offsets) of a mesh, as numpy arrays.
 py::tuple mesh_to_arrays(const Mesh& mesh);
 
+// A scipy.sparse.csc_matrix that takes over A's arrays without copying them (numpy views owned by
+// a capsule holding the matrix): no second allocation of the values and indices, so no fresh pages
+// to fault in per call. A is left empty.
+py::object to_scipy(Eigen::SparseMatrix<double>& A);
+
+// A numpy vector that takes over v's storage without copying (v is left empty).
+py::array_t<double> to_numpy(Eigen::VectorXd& v);
+
 // (eigenvalues, eigenvectors, info dict with shift, n_converged, n_solves, method) of a spectrum,
 // as `spectrum` and `volume_spectrum` return it.
 py::tuple spectrum_to_python(const Spectrum& s);

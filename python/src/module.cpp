@@ -39,6 +39,27 @@ py::tuple mesh_to_arrays(const Mesh& mesh) {
                         py::array_t<int>(long(O.size()), O.data()));
 }
 
+py::object to_scipy(Eigen::SparseMatrix<double>& A) {
+  A.makeCompressed();
+  auto* owner = new Eigen::SparseMatrix<double>();
+  owner->swap(A);
+  py::capsule base(owner, [](void* p) { delete static_cast<Eigen::SparseMatrix<double>*>(p); });
+  const long nnz = long(owner->nonZeros());
+  py::array_t<double> data(nnz, owner->valuePtr(), base);
+  py::array_t<int> indices(nnz, owner->innerIndexPtr(), base);
+  py::array_t<int> indptr(long(owner->outerSize()) + 1, owner->outerIndexPtr(), base);
+  static const py::object csc = py::module_::import("scipy.sparse").attr("csc_matrix");
+  return csc(py::make_tuple(data, indices, indptr), py::arg("shape") = py::make_tuple(owner->rows(), owner->cols()),
+             py::arg("copy") = false);
+}
+
+py::array_t<double> to_numpy(Eigen::VectorXd& v) {
+  auto* owner = new Eigen::VectorXd();
+  owner->swap(v);
+  py::capsule base(owner, [](void* p) { delete static_cast<Eigen::VectorXd*>(p); });
+  return py::array_t<double>(long(owner->size()), owner->data(), base);
+}
+
 namespace {
 
 // New exception classes, alive as long as the interpreter (module-level objects).

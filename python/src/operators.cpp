@@ -86,11 +86,11 @@ void register_operators(py::module_& m) {
     d["n_domain_vertices"] = a.n_domain_vertices;
     d["has_M"] = a.has_M;
     d["has_G"] = a.has_G;
-    if (parts.count("S")) d["S"] = a.S;
-    if (parts.count("M") && a.has_M) d["M"] = a.M;
-    if (parts.count("M_lumped")) d["M_lumped"] = a.M_lumped;
-    if (parts.count("G") && a.has_G) d["G"] = a.G;
-    if (parts.count("D") && a.has_G) d["D"] = a.D;
+    if (parts.count("S")) d["S"] = to_scipy(a.S);
+    if (parts.count("M") && a.has_M) d["M"] = to_scipy(a.M);
+    if (parts.count("M_lumped")) d["M_lumped"] = to_numpy(a.M_lumped);
+    if (parts.count("G") && a.has_G) d["G"] = to_scipy(a.G);
+    if (parts.count("D") && a.has_G) d["D"] = to_scipy(a.D);
     return d;
   });
 
