@@ -3,11 +3,11 @@ FINE SPHERE (one Catmull-Clark step of HEX SPHERE, projected; HEX SPHERE = dual 
 ../shared/data/unit-sphere.off, projected; without the file, one Catmull-Clark step of
 hex_sphere(5) projected, 61,440 quads), in one run, interleaved rounds: the C++ figure is
 `polydec operators FINE.ply --repeat 3 --json` per round (refine + S, M, lumped M; load and
-validation excluded; its wall and thread-CPU medians); the Python figures are, on a polydec.Mesh validated once, the extension call for the
-same three matrices with the refinement rebuilt every call (the C++ call's work: target under
-1.5x) and with it cached (the Mesh's normal second call), then polydec.laplacian(mesh,
-mass="galerkin") (S and M, public, cached refinement) and polydec.laplacian(V, F, ...) from arrays
-(conversion and validation every call), all medians of N. The extension hands the matrices to
+validation excluded; its wall and thread-CPU medians); the Python figures are, on a polydec.Mesh
+validated once, the extension call for the same three matrices with the refinement rebuilt every
+call (the C++ call's work: target under 1.5x) and with it cached (the Mesh's normal second call),
+then polydec.laplacian(mesh, mass="galerkin") (S and M, public, cached refinement) and
+polydec.laplacian(V, F, ...) from arrays (conversion and validation every call), all medians of N. The extension hands the matrices to
 scipy without copying them. Run it also with MALLOC_TRIM_THRESHOLD_ and MALLOC_MMAP_THRESHOLD_ set
 high (glibc then keeps freed memory instead of returning it to the system: no fresh pages to fault
 in on the next call; the CLI inherits the setting): see docs/benchmarks.md.
