@@ -7,10 +7,11 @@ validation excluded; its wall and thread-CPU medians); the Python figures are, o
 validated once, the extension call for the same three matrices with the refinement rebuilt every
 call (the C++ call's work: target under 1.5x) and with it cached (the Mesh's normal second call),
 then polydec.laplacian(mesh, mass="galerkin") (S and M, public, cached refinement) and
-polydec.laplacian(V, F, ...) from arrays (conversion and validation every call), all medians of N. The extension hands the matrices to
-scipy without copying them. Run it also with MALLOC_TRIM_THRESHOLD_ and MALLOC_MMAP_THRESHOLD_ set
-high (glibc then keeps freed memory instead of returning it to the system: no fresh pages to fault
-in on the next call; the CLI inherits the setting): see docs/benchmarks.md.
+polydec.laplacian(V, F, ...) from arrays (conversion and validation every call), all medians of N.
+The extension hands the matrices to scipy without copying them. Run it also with
+MALLOC_TRIM_THRESHOLD_ and MALLOC_MMAP_THRESHOLD_ set high (glibc then keeps freed memory instead of
+returning it to the system: no fresh pages to fault in on the next call; the CLI inherits the
+setting): see docs/benchmarks.md.
 Usage: PYTHONPATH=build/python /usr/bin/python3 bench/python_overhead.py build/polydec [N]"""
 
 import json

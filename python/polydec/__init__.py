@@ -505,9 +505,9 @@ class HeatGeodesics:
                  planarity=None):
         h = _handle(V, F)
         self._n = h.n_vertices
-        self._solver = _polydec.HeatGeodesics(h, str(laplacian), _convert.positive(time_step_factor, "time_step_factor"),
-                                              _convert.lumped_flag(mass), bool(mass_weighted_source),
-                                              _convert.planarity(planarity))
+        factor = _convert.positive(time_step_factor, "time_step_factor")
+        self._solver = _polydec.HeatGeodesics(h, str(laplacian), factor, _convert.lumped_flag(mass),
+                                              bool(mass_weighted_source), _convert.planarity(planarity))
 
     def distance(self, sources, return_diagnostics=False):
         """Distances from a vertex index or a sequence of them -> (|V|,) float64.

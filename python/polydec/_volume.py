@@ -360,8 +360,8 @@ def hex_torus_volume(n_around, n_cross, R=1.0, r=0.4, jitter=0.0, seed=1):
     >>> polydec.VolumeHodgeDecomposer(polydec.hex_torus_volume(8, 2), complex="mesh").harmonic_basis.shape[1]
     1
     """
-    return VolumeMesh._wrap(_polydec.hex_torus_volume(_convert.size(n_around, "n_around", 1), _convert.size(n_cross, "n_cross", 1), float(R), float(r), float(jitter),
-                                                      int(seed)))
+    n_around, n_cross = _convert.size(n_around, "n_around", 1), _convert.size(n_cross, "n_cross", 1)
+    return VolumeMesh._wrap(_polydec.hex_torus_volume(n_around, n_cross, float(R), float(r), float(jitter), int(seed)))
 
 
 def hex_ball_volume(n, jitter=0.0, seed=1):

@@ -175,7 +175,8 @@ void register_volumes(py::module_& m) {
                   continue;
                 }
                 if (vtk_cell_size(t[c]) == 0)
-                  throw InvalidMeshError("cell", long(c), where + ": unsupported VTK cell type " + std::to_string(t[c]));
+                  throw InvalidMeshError("cell", long(c),
+                                         where + ": unsupported VTK cell type " + std::to_string(t[c]));
                 if (n != vtk_cell_size(t[c]))
                   throw InvalidMeshError("cell", long(c), where + ": " + std::to_string(vtk_cell_size(t[c])) +
                                                               " vertices expected, got " + std::to_string(n));

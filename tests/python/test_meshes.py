@@ -119,7 +119,8 @@ def test_read_paper_meshes_in_file_order():
     info = polydec.mesh_info(Vb, Fb)
     assert info["vertices"] == Vb.shape[0] and info["euler_characteristic"] == 2
     V, F = polydec.read_mesh(shared_mesh("quad-plane.obj"))
-    assert F[0].shape == (256,) and np.array_equal(F[1], 4 * np.arange(65)) and V[0].tolist() == [float(x) for x in first_vertex(shared_mesh("quad-plane.obj"))]
+    assert F[0].shape == (256,) and np.array_equal(F[1], 4 * np.arange(65))
+    assert V[0].tolist() == [float(x) for x in first_vertex(shared_mesh("quad-plane.obj"))]
 
 
 def first_vertex(path):
