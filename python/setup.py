@@ -36,7 +36,8 @@ class CMakeBuild(build_ext):
             args = ["cmake", "-S", str(HERE), "-B", str(build), "-DCMAKE_BUILD_TYPE=Release",
                     f"-DCMAKE_PREFIX_PATH={pathlib.Path(prefix).resolve()}"]
         else:
-            # Unity build: the sources in batches, fewer and larger compilations (about half the time).
+            # Unity build: the sources in batches, fewer and larger compilations (run.sh's comment: 14.6
+            # against about 25 CPU-minutes for the whole repository).
             args = ["cmake", "-S", str(REPO), "-B", str(build), "-DCMAKE_BUILD_TYPE=Release",
                     "-DPOLYDEC_BUILD_PYTHON=ON", "-DPOLYDEC_BUILD_TESTS=OFF", "-DPOLYDEC_BUILD_BENCH=OFF",
                     "-DPOLYDEC_UNITY_BUILD=ON"]

@@ -124,10 +124,9 @@ def _refuse_blocks(F, element):
     blocks of different cell types are not one list of faces."""
     if hasattr(F, "type") and hasattr(F, "data"):
         F = [F]
-    try:
-        first = next(iter(F), None)
-    except TypeError:
+    if not isinstance(F, (list, tuple)) or not F:  # (a generator's first face must not be consumed)
         return
+    first = F[0]
     if hasattr(first, "type") and hasattr(first, "data"):
         raise ValueError(f"{element}s given as meshio CellBlocks: build the mesh with polydec.from_meshio(m) "
                          "(it concatenates the blocks in order and skips lower-dimensional ones)")
