@@ -5,6 +5,7 @@
 #                 (output in ./polydec-out)
 #   run.sh test   builds everything (library, program, tests, benchmark, Python module, PETSc
 #                 backend) and runs the whole test suite through ctest: C++, Python and MPI tests
+#                 (python3-meshio too: the Python module's optional meshio conversion is tested)
 #   run.sh build  the same build as `test`, without running the tests
 # POLYDEC_PYTHON selects the Python interpreter for the module (default /usr/bin/python3, the one
 # that has Debian's numpy and scipy); CI=true adds -Werror (POLYDEC_WERROR) to polydec's own code.
@@ -23,7 +24,7 @@ packages=(build-essential cmake ninja-build pkg-config libeigen3-dev libspectra-
 if [ "$what" != demo ]; then
   # Tests, the Python module and the PETSc/SLEPc backend with OpenMPI.
   packages+=(catch2 pybind11-dev python3-dev python3-numpy python3-scipy python3-pytest python3-venv
-             python3-pip python3-setuptools python3-wheel
+             python3-pip python3-setuptools python3-wheel python3-meshio
              libpetsc-real3.18-dev libslepc-real3.18-dev libopenmpi-dev openmpi-bin)
 fi
 missing=()

@@ -1,12 +1,21 @@
 """bench/python_overhead.py — Python call overhead against the C++ call for one assembly of
 FINE SPHERE (one Catmull-Clark step of HEX SPHERE, projected; HEX SPHERE = dual of
-../shared/data/unit-sphere.off, projected), in one run: the C++ figure is `polydec operators
-FINE.ply --repeat N --json` (refine + S, M, lumped M; load excluded), the Python figures are
-polydec.laplacian(V, F, mass="galerkin") end to end (input conversion, mesh validation,
-assembly, scipy matrices) and the bare extension call on converted arrays, both medians of N.
+../shared/data/unit-sphere.off, projected; without the file, one Catmull-Clark step of
+hex_sphere(5) projected, 61,440 quads), in one run, interleaved rounds: the C++ figure is
+`polydec operators FINE.ply --repeat 3 --json` per round (refine + S, M, lumped M; load and
+validation excluded; its wall and thread-CPU medians); the Python figures are, on a polydec.Mesh
+validated once, the extension call for the same three matrices with the refinement rebuilt every
+call (the C++ call's work: target under 1.5x) and with it cached (the Mesh's normal second call),
+then polydec.laplacian(mesh, mass="galerkin") (S and M, public, cached refinement) and
+polydec.laplacian(V, F, ...) from arrays (conversion and validation every call), all medians of N.
+The extension hands the matrices to scipy without copying them. Run it also with
+MALLOC_TRIM_THRESHOLD_ and MALLOC_MMAP_THRESHOLD_ set high (glibc then keeps freed memory instead of
+returning it to the system: no fresh pages to fault in on the next call; the CLI inherits the
+setting): see docs/benchmarks.md.
 Usage: PYTHONPATH=build/python /usr/bin/python3 bench/python_overhead.py build/polydec [N]"""
 
 import json
+import os
 import pathlib
 import subprocess
 import sys
@@ -18,37 +27,59 @@ import numpy as np
 import polydec
 
 
-def median_ms(fn, n):
-    t = []
-    for _ in range(n):
-        t0 = time.perf_counter()
-        fn()
-        t.append(time.perf_counter() - t0)
-    return 1e3 * float(np.median(t))
+def seconds(fn):
+    """(wall seconds, CPU seconds of this thread) of fn(); the work runs in this thread (threads=1)."""
+    t0, c0 = time.perf_counter(), time.thread_time()
+    fn()
+    return time.perf_counter() - t0, time.thread_time() - c0
 
 
 def main():
     cli = sys.argv[1]
     n = int(sys.argv[2]) if len(sys.argv) > 2 else 10
     data = pathlib.Path(__file__).resolve().parents[2] / "shared" / "data" / "unit-sphere.off"
-    hexs = polydec.project_to_unit_sphere(*polydec.dual(*polydec.read_mesh(data)))
-    V, F = polydec.project_to_unit_sphere(*polydec.catmull_clark(*hexs))
+    if data.exists():
+        name = "FINE SPHERE"
+        hexs = polydec.project_to_unit_sphere(polydec.dual(polydec.read_mesh(data)))
+    else:
+        name = "catmull_clark(hex_sphere(5)), projected"
+        hexs = polydec.hex_sphere(5)
+    mesh = polydec.project_to_unit_sphere(polydec.catmull_clark(hexs))
+    V, F = mesh
+    parts = {"S", "M", "M_lumped"}
+    h = mesh._h
+
+    def cold():
+        h.clear_refinements()
+        polydec._polydec.operators(h, "ours", parts, 1, -1.0)
+
+    rows = {"cold": [], "warm": [], "public": [], "arrays": []}
     with tempfile.TemporaryDirectory() as tmp:
         path = pathlib.Path(tmp) / "fine_sphere.ply"
-        polydec.write_mesh(path, V, F, binary=True)
-        out = subprocess.run([cli, "operators", str(path), "--repeat", str(n), "--json"], check=True,
-                             capture_output=True, text=True).stdout
-        cpp = json.loads(out)["median_ms"]
-        X, idx, off = polydec._convert.mesh(V, F)
-        parts = {"S", "M", "M_lumped"}
-        bare = median_ms(lambda: polydec._polydec.operators(X, idx, off, "ours", parts, 1), n)
-        full = median_ms(lambda: polydec._polydec.operators(*polydec._convert.mesh(V, F), "ours", parts, 1), n)
-        public = median_ms(lambda: polydec.laplacian(V, F, mass="galerkin"), n)
-    print(f"FINE SPHERE: {V.shape[0]} vertices, {F.shape[0]} faces; medians of {n}")
-    print(f"C++ (polydec operators --repeat): {cpp:.1f} ms")
-    print(f"Python, extension call on converted arrays: {bare:.1f} ms ({bare / cpp:.2f}x)")
-    print(f"Python, conversion + extension call (S, M, lumped M): {full:.1f} ms ({full / cpp:.2f}x)")
-    print(f"Python, polydec.laplacian(V, F, mass='galerkin') (S, M): {public:.1f} ms ({public / cpp:.2f}x)")
+        polydec.write_mesh(path, mesh, binary=True)
+        cpp = []
+        for _ in range(n):  # interleaved: each round one C++ run (median of 3 inside) and each Python call
+            out = subprocess.run([cli, "operators", str(path), "--repeat", "3", "--json"], check=True,
+                                 capture_output=True, text=True).stdout
+            j = json.loads(out)
+            cpp.append((j["median_ms"] / 1e3, j["median_thread_cpu_ms"] / 1e3))
+            rows["cold"].append(seconds(cold))
+            rows["warm"].append(seconds(lambda: polydec._polydec.operators(h, "ours", parts, 1, -1.0)))
+            rows["public"].append(seconds(lambda: polydec.laplacian(mesh, mass="galerkin")))
+            rows["arrays"].append(seconds(lambda: polydec.laplacian(V, F, mass="galerkin")))
+    glibc = " (MALLOC_TRIM/MMAP_THRESHOLD_ set)" if os.environ.get("MALLOC_TRIM_THRESHOLD_") else ""
+    print(f"{name}: {mesh.n_vertices} vertices, {mesh.n_faces} faces; medians of {n} interleaved rounds{glibc}; "
+          f"load average {os.getloadavg()[0]:.1f}; wall time, and CPU time of the calling thread (robust to a "
+          "busy machine)")
+    c = [1e3 * float(np.median([x[i] for x in cpp])) for i in (0, 1)]
+    print(f"C++ (polydec operators --repeat 3, refine + S, M, lumped M): {c[0]:.1f} ms, CPU {c[1]:.1f} ms")
+    labels = {"cold": "Python, Mesh, S, M, lumped M, refinement rebuilt",
+              "warm": "Python, Mesh, S, M, lumped M, refinement cached",
+              "public": "Python, polydec.laplacian(mesh, mass='galerkin') (S, M)",
+              "arrays": "Python, polydec.laplacian(V, F, mass='galerkin') from arrays"}
+    for k, label in labels.items():
+        w, t = (1e3 * float(np.median([x[i] for x in rows[k]])) for i in (0, 1))
+        print(f"{label}: {w:.1f} ms ({w / c[0]:.2f}x), CPU {t:.1f} ms ({t / c[1]:.2f}x)")
 
 
 if __name__ == "__main__":

@@ -1,6 +1,6 @@
 """bench/python_threads.py — two Python threads assembling concurrently against one: the wall-time
 side of the GIL release (tests/python/test_gil.py checks the release itself). The mesh is 61440
-quads (one Catmull-Clark step of hex_sphere(5)), converted once; one call assembles S, M and lumped
+quads (one Catmull-Clark step of hex_sphere(5)); one call validates a Mesh of its arrays and assembles S, M and lumped
 M twice. Each attempt times the call alone and in two concurrent threads (medians of N), bracketed
 by a control that certainly runs in parallel (two threads hashing 16 MB with hashlib, which
 releases the GIL): an attempt counts only when both controls take at most 1.3x one thread's time
@@ -41,13 +41,13 @@ def main():
         for _ in range(4):
             hashlib.sha256(data).digest()
 
-    X, idx, off = polydec._convert.mesh(*polydec.catmull_clark(*polydec.hex_sphere(5)))
+    mesh = polydec.catmull_clark(polydec.hex_sphere(5))
 
-    def assemble():
+    def assemble():  # a Mesh of its own per call: refinement and assembly, as before Mesh cached refinements
         for _ in range(2):
-            polydec._polydec.operators(X, idx, off, "ours", {"S", "M", "M_lumped"}, 1)
+            polydec._polydec.operators(polydec.Mesh(*mesh)._h, "ours", {"S", "M", "M_lumped"}, 1, -1.0)
 
-    print(f"{len(off) - 1} faces; {os.cpu_count()} cores; load average at start {os.getloadavg()[0]:.1f}")
+    print(f"{mesh.n_faces} faces; {os.cpu_count()} cores; load average at start {os.getloadavg()[0]:.1f}")
     counted = []
     for k in range(attempts):
         before, _ = ratio_two_threads(control, 3)

@@ -12,6 +12,17 @@ namespace polydec {
 
 namespace {
 
+// Refuses a generated mesh of more than kMaxGeneratedVertices vertices before building it (the
+// counts are estimated in double, so that huge arguments cannot overflow).
+constexpr double kMaxGeneratedVertices = 1e8;
+
+void check_size(double vertices, const char* what) {
+  if (vertices > kMaxGeneratedVertices)
+    throw std::invalid_argument(
+        fmt::format("{}: about {:.3g} vertices asked for, at most {:g} generated", what, vertices,
+                    kMaxGeneratedVertices));
+}
+
 PolygonSoup soup_with_positions(const std::vector<Eigen::Vector3d>& pts) {
   PolygonSoup s;
   s.positions.resize(long(pts.size()), 3);
@@ -34,6 +45,7 @@ Eigen::Vector3d face_centroid(const Mesh& m, int f) {
 
 Mesh quad_grid(int nx, int ny) {
   if (nx < 1 || ny < 1) throw std::invalid_argument("quad_grid: needs at least one cell per direction");
+  check_size((nx + 1.0) * (ny + 1.0), "quad_grid");
   std::vector<Eigen::Vector3d> p;
   for (int j = 0; j <= ny; ++j)
     for (int i = 0; i <= nx; ++i) p.emplace_back(double(i) / nx, double(j) / ny, 0.0);
@@ -64,6 +76,7 @@ Mesh hex_grid(int nx, int ny) { return dual(triangle_grid(nx, ny)); }
 
 Mesh uv_sphere(int n_lat, int n_lon) {
   if (n_lat < 2 || n_lon < 3) throw std::invalid_argument("uv_sphere: needs n_lat >= 2 and n_lon >= 3");
+  check_size(double(n_lat) * n_lon, "uv_sphere");
   std::vector<Eigen::Vector3d> p;
   p.emplace_back(0, 0, 1);
   for (int i = 1; i < n_lat; ++i) {
@@ -95,6 +108,7 @@ Mesh uv_sphere(int n_lat, int n_lon) {
 
 Mesh cube_sphere(int n) {
   if (n < 1) throw std::invalid_argument("cube_sphere: needs n >= 1");
+  check_size(6.0 * (n + 1.0) * (n + 1.0), "cube_sphere");
   // Lattice points on the cube surface [-1,1]^3, merged by integer coordinates.
   std::map<std::array<int, 3>, int> index;
   std::vector<Eigen::Vector3d> p;
@@ -127,6 +141,8 @@ Mesh cube_sphere(int n) {
 }
 
 Mesh hex_sphere(int level) {
+  if (level < 0) throw std::invalid_argument("hex_sphere: needs level >= 0");
+  check_size(20.0 * std::pow(4.0, level), "hex_sphere");
   const double t = (1.0 + std::sqrt(5.0)) / 2.0;
   std::vector<Eigen::Vector3d> p = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
                                     {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
@@ -160,6 +176,7 @@ Mesh hex_sphere(int level) {
 
 PolygonSoup torus_soup(int n_major, int n_minor, double R, double r) {
   if (n_major < 3 || n_minor < 3 || !(R > r) || !(r > 0)) throw std::invalid_argument("torus: bad parameters");
+  check_size(double(n_major) * n_minor, "torus");
   std::vector<Eigen::Vector3d> p;
   for (int i = 0; i < n_major; ++i)
     for (int j = 0; j < n_minor; ++j) {
@@ -179,6 +196,8 @@ PolygonSoup torus_soup(int n_major, int n_minor, double R, double r) {
 Mesh torus(int n_major, int n_minor, double R, double r) { return Mesh(torus_soup(n_major, n_minor, R, r)); }
 
 Mesh genus2(int subdivisions) {
+  if (subdivisions < 0) throw std::invalid_argument("genus2: needs subdivisions >= 0");
+  check_size(64.0 * std::pow(4.0, subdivisions), "genus2");  // 52 quads before subdividing
   // Occupancy of a 5 x 3 x 1 block with the cubes (1,1,0) and (3,1,0) removed.
   auto filled = [](int x, int y, int z) {
     if (x < 0 || x >= 5 || y < 0 || y >= 3 || z != 0) return false;

@@ -2,7 +2,8 @@
 // (triangle, quad, hexagon), spheres (UV quad sphere, cube sphere, hexagon-dominant sphere), a
 // quad torus, a genus-2 quad surface, Catmull-Clark subdivision, the dual mesh, projection to
 // the unit sphere and deterministic noise. Every generator returns a validated Mesh with
-// counter-clockwise (outward) faces.
+// counter-clockwise (outward) faces; it throws std::invalid_argument for bad sizes and, before
+// building anything, for meshes of more than 1e8 vertices.
 #pragma once
 
 #include "polydec/dec/mesh/mesh.h"

@@ -95,6 +95,7 @@ def lists(F, bound, element="face", item="vertex"):
         idx = _integers(F, f"{element}s").reshape(-1)
         off = np.arange(F.shape[0] + 1, dtype=np.int64) * F.shape[1]
     else:
+        _refuse_blocks(F, element)
         try:
             F = list(F)
             sizes = [len(f) for f in F]
@@ -116,6 +117,22 @@ def lists(F, bound, element="face", item="vertex"):
             f = int(np.searchsorted(off, pos, side="right") - 1)
             raise _mesh_error(element, f, f"{element} {f} refers to {item} {int(idx[pos])}, outside [0, {bound})")
     return np.ascontiguousarray(idx, dtype=np.int32), np.ascontiguousarray(off, dtype=np.int32)
+
+
+def _refuse_blocks(F, element):
+    """ValueError for meshio cells (CellBlocks, or their .data arrays in a list) given as faces:
+    blocks of different cell types are not one list of faces."""
+    if hasattr(F, "type") and hasattr(F, "data"):
+        F = [F]
+    if not isinstance(F, (list, tuple)) or not F:  # (a generator's first face must not be consumed)
+        return
+    first = F[0]
+    if hasattr(first, "type") and hasattr(first, "data"):
+        raise ValueError(f"{element}s given as meshio CellBlocks: build the mesh with polydec.from_meshio(m) "
+                         "(it concatenates the blocks in order and skips lower-dimensional ones)")
+    if isinstance(first, np.ndarray) and first.ndim == 2:
+        raise ValueError(f"{element}s given as a list of 2-D arrays (cell blocks?): concatenate them into one "
+                         "list of faces, or use polydec.from_meshio(m) for a meshio mesh")
 
 
 def faces(F, n_vertices):
@@ -142,7 +159,7 @@ def faces_out(indices, offsets, form):
         return idx, off
     if form in ("auto", "array"):
         if not uniform:
-            raise ValueError("faces='array' needs faces of one valence; use 'flat' or 'list'")
+            raise ValueError("face_array() needs faces of one size; use the flat faces or face_list()")
         return idx.reshape(-1, int(sizes[0]))
     if form == "list":
         return [idx[off[f]:off[f + 1]].tolist() for f in range(sizes.size)]
@@ -177,3 +194,70 @@ def sources(s, n_vertices):
         v = int(a[int(np.argmax(bad))])
         raise ValueError(f"source vertex {v} outside [0, {n_vertices})")
     return [int(v) for v in a]
+
+
+def size(n, what, minimum=0):
+    """n as an int when it is an integer (any integer type) of at least `minimum`; ValueError for
+    a fractional, non-numeric or too small value (quad_grid(2.7, 2) must not silently build 2)."""
+    if isinstance(n, bool) or not isinstance(n, (numbers.Integral, np.integer)):
+        raise ValueError(f"{what} must be an integer, got {n!r}")
+    if int(n) < minimum:
+        raise ValueError(f"{what} must be at least {minimum}, got {int(n)}")
+    return int(n)
+
+
+def threads(t):
+    """A thread count: an integer >= 0, 0 meaning all hardware threads."""
+    return size(t, "threads (0: all hardware threads)")
+
+
+def positive(x, what):
+    """x as a float when it is finite and positive, else ValueError."""
+    try:
+        v = float(x)
+    except (TypeError, ValueError):
+        raise ValueError(f"{what} must be a positive number, got {x!r}") from None
+    if not (np.isfinite(v) and v > 0):
+        raise ValueError(f"{what} must be positive and finite, got {x!r}")
+    return v
+
+
+def planarity(p):
+    """The planarity rule as the extension takes it: None -> -1 (the mesh's coordinate precision:
+    a read file's digits, the doubles themselves for arrays), "exact" -> 0 (the doubles taken as
+    exact even for a read mesh), a number T in (0, 1) -> T (faces whose out-of-plane extent is at
+    most T of their size count as planar, the command line's --planarity-tolerance T)."""
+    if p is None:
+        return -1.0
+    if isinstance(p, str):
+        if p == "exact":
+            return 0.0
+        raise ValueError(f"planarity must be None, 'exact' or a tolerance in (0, 1), got {p!r}")
+    v = positive(p, "planarity tolerance")
+    if v >= 1:
+        raise ValueError(f"planarity tolerance must be below 1, got {p!r}")
+    return v
+
+
+def existing_file(path):
+    """os.fspath(path), after checking that the file exists: MeshFileNotFoundError (a FileError and
+    a FileNotFoundError) otherwise."""
+    import errno
+    import os
+
+    p = os.fspath(path)
+    if not os.path.exists(p):
+        raise MeshFileNotFoundError(errno.ENOENT, "no such file", p)
+    return p
+
+
+class MeshFileNotFoundError(_polydec.FileError, FileNotFoundError):
+    """A mesh file that does not exist: both polydec.FileError and FileNotFoundError (errno
+    ENOENT, filename the path; str() "PATH: no such file" as FileError's messages)."""
+
+    def __init__(self, errno_, reason, filename):
+        super().__init__(errno_, reason, filename)
+        self.line, self.byte_offset, self.reason = 0, -1, reason
+
+    def __str__(self):
+        return f"{self.filename}: {self.reason}"

@@ -60,6 +60,11 @@ class VolumeMesh:
     offsets)), cells (flat (half-faces, offsets): half-face 2f is face f as listed, 2f+1 reversed),
     face_cells (|F|, 2) (-1 where none), edges (|E|, 2) (i < j, lexicographic), boundary_vertices
     (bool |V|), cell_volumes (|C|,), volume, mean_edge_length, bounding_box_diagonal.
+
+    >>> m = polydec.VolumeMesh([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]],
+    ...                        [[[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]]])
+    >>> m.n_cells, m.n_faces, round(m.volume, 12)
+    (1, 4, 0.166666666667)
     """
 
     def __init__(self, V, cells):
@@ -70,9 +75,59 @@ class VolumeMesh:
         self._m = _polydec.VolumeMesh.from_cells(X, *_flat_cells(cells, X.shape[0]))
 
     @classmethod
-    def from_cells(cls, V, cells):
-        """VolumeMesh(V, cells)."""
-        return cls(V, cells)
+    def from_cells(cls, V, cells, kind=None):
+        """VolumeMesh(V, cells) (cells as lists of faces), or with `kind` one block of cells of one
+        linear type as an (n, k) integer array in VTK's (and meshio's) vertex order: "tetra" (k = 4),
+        "hexahedron" (8), "wedge" (6, also "prism") or "pyramid" (5); polydec takes each cell's
+        faces from VTK's tables (dec/mesh/polyhedron_builder.h), so a cell numbered as VTK wants it
+        (positively oriented) gets outward faces.
+
+        >>> V = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]]
+        >>> round(polydec.VolumeMesh.from_cells(V, [[0, 1, 2, 3]], "tetra").volume, 12)
+        0.166666666667
+        """
+        if kind is None:
+            return cls(V, cells)
+        return cls.from_blocks(V, [(kind, cells)])
+
+    @classmethod
+    def from_blocks(cls, V, blocks):
+        """Cells from a list of blocks (kind, cells), concatenated in block order: kind one of
+        from_cells' linear kinds with an (n, k) array, or "polyhedron" with a list of cells, each a
+        list of faces (vertex lists).
+
+        >>> V = [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0.5, 0.5, 1], [0.5, 0.5, -1]]
+        >>> m = polydec.VolumeMesh.from_blocks(V, [("pyramid", [[0, 1, 2, 3, 4]]), ("pyramid", [[0, 3, 2, 1, 5]])])
+        >>> m.n_cells, round(m.volume, 12)
+        (2, 0.666666666667)
+        """
+        X = _convert.positions(V)
+        types, items, sizes = [], [], []
+        for kind, cells in blocks:
+            t = _cell_type(kind)
+            if t == 42:
+                for c in cells:
+                    stream = [len(c)]
+                    for f in c:
+                        f = list(f)
+                        stream += [len(f)] + f
+                    types.append(42)
+                    items.append(np.asarray(stream, dtype=np.int64))
+                    sizes.append(len(stream))
+                continue
+            a = _convert._integers(cells, f"{kind} cells")
+            if a.size == 0:
+                continue
+            if a.ndim != 2 or a.shape[1] != _CELL_SIZES[t]:
+                raise ValueError(f"{kind} cells must be an (n, {_CELL_SIZES[t]}) integer array, got shape {a.shape}")
+            types += [t] * a.shape[0]
+            items.append(a.reshape(-1).astype(np.int64))
+            sizes += [a.shape[1]] * a.shape[0]
+        flat = np.concatenate(items) if items else np.zeros(0, dtype=np.int64)
+        offsets = np.concatenate([[0], np.cumsum(sizes, dtype=np.int64)])
+        _check_cell_vertices(types, flat, offsets, X.shape[0])
+        return cls._wrap(_polydec.VolumeMesh.from_typed_cells(X, np.asarray(types, dtype=np.int32),
+                                                              flat.astype(np.int32), offsets.astype(np.int32)))
 
     @classmethod
     def _wrap(cls, m):
@@ -104,11 +159,23 @@ class VolumeMesh:
         """The same connectivity with new positions (|V|, 3)."""
         return VolumeMesh._wrap(self._m.with_positions(_convert.positions(V)))
 
-    def boundary_surface(self, faces="auto"):
-        """The boundary faces, oriented outward, as a surface mesh (V, F) on all |V| vertices
-        (interior vertices unreferenced), for every surface tool of polydec."""
+    def boundary_surface(self):
+        """The boundary faces, oriented outward, as a surface Mesh on all |V| vertices (interior
+        vertices unreferenced), for every surface tool of polydec.
+
+        >>> polydec.hex_grid_volume(2, 2, 2).boundary_surface()
+        Mesh(27 vertices, 24 faces, 48 edges)
+        """
+        from ._mesh import Mesh
+
         X, idx, off = self._m.boundary_surface()
-        return np.ascontiguousarray(X), _convert.faces_out(idx, off, faces)
+        return Mesh(X, (idx, off))
+
+    @property
+    def faces(self):
+        """The faces as the flat tuple (indices, offsets) of two int64 arrays (as surface faces)."""
+        idx, off = self._m.faces
+        return np.asarray(idx, dtype=np.int64), np.asarray(off, dtype=np.int64)
 
     def cell_faces(self, c):
         """Cell c as a list of faces (vertex lists), each oriented with its normal out of the cell."""
@@ -123,7 +190,7 @@ class VolumeMesh:
         return out
 
     def __getattr__(self, name):
-        if name in ("n_vertices", "n_edges", "n_faces", "n_cells", "n_unreferenced_vertices", "positions", "faces",
+        if name in ("n_vertices", "n_edges", "n_faces", "n_cells", "n_unreferenced_vertices", "positions",
                     "cells", "face_cells", "edges", "boundary_vertices", "cell_volumes", "volume",
                     "mean_edge_length", "bounding_box_diagonal"):
             m = self.__dict__.get("_m")
@@ -135,6 +202,52 @@ class VolumeMesh:
         return (f"VolumeMesh({self.n_vertices} vertices, {self.n_faces} faces, {self.n_cells} cells, "
                 f"volume {self.volume:.6g})")
 
+    def __reduce__(self):
+        fi, fo = self.faces
+        hf, co = self.cells
+        return _unpickle, (self.positions, fi, fo, hf, co, self._m.coordinate_noise, self._m.planarity_tolerance)
+
+
+def _unpickle(X, fi, fo, hf, co, noise, planarity_tolerance):
+    m = _polydec.VolumeMesh.from_soup(*(np.ascontiguousarray(a, dtype=t) for a, t in
+                                        ((X, np.float64), (fi, np.int32), (fo, np.int32), (hf, np.int32),
+                                         (co, np.int32))))
+    if noise or planarity_tolerance:
+        m = m.with_precision(float(noise), float(planarity_tolerance))
+    return VolumeMesh._wrap(m)
+
+
+_CELL_TYPES = {"tetra": 10, "tetrahedron": 10, "hexahedron": 12, "hex": 12, "wedge": 13, "prism": 13,
+               "pyramid": 14, "polyhedron": 42}
+_CELL_SIZES = {10: 4, 12: 8, 13: 6, 14: 5}
+
+
+def _cell_type(kind):
+    t = _CELL_TYPES.get(str(kind))
+    if t is None:
+        raise ValueError(f"unknown cell kind {kind!r} (known: {', '.join(_CELL_TYPES)})")
+    return t
+
+
+def _check_cell_vertices(types, flat, offsets, n_vertices):
+    """InvalidMeshError naming the cell for a vertex index outside [0, n_vertices) (polyhedron face
+    streams: only their vertex entries)."""
+    bad = (flat < 0) | (flat >= n_vertices)
+    if 42 in types:  # sizes in the face streams are not vertex indices
+        for c, t in enumerate(types):
+            if t == 42:
+                s, k, n = int(offsets[c]), 1, int(offsets[c + 1] - offsets[c])
+                bad[s] = n == 0
+                while k < n:
+                    bad[s + k] = False
+                    if flat[s + k] < 1:
+                        break
+                    k += int(flat[s + k]) + 1
+    if np.any(bad):
+        pos = int(np.argmax(bad))
+        c = int(np.searchsorted(offsets, pos, side="right") - 1)
+        raise _convert._mesh_error("cell", c, f"cell {c} refers to vertex {int(flat[pos])}, outside [0, {n_vertices})")
+
 
 def _mesh(mesh):
     if not isinstance(mesh, VolumeMesh):
@@ -145,71 +258,131 @@ def _mesh(mesh):
 def read_volume_mesh(path):
     """Reads an OVM (OpenVolumeMesh ASCII), VTK legacy unstructured grid or MEDIT .mesh file (by
     extension; others by their first word) -> VolumeMesh, in the file's vertex order. Raises
-    FileError (OSError and ValueError) naming the file and line for a missing, unreadable or
-    malformed file or an invalid mesh in it."""
-    return VolumeMesh._wrap(_polydec.VolumeMesh.read(os.fspath(path)))
+    MeshFileNotFoundError (a FileError and a FileNotFoundError) for a missing file, FileError
+    (OSError and ValueError) naming the file and line for an unreadable or malformed file or an
+    invalid mesh in it.
+
+    >>> import tempfile, os
+    >>> path = os.path.join(tempfile.mkdtemp(), "cube.vtk")
+    >>> polydec.write_volume_mesh(path, polydec.hex_grid_volume(2, 2, 2))
+    >>> polydec.read_volume_mesh(path).n_cells
+    8
+    """
+    return VolumeMesh._wrap(_polydec.VolumeMesh.read(_convert.existing_file(path)))
 
 
 def write_volume_mesh(path, mesh, scalars=None):
     """Writes by extension (.ovm, .vtk, .mesh; MEDIT holds tetrahedra and hexahedra only),
     positions with 17 significant digits. scalars: optional {name: (|V|,) array}, written as VTK
-    POINT_DATA (.vtk only). Raises FileError."""
+    POINT_DATA (.vtk only). Raises FileError.
+
+    >>> import tempfile, os
+    >>> path = os.path.join(tempfile.mkdtemp(), "grid.vtk")
+    >>> polydec.write_volume_mesh(path, polydec.tet_grid_volume(1, 1, 1), scalars={"u": np.arange(8.0)})
+    >>> polydec.read_volume_mesh(path).n_cells
+    6
+    """
     s = {str(k): np.asarray(v, dtype=np.float64).reshape(-1) for k, v in (scalars or {}).items()}
     _mesh(mesh).write(os.fspath(path), s)
+
+
+def _sizes(nx, ny, nz):
+    return _convert.size(nx, "nx", 1), _convert.size(ny, "ny", 1), _convert.size(nz, "nz", 1)
 
 
 def jitter_interior(mesh, amplitude, seed=1):
     """Every interior vertex moved by a uniform random vector in the ball of radius amplitude times
     its shortest incident edge (0 <= amplitude < 0.5 keeps the generators' cells valid); boundary
-    vertices stay. Deterministic for a seed -> VolumeMesh."""
+    vertices stay. Deterministic for a seed -> VolumeMesh.
+
+    >>> m = polydec.hex_grid_volume(3, 3, 3)
+    >>> b = m.boundary_vertices
+    >>> j = polydec.jitter_interior(m, 0.2)
+    >>> bool(np.array_equal(j.positions[b], m.positions[b])), bool((j.positions[~b] != m.positions[~b]).any())
+    (True, True)
+    """
     return VolumeMesh._wrap(_polydec.jitter_interior(_mesh(mesh), float(amplitude), int(seed)))
 
 
 def hex_grid_volume(nx, ny, nz, jitter=0.0, seed=1):
     """nx x ny x nz hexahedra filling [0, 1]^3; vertex (i, j, k) is i + (nx+1)(j + (ny+1) k);
-    jitter: amplitude of jitter_interior."""
-    return VolumeMesh._wrap(_polydec.hex_grid_volume(int(nx), int(ny), int(nz), float(jitter), int(seed)))
+    jitter: amplitude of jitter_interior.
+
+    >>> polydec.hex_grid_volume(2, 3, 4).n_cells
+    24
+    """
+    return VolumeMesh._wrap(_polydec.hex_grid_volume(*_sizes(nx, ny, nz), float(jitter), int(seed)))
 
 
 def tet_grid_volume(nx, ny, nz, jitter=0.0, seed=1):
-    """The hex grid with every cube split into 6 tetrahedra (Kuhn subdivision)."""
-    return VolumeMesh._wrap(_polydec.tet_grid_volume(int(nx), int(ny), int(nz), float(jitter), int(seed)))
+    """The hex grid with every cube split into 6 tetrahedra (Kuhn subdivision).
+
+    >>> polydec.tet_grid_volume(1, 1, 1).n_cells
+    6
+    """
+    return VolumeMesh._wrap(_polydec.tet_grid_volume(*_sizes(nx, ny, nz), float(jitter), int(seed)))
 
 
 def pyramid_grid_volume(nx, ny, nz, jitter=0.0, seed=1):
     """The hex grid with every cube split into 6 pyramids around its centre (centres numbered
-    after the grid vertices)."""
-    return VolumeMesh._wrap(_polydec.pyramid_grid_volume(int(nx), int(ny), int(nz), float(jitter), int(seed)))
+    after the grid vertices).
+
+    >>> polydec.pyramid_grid_volume(1, 1, 1).n_cells
+    6
+    """
+    return VolumeMesh._wrap(_polydec.pyramid_grid_volume(*_sizes(nx, ny, nz), float(jitter), int(seed)))
 
 
 def truncated_octahedra_volume(n, jitter=0.0, seed=1):
     """The bitruncated cubic honeycomb clipped to [0, 1]^3 (n cubes per side): truncated octahedra
-    inside, convex clipped cells at the boundary; n^3 + (n+1)^3 cells."""
-    return VolumeMesh._wrap(_polydec.truncated_octahedra_volume(int(n), float(jitter), int(seed)))
+    inside, convex clipped cells at the boundary; n^3 + (n+1)^3 cells.
+
+    >>> polydec.truncated_octahedra_volume(2).n_cells
+    35
+    """
+    return VolumeMesh._wrap(_polydec.truncated_octahedra_volume(_convert.size(n, "n", 1), float(jitter), int(seed)))
 
 
 def cuboctahedra_volume(n, jitter=0.0, seed=1):
     """Each of n^3 cubes of [0, 1]^3 split into a cuboctahedron and 8 corner tetrahedra (polyLaplace's
-    cube_truncated family; n = 2^(L-1) is level L); 9 n^3 cells."""
-    return VolumeMesh._wrap(_polydec.cuboctahedra_volume(int(n), float(jitter), int(seed)))
+    cube_truncated family; n = 2^(L-1) is level L); 9 n^3 cells.
+
+    >>> m = polydec.cuboctahedra_volume(1)
+    >>> m.n_cells, round(m.volume, 12)
+    (9, 1.0)
+    """
+    return VolumeMesh._wrap(_polydec.cuboctahedra_volume(_convert.size(n, "n", 1), float(jitter), int(seed)))
 
 
 def hex_torus_volume(n_around, n_cross, R=1.0, r=0.4, jitter=0.0, seed=1):
-    """A hexahedral solid torus around the z axis (first Betti number 1), 0 < r < R."""
-    return VolumeMesh._wrap(_polydec.hex_torus_volume(int(n_around), int(n_cross), float(R), float(r), float(jitter),
-                                                      int(seed)))
+    """A hexahedral solid torus around the z axis (first Betti number 1), 0 < r < R.
+
+    >>> polydec.VolumeHodgeDecomposer(polydec.hex_torus_volume(8, 2), complex="mesh").harmonic_basis.shape[1]
+    1
+    """
+    n_around, n_cross = _convert.size(n_around, "n_around", 1), _convert.size(n_cross, "n_cross", 1)
+    return VolumeMesh._wrap(_polydec.hex_torus_volume(n_around, n_cross, float(R), float(r), float(jitter), int(seed)))
 
 
 def hex_ball_volume(n, jitter=0.0, seed=1):
-    """A hexahedral unit ball from the n x n x n grid of [-1, 1]^3 (boundary vertices on the unit sphere)."""
-    return VolumeMesh._wrap(_polydec.hex_ball_volume(int(n), float(jitter), int(seed)))
+    """A hexahedral unit ball from the n x n x n grid of [-1, 1]^3 (boundary vertices on the unit sphere).
+
+    >>> m = polydec.hex_ball_volume(4)
+    >>> bool(np.allclose(np.linalg.norm(m.positions[m.boundary_vertices], axis=1), 1))
+    True
+    """
+    return VolumeMesh._wrap(_polydec.hex_ball_volume(_convert.size(n, "n", 1), float(jitter), int(seed)))
 
 
 # -------------------------------------------------------------------------------------- operators
 
 def volume_laplacian_names():
     """The volume Laplacians: "ours" (least-norm cell-point weights), "polylaplace" (polyLaplace's
-    cell-point weights, the same cell point), "diamond" (Bunge, Botsch & Alexa 2021)."""
+    cell-point weights, the same cell point), "diamond" (Bunge, Botsch & Alexa 2021).
+
+    >>> "polylaplace" in polydec.volume_laplacian_names()
+    True
+    """
     return list(_polydec.volume_laplacian_names())
 
 
@@ -218,30 +391,53 @@ def volume_operators(mesh, laplacian="ours", parts=("S", "M", "M_lumped", "G", "
     (S, M, G, D csc_matrix; M_lumped a (|V|,) vector), "G_blocks" with G (row blocks the heat method
     normalizes as one vector; empty: blocks of 3), "name", and the refinement's sub-tetrahedron
     counts "subtet_degenerate", "subtet_inverted", "cells_affected". threads: refinement and
-    assembly threads for "ours" and "polylaplace" (0: all; the result does not depend on it)."""
-    return _polydec.volume_operators(_mesh(mesh), str(laplacian), set(parts), int(threads))
+    assembly threads for "ours" and "polylaplace" (0: all; the result does not depend on it).
+
+    >>> d = polydec.volume_operators(polydec.hex_grid_volume(2, 2, 2), parts={"S", "M_lumped"})
+    >>> d["S"].shape, round(d["M_lumped"].sum(), 12)
+    ((27, 27), 1.0)
+    """
+    return _polydec.volume_operators(_mesh(mesh), str(laplacian), set(parts), _convert.threads(threads))
 
 
 def volume_stiffness(mesh, laplacian="ours", threads=1):
     """Stiffness S = P^T S^tet P (|V|, |V|) csc_matrix, symmetric NEGATIVE semi-definite, S @ 1 = 0,
-    exact on linear functions at interior vertices."""
+    exact on linear functions at interior vertices.
+
+    >>> S = polydec.volume_stiffness(polydec.hex_grid_volume(2, 2, 2))
+    >>> bool(abs(S @ np.ones(27)).max() < 1e-14)
+    True
+    """
     return volume_operators(mesh, laplacian, {"S"}, threads)["S"]
 
 
 def volume_mass(mesh, laplacian="ours", threads=1):
-    """Galerkin mass M = P^T M^tet P (|V|, |V|) csc_matrix, positive semi-definite, summing to the volume."""
+    """Galerkin mass M = P^T M^tet P (|V|, |V|) csc_matrix, positive semi-definite, summing to the volume.
+
+    >>> round(polydec.volume_mass(polydec.tet_grid_volume(2, 2, 2)).sum(), 12)
+    1.0
+    """
     return volume_operators(mesh, laplacian, {"M"}, threads)["M"]
 
 
 def volume_lumped_mass(mesh, laplacian="ours", threads=1):
-    """Lumped mass (row sums of M) as a diagonal (|V|, |V|) csc_matrix."""
+    """Lumped mass (row sums of M) as a diagonal (|V|, |V|) csc_matrix.
+
+    >>> round(polydec.volume_lumped_mass(polydec.pyramid_grid_volume(2, 2, 2)).sum(), 12)
+    1.0
+    """
     from . import _diagonal
 
     return _diagonal(volume_operators(mesh, laplacian, {"M_lumped"}, threads)["M_lumped"])
 
 
 def volume_laplacian(mesh, laplacian="ours", mass="lumped", threads=1):
-    """(S, M) from one assembly; mass="lumped" (diagonal, default) or "galerkin"; L = M^-1 S."""
+    """(S, M) from one assembly; mass="lumped" (diagonal, default) or "galerkin"; L = M^-1 S.
+
+    >>> S, M = polydec.volume_laplacian(polydec.hex_grid_volume(2, 2, 2), mass="galerkin")
+    >>> bool(abs(S - S.T).max() < 1e-15), round(M.sum(), 12)
+    (True, 1.0)
+    """
     from . import _diagonal
 
     lumped = _convert.lumped_flag(mass)
@@ -251,17 +447,33 @@ def volume_laplacian(mesh, laplacian="ours", mass="lumped", threads=1):
 
 def volume_gradient(mesh, laplacian="ours"):
     """Gradient G, (3T, |V|) csc_matrix: rows 3t..3t+2 the constant gradient on sub-tetrahedron t
-    of the refinement ("diamond": per sub-diamond). S = D @ G."""
+    of the refinement ("diamond": per sub-diamond). S = D @ G.
+
+    >>> m = polydec.hex_grid_volume(2, 2, 2)
+    >>> G = polydec.volume_gradient(m)
+    >>> bool(np.allclose(G @ m.positions[:, 0], np.tile([1.0, 0, 0], G.shape[0] // 3)))
+    True
+    """
     return volume_operators(mesh, laplacian, {"G"})["G"]
 
 
 def volume_divergence(mesh, laplacian="ours"):
-    """Divergence D = -G^T W (W the sub-tetrahedron volumes, each three times), (|V|, 3T) csc_matrix."""
+    """Divergence D = -G^T W (W the sub-tetrahedron volumes, each three times), (|V|, 3T) csc_matrix.
+
+    >>> m = polydec.jitter_interior(polydec.hex_grid_volume(2, 2, 2), 0.2)
+    >>> DG = polydec.volume_divergence(m) @ polydec.volume_gradient(m)
+    >>> bool(abs(DG - polydec.volume_stiffness(m)).max() < 1e-12)
+    True
+    """
     return volume_operators(mesh, laplacian, {"D"})["D"]
 
 
 def volume_dec_max_degree(mesh):
-    """The largest form degree (0..3) whose Hodge star every cell's size allows (dec/volume/complex.h)."""
+    """The largest form degree (0..3) whose Hodge star every cell's size allows (dec/volume/complex.h).
+
+    >>> polydec.volume_dec_max_degree(polydec.tet_grid_volume(1, 1, 1))
+    3
+    """
     return _polydec.volume_dec_max_degree(_mesh(mesh))
 
 
@@ -277,7 +489,12 @@ def volume_dec(mesh, max_degree=None, cell_point="squared-volume", complex="comp
     degree for every cell size (max_degree=None: 3), positive definite stars, star3 diagonal; the
     dict then also holds the lists d, P, star (d[k], P[k], star[k]), edges ((|E|, 2) int32, i < j),
     faces (vertex lists, each in its orientation) and cells (half-face lists: h // 2 is the face,
-    even h as listed (d2 = +1), odd reversed (d2 = -1))."""
+    even h as listed (d2 = +1), odd reversed (d2 = -1)).
+
+    >>> D = polydec.volume_dec(polydec.hex_grid_volume(2, 2, 2), complex="mesh")
+    >>> (D["d1"] @ D["d0"]).count_nonzero(), (D["d2"] @ D["d1"]).count_nonzero()
+    (0, 0)
+    """
     k = -1 if max_degree is None else int(max_degree)
     if max_degree is not None and not 0 <= k <= 3:
         raise ValueError(f"max_degree must be 0..3, got {max_degree}")
@@ -293,12 +510,17 @@ class VolumeHeatGeodesics:
     VolumeHeatGeodesics(mesh, laplacian="ours", time_step_factor=1.0, mass="lumped",
     mass_weighted_source=True); distance(sources) -> (|V|,) float64, 0 at the nearest source,
     +inf where no source reaches. Equal to `polydec geodesics MESH --source ...` on a volume mesh.
+
+    >>> d = polydec.VolumeHeatGeodesics(polydec.hex_grid_volume(4, 4, 4)).distance(0)
+    >>> d.shape, float(d[0])
+    ((125,), 0.0)
     """
 
     def __init__(self, mesh, laplacian="ours", time_step_factor=1.0, mass="lumped", mass_weighted_source=True):
         m = _mesh(mesh)
         self._n = m.n_vertices
-        self._solver = _polydec.volume_heat_geodesics(m, str(laplacian), float(time_step_factor),
+        self._solver = _polydec.volume_heat_geodesics(m, str(laplacian),
+                                                      _convert.positive(time_step_factor, "time_step_factor"),
                                                       _convert.lumped_flag(mass), bool(mass_weighted_source))
 
     def distance(self, sources, return_diagnostics=False):
@@ -309,9 +531,7 @@ class VolumeHeatGeodesics:
 
     def distances(self, sources, block=64):
         """One distance field per source -> (|V|, k), as HeatGeodesics.distances."""
-        if int(block) < 1:
-            raise ValueError(f"block must be positive, got {block}")
-        return self._solver.distances(_convert.sources(sources, self._n), int(block))
+        return self._solver.distances(_convert.sources(sources, self._n), _convert.size(block, "block", 1))
 
     @property
     def time_step(self):
@@ -323,7 +543,12 @@ def volume_spectrum(mesh, k, laplacian="ours", boundary="neumann", mass="lumped"
     """The k smallest eigenpairs of -S x = lambda M x on the volume -> (evals (k,) ascending,
     evecs (|V|, k) M-orthonormal). boundary="neumann" (every vertex free; lambda_0 = 0 with a
     constant vector per connected component) or "dirichlet" (boundary vertices removed, their rows
-    0). return_info=True adds a dict (shift, n_converged, n_solves, method)."""
+    0). return_info=True adds a dict (shift, n_converged, n_solves, method).
+
+    >>> evals, evecs = polydec.volume_spectrum(polydec.hex_grid_volume(4, 4, 4), 2)
+    >>> bool(abs(evals[0]) < 1e-8), bool(abs(evals[1] - np.pi ** 2) < 1)
+    (True, True)
+    """
     if boundary not in ("neumann", "dirichlet"):
         raise ValueError(f"boundary must be 'neumann' or 'dirichlet', got {boundary!r}")
     evals, evecs, info = _polydec.volume_spectrum(_mesh(mesh), int(k), str(laplacian), boundary == "dirichlet",
@@ -334,7 +559,12 @@ def volume_spectrum(mesh, k, laplacian="ours", boundary="neumann", mass="lumped"
 def ball_eigenvalues(count, boundary="neumann"):
     """The `count` smallest eigenvalues of -Delta on the unit ball, each repeated 2l + 1 times ->
     (lambda (count,), l, n): squared zeros of the spherical Bessel j_l (Dirichlet) or of j_l'
-    (Neumann, with the 0 of the constants)."""
+    (Neumann, with the 0 of the constants).
+
+    >>> lam, l, n = polydec.ball_eigenvalues(4, "dirichlet")
+    >>> round(float(lam[0]), 4), l.tolist()
+    (9.8696, [0, 1, 1, 1])
+    """
     if boundary not in ("neumann", "dirichlet"):
         raise ValueError(f"boundary must be 'neumann' or 'dirichlet', got {boundary!r}")
     return _polydec.ball_eigenvalues(int(count), boundary == "dirichlet")
@@ -355,7 +585,13 @@ def volume_poisson(mesh, exact, laplacian_of_exact, laplacian="ours", mass="gale
     and measures the error -> dict: solution, exact (|V|,), l2_error sqrt(e^T M e), rms_error (over
     all vertices), h (mean edge length), n_vertices, n_cells, n_boundary. exact and
     laplacian_of_exact: (|V|,) arrays or functions of the (|V|, 3) positions. ValueError on a mesh
-    without boundary."""
+    without boundary.
+
+    >>> r = polydec.volume_poisson(polydec.hex_grid_volume(3, 3, 3), lambda X: X[:, 0] + 2 * X[:, 1],
+    ...                            lambda X: np.zeros(len(X)))
+    >>> bool(r["rms_error"] < 1e-12)
+    True
+    """
     m = _mesh(mesh)
     X = m.positions
     return _polydec.volume_poisson(m, _vertex_values(exact, X, "exact"),
@@ -365,7 +601,12 @@ def volume_poisson(mesh, exact, laplacian_of_exact, laplacian="ours", mass="gale
 
 def volume_franke_poisson(mesh, laplacian="ours", mass="galerkin"):
     """The 3D Franke Poisson problem on a mesh of the unit cube (apps/applications/volume/poisson.h,
-    as `polydec poisson` on a volume) -> the dict of volume_poisson."""
+    as `polydec poisson` on a volume) -> the dict of volume_poisson.
+
+    >>> r = polydec.volume_franke_poisson(polydec.hex_grid_volume(4, 4, 4))
+    >>> r["n_cells"], bool(r["l2_error"] > 0)
+    (64, True)
+    """
     return _polydec.volume_franke_poisson(_mesh(mesh), str(laplacian), _convert.lumped_flag(mass))
 
 
@@ -376,7 +617,12 @@ class VolumeHodgeDecomposer:
 
     decompose(omega) with omega (|C1|,) on the pairs -> HodgeParts. Attributes pairs, d0, star1,
     harmonic_basis (|C1|, first Betti number), star1-orthonormal. complex="mesh": on the mesh's own
-    edges (pairs = the mesh edges), positive definite star1, cells of any size."""
+    edges (pairs = the mesh edges), positive definite star1, cells of any size.
+
+    >>> h = polydec.VolumeHodgeDecomposer(polydec.hex_grid_volume(2, 2, 2), complex="mesh")
+    >>> h.harmonic_basis.shape[1]
+    0
+    """
 
     def __init__(self, mesh, cell_point="squared-volume", complex="complete"):
         self._h = _polydec.VolumeHodgeDecomposer(_mesh(mesh), str(cell_point), str(complex))

@@ -7,15 +7,11 @@
 namespace polydec::python {
 namespace {
 
-// Runs a generator with the GIL released and returns the mesh's arrays.
+// Runs a generator with the GIL released and returns the mesh as a polydec._polydec.Mesh.
 template <class F>
-py::tuple generate(F&& make) {
-  Mesh mesh;
-  {
-    py::gil_scoped_release release;
-    mesh = make();
-  }
-  return mesh_to_arrays(mesh);
+std::shared_ptr<MeshHandle> generate(F&& make) {
+  py::gil_scoped_release release;
+  return std::make_shared<MeshHandle>(make());
 }
 
 }  // namespace
@@ -23,16 +19,16 @@ py::tuple generate(F&& make) {
 void register_meshes(py::module_& m) {
   m.def("read_mesh", [](const std::string& path) { return generate([&] { return read_mesh(path); }); });
   m.def("write_mesh",
-        [](const std::string& path, const PositionArray& V, const IndexArray& I, const IndexArray& O,
+        [](const std::string& path, const MeshHandle& h,
            const std::map<std::string, Eigen::VectorXd>& scalars, bool binary) {
-          const Mesh mesh = mesh_from_arrays(V, I, O);
+          const Mesh& mesh = h.mesh();
           py::gil_scoped_release release;
           WriteOptions options;
           options.binary = binary;
           write_mesh(path, mesh, scalars, options);
         });
-  m.def("validate", [](const PositionArray& V, const IndexArray& I, const IndexArray& O) {
-    const Mesh mesh = mesh_from_arrays(V, I, O);
+  m.def("validate", [](const MeshHandle& h) {
+    const Mesh& mesh = h.mesh();
     py::dict d;
     d["vertices"] = mesh.n_vertices();
     d["faces"] = mesh.n_faces();
@@ -57,21 +53,21 @@ void register_meshes(py::module_& m) {
   });
   m.def("genus2", [](int subdivisions) { return generate([&] { return genus2(subdivisions); }); });
 
-  m.def("catmull_clark", [](const PositionArray& V, const IndexArray& I, const IndexArray& O) {
-    const Mesh mesh = mesh_from_arrays(V, I, O);
+  m.def("catmull_clark", [](const MeshHandle& h) {
+    const Mesh& mesh = h.mesh();
     return generate([&] { return catmull_clark(mesh); });
   });
-  m.def("dual", [](const PositionArray& V, const IndexArray& I, const IndexArray& O) {
-    const Mesh mesh = mesh_from_arrays(V, I, O);
+  m.def("dual", [](const MeshHandle& h) {
+    const Mesh& mesh = h.mesh();
     return generate([&] { return dual(mesh); });
   });
-  m.def("project_to_unit_sphere", [](const PositionArray& V, const IndexArray& I, const IndexArray& O) {
-    const Mesh mesh = mesh_from_arrays(V, I, O);
+  m.def("project_to_unit_sphere", [](const MeshHandle& h) {
+    const Mesh& mesh = h.mesh();
     return generate([&] { return project_to_unit_sphere(mesh); });
   });
-  m.def("add_noise", [](const PositionArray& V, const IndexArray& I, const IndexArray& O, double amplitude,
+  m.def("add_noise", [](const MeshHandle& h, double amplitude,
                         std::uint64_t seed) {
-    const Mesh mesh = mesh_from_arrays(V, I, O);
+    const Mesh& mesh = h.mesh();
     return generate([&] { return add_noise(mesh, amplitude, seed); });
   });
 }

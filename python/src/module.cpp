@@ -7,26 +7,24 @@
 
 namespace polydec::python {
 
-PolygonSoup soup_from_arrays(const PositionArray& V, const IndexArray& indices, const IndexArray& offsets) {
+Eigen::MatrixX3d positions_from_array(const PositionArray& V) {
   if (V.ndim() != 2 || V.shape(1) != 3)
     throw std::invalid_argument("positions must be an array of shape (|V|, 3)");
+  Eigen::MatrixX3d X(long(V.shape(0)), 3);
+  const double* v = V.data();
+  for (long i = 0; i < X.rows(); ++i)
+    for (int c = 0; c < 3; ++c) X(i, c) = v[3 * i + c];
+  return X;
+}
+
+PolygonSoup soup_from_arrays(const PositionArray& V, const IndexArray& indices, const IndexArray& offsets) {
   if (indices.ndim() != 1 || offsets.ndim() != 1 || offsets.size() < 1)
     throw std::invalid_argument("faces must be flat 1-D indices and offsets (|F| + 1 entries)");
   PolygonSoup soup;
-  const long n = long(V.shape(0));
-  soup.positions.resize(n, 3);
-  const double* v = V.data();
-  for (long i = 0; i < n; ++i)
-    for (int c = 0; c < 3; ++c) soup.positions(i, c) = v[3 * i + c];
+  soup.positions = positions_from_array(V);
   soup.face_indices.assign(indices.data(), indices.data() + indices.size());
   soup.face_offsets.assign(offsets.data(), offsets.data() + offsets.size());
   return soup;
-}
-
-Mesh mesh_from_arrays(const PositionArray& V, const IndexArray& indices, const IndexArray& offsets) {
-  PolygonSoup soup = soup_from_arrays(V, indices, offsets);
-  py::gil_scoped_release release;
-  return Mesh(std::move(soup));
 }
 
 py::tuple mesh_to_arrays(const Mesh& mesh) {
@@ -39,6 +37,27 @@ py::tuple mesh_to_arrays(const Mesh& mesh) {
   const auto& O = mesh.face_offsets();
   return py::make_tuple(V, py::array_t<int>(long(I.size()), I.data()),
                         py::array_t<int>(long(O.size()), O.data()));
+}
+
+py::object to_scipy(Eigen::SparseMatrix<double>& A) {
+  A.makeCompressed();
+  auto* owner = new Eigen::SparseMatrix<double>();
+  owner->swap(A);
+  py::capsule base(owner, [](void* p) { delete static_cast<Eigen::SparseMatrix<double>*>(p); });
+  const long nnz = long(owner->nonZeros());
+  py::array_t<double> data(nnz, owner->valuePtr(), base);
+  py::array_t<int> indices(nnz, owner->innerIndexPtr(), base);
+  py::array_t<int> indptr(long(owner->outerSize()) + 1, owner->outerIndexPtr(), base);
+  static const py::object csc = py::module_::import("scipy.sparse").attr("csc_matrix");
+  return csc(py::make_tuple(data, indices, indptr), py::arg("shape") = py::make_tuple(owner->rows(), owner->cols()),
+             py::arg("copy") = false);
+}
+
+py::array_t<double> to_numpy(Eigen::VectorXd& v) {
+  auto* owner = new Eigen::VectorXd();
+  owner->swap(v);
+  py::capsule base(owner, [](void* p) { delete static_cast<Eigen::VectorXd*>(p); });
+  return py::array_t<double>(long(owner->size()), owner->data(), base);
 }
 
 namespace {
@@ -96,6 +115,7 @@ PYBIND11_MODULE(_polydec, m) {
     }
   });
 
+  register_mesh_handle(m);
   register_meshes(m);
   register_operators(m);
   register_solvers(m);

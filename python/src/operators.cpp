@@ -25,16 +25,18 @@ struct Assembled {
   bool has_M = false, has_G = false;
 };
 
-Assembled assemble(const Mesh& mesh, const std::string& spec, const Parts& parts, int threads) {
+Assembled assemble(const MeshHandle& h, const std::string& spec, const Parts& parts, int threads,
+                   double planarity) {
   const LaplacianChoice choice = parse_laplacian(spec);
+  const Mesh& mesh = h.mesh();
   const bool want_G = parts.count("G") || parts.count("D");
   Assembled a;
   a.name = choice.canonical_name();
   if (choice.method == "ours") {
-    // The paper's operator, assembled only in the parts asked for (the CLI's `operators` route).
-    RefinementOptions ropt;
-    ropt.threads = threads;
-    const Refinement r = refine(mesh, ropt);
+    // The paper's operator, assembled only in the parts asked for (the CLI's `operators` route),
+    // on the mesh's cached refinement.
+    const std::shared_ptr<const Refinement> ref = h.refinement(VirtualVertexRule::SquaredArea, planarity, threads);
+    const Refinement& r = *ref;
     LaplacianParts lp{parts.count("S") > 0, parts.count("M") > 0, parts.count("M_lumped") > 0};
     AssemblyOptions aopt;
     aopt.threads = threads;
@@ -50,7 +52,7 @@ Assembled assemble(const Mesh& mesh, const std::string& spec, const Parts& parts
     a.n_input_vertices = a.n_domain_vertices = mesh.n_vertices();
     return a;
   }
-  OperatorSet ops = build_operators(mesh, choice, want_G);
+  OperatorSet ops = build_operators(h.with_planarity(planarity), choice, want_G);
   a.S.swap(ops.S);
   a.M.swap(ops.M);
   a.M_lumped.swap(ops.M_lumped);
@@ -70,13 +72,13 @@ void register_operators(py::module_& m) {
   m.def("canonical_laplacian",
         [](const std::string& spec) { return parse_laplacian(spec).canonical_name(); });
 
-  m.def("operators", [](const PositionArray& V, const IndexArray& I, const IndexArray& O,
-                        const std::string& spec, const Parts& parts, int threads) {
-    const Mesh mesh = mesh_from_arrays(V, I, O);
+  m.def("operators", [](const MeshHandle& h, const std::string& spec, const Parts& parts, int threads,
+                        double planarity) {
+    if (threads < 0) throw std::invalid_argument("threads must be at least 0 (0: all hardware threads)");
     Assembled a;
     {
       py::gil_scoped_release release;
-      a = assemble(mesh, spec, parts, threads);
+      a = assemble(h, spec, parts, threads, planarity);
     }
     py::dict d;
     d["name"] = a.name;
@@ -84,25 +86,24 @@ void register_operators(py::module_& m) {
     d["n_domain_vertices"] = a.n_domain_vertices;
     d["has_M"] = a.has_M;
     d["has_G"] = a.has_G;
-    if (parts.count("S")) d["S"] = a.S;
-    if (parts.count("M") && a.has_M) d["M"] = a.M;
-    if (parts.count("M_lumped")) d["M_lumped"] = a.M_lumped;
-    if (parts.count("G") && a.has_G) d["G"] = a.G;
-    if (parts.count("D") && a.has_G) d["D"] = a.D;
+    if (parts.count("S")) d["S"] = to_scipy(a.S);
+    if (parts.count("M") && a.has_M) d["M"] = to_scipy(a.M);
+    if (parts.count("M_lumped")) d["M_lumped"] = to_numpy(a.M_lumped);
+    if (parts.count("G") && a.has_G) d["G"] = to_scipy(a.G);
+    if (parts.count("D") && a.has_G) d["D"] = to_scipy(a.D);
     return d;
   });
 
-  m.def("dec", [](const PositionArray& V, const IndexArray& I, const IndexArray& O, const Parts& parts,
-                  const std::string& rule) {
-    const Mesh mesh = mesh_from_arrays(V, I, O);
+  m.def("dec", [](const MeshHandle& h, const Parts& parts, const std::string& rule, double planarity) {
+    const Mesh& mesh = h.mesh();
+    const VirtualVertexRule vrule = parse_virtual_vertex_rule(rule);
     std::map<std::string, SparseMatrix> mats;
     Eigen::VectorXd star0_lumped;
     CoarseComplex K;
     {
       py::gil_scoped_release release;
-      RefinementOptions ropt;
-      ropt.rule = parse_virtual_vertex_rule(rule);
-      const Refinement r = refine(mesh, ropt);
+      const std::shared_ptr<const Refinement> ref = h.refinement(vrule, planarity);
+      const Refinement& r = *ref;
       K = CoarseComplex(mesh);
       if (parts.count("d0")) mats["d0"] = K.d0();
       if (parts.count("d1")) mats["d1"] = K.d1();
@@ -132,20 +133,19 @@ void register_operators(py::module_& m) {
     return d;
   });
 
-  m.def("surface_dec", [](const PositionArray& V, const IndexArray& I, const IndexArray& O,
-                          const std::string& complex, int max_degree, const std::string& spoke_rule,
-                          const std::string& rule) {
-    const Mesh mesh = mesh_from_arrays(V, I, O);
+  m.def("surface_dec", [](const MeshHandle& h, const std::string& complex, int max_degree,
+                          const std::string& spoke_rule, const std::string& rule, double planarity) {
+    const Mesh& mesh = h.mesh();
     SurfaceDecOptions options;
     options.complex = parse_dec_complex(complex);
     options.spoke_rule = parse_spoke_rule(spoke_rule);
     options.max_degree = max_degree;
-    RefinementOptions ropt;
-    ropt.rule = parse_virtual_vertex_rule(rule);
+    const VirtualVertexRule vrule = parse_virtual_vertex_rule(rule);
     SurfaceDec D;
     {
       py::gil_scoped_release release;
-      D = surface_dec(mesh, refine(mesh, ropt), options);
+      const std::shared_ptr<const Refinement> ref = h.refinement(vrule, planarity);
+      D = surface_dec(mesh, *ref, options);
     }
     py::list d, P, star;
     for (int k = 0; k < D.max_degree; ++k) d.append(D.d[k]);

@@ -22,10 +22,10 @@ py::tuple spectrum_to_python(const Spectrum& s) {
 
 void register_solvers(py::module_& m) {
   py::class_<HeatGeodesics>(m, "HeatGeodesics")
-      .def(py::init([](const PositionArray& V, const IndexArray& I, const IndexArray& O,
+      .def(py::init([](const MeshHandle& h,
                        const std::string& spec, double time_step_factor, bool lumped_mass,
-                       bool mass_weighted_source) {
-        const Mesh mesh = mesh_from_arrays(V, I, O);
+                       bool mass_weighted_source, double planarity) {
+        const Mesh mesh = h.with_planarity(planarity);
         py::gil_scoped_release release;
         HeatGeodesicsOptions options;
         options.time_step_factor = time_step_factor;
@@ -65,9 +65,10 @@ void register_solvers(py::module_& m) {
     return suggested_time_factor(factor, HeatDiagnostics{unresolved_vertices, resolved_radius}, extent);
   });
 
-  m.def("spectrum", [](const PositionArray& V, const IndexArray& I, const IndexArray& O, int k,
-                       const std::string& spec, bool lumped_mass, double tolerance, int max_iterations) {
-    const Mesh mesh = mesh_from_arrays(V, I, O);
+  m.def("spectrum", [](const MeshHandle& h, int k,
+                       const std::string& spec, bool lumped_mass, double tolerance, int max_iterations,
+                       double planarity) {
+    const Mesh mesh = h.with_planarity(planarity);
     return spectrum_released(k, lumped_mass, tolerance, max_iterations, [&](const SpectrumOptions& options) {
       return laplacian_spectrum(build_operators(mesh, parse_laplacian(spec), false), options);
     });
@@ -75,9 +76,9 @@ void register_solvers(py::module_& m) {
 
   py::class_<HodgeDecomposer>(m, "HodgeDecomposer")
       .def(py::init(
-          [](const PositionArray& V, const IndexArray& I, const IndexArray& O, const std::string& rule,
-             const std::string& complex) {
-            const Mesh mesh = mesh_from_arrays(V, I, O);
+          [](const MeshHandle& h, const std::string& rule,
+             const std::string& complex, double planarity) {
+            const Mesh mesh = h.with_planarity(planarity);
             RefinementOptions options;
             options.rule = parse_virtual_vertex_rule(rule);
             const DecComplex kind = parse_dec_complex(complex);
@@ -91,24 +92,24 @@ void register_solvers(py::module_& m) {
       .def_property_readonly("star1", [](const HodgeDecomposer& h) { return h.star1(); })
       .def_property_readonly("harmonic_basis", [](const HodgeDecomposer& h) { return h.harmonic_basis(); });
 
-  m.def("mean_curvature", [](const PositionArray& V, const IndexArray& I, const IndexArray& O,
-                             const std::string& spec, bool lumped_mass) {
-    const Mesh mesh = mesh_from_arrays(V, I, O);
+  m.def("mean_curvature", [](const MeshHandle& h,
+                             const std::string& spec, bool lumped_mass, double planarity) {
+    const Mesh mesh = h.with_planarity(planarity);
     py::gil_scoped_release release;
     CurvatureOptions options;
     options.lumped_mass = lumped_mass;
     return mean_curvature(build_operators(mesh, parse_laplacian(spec), false), options);
   });
-  m.def("vertex_normals", [](const PositionArray& V, const IndexArray& I, const IndexArray& O) {
-    const Mesh mesh = mesh_from_arrays(V, I, O);
+  m.def("vertex_normals", [](const MeshHandle& h) {
+    const Mesh& mesh = h.mesh();
     py::gil_scoped_release release;
     return Eigen::MatrixX3d(vertex_normals(mesh));
   });
 
   py::class_<CurvatureFlow>(m, "CurvatureFlow")
-      .def(py::init([](const PositionArray& V, const IndexArray& I, const IndexArray& O, double time_step,
-                       bool lumped_mass, const std::string& spec) {
-        const Mesh mesh = mesh_from_arrays(V, I, O);
+      .def(py::init([](const MeshHandle& h, double time_step,
+                       bool lumped_mass, const std::string& spec, double planarity) {
+        const Mesh mesh = h.with_planarity(planarity);
         py::gil_scoped_release release;
         SmoothingOptions options;
         options.time_step = time_step;
@@ -130,8 +131,8 @@ void register_solvers(py::module_& m) {
       .def_property_readonly("area", &CurvatureFlow::area);
 
   m.def("conformal_parametrization",
-        [](const PositionArray& V, const IndexArray& I, const IndexArray& O, const std::string& spec) {
-          const Mesh mesh = mesh_from_arrays(V, I, O);
+        [](const MeshHandle& h, const std::string& spec, double planarity) {
+          const Mesh mesh = h.with_planarity(planarity);
           ConformalParametrization p;
           {
             py::gil_scoped_release release;
@@ -140,8 +141,8 @@ void register_solvers(py::module_& m) {
           return py::make_tuple(p.uv, p.eigenvalue);
         });
   m.def("conformal_distortion",
-        [](const PositionArray& V, const IndexArray& I, const IndexArray& O, const Eigen::MatrixX2d& uv) {
-          const Mesh mesh = mesh_from_arrays(V, I, O);
+        [](const MeshHandle& h, const Eigen::MatrixX2d& uv) {
+          const Mesh& mesh = h.mesh();
           py::gil_scoped_release release;
           return conformal_distortion(mesh, uv);
         });

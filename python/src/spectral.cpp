@@ -26,10 +26,10 @@ Spectrum spectrum_of(const Eigen::VectorXd& evals, const Eigen::MatrixXd& evecs)
 }  // namespace
 
 void register_spectral(py::module_& m) {
-  m.def("form_spectrum", [](const PositionArray& V, const IndexArray& I, const IndexArray& O, int degree,
+  m.def("form_spectrum", [](const MeshHandle& h, int degree,
                             int k, bool lumped_mass, double tolerance, int max_iterations, bool decompose,
-                            const std::string& complex) {
-    const Mesh mesh = mesh_from_arrays(V, I, O);
+                            const std::string& complex, double planarity) {
+    const Mesh mesh = h.with_planarity(planarity);
     FormSpectrum s;
     {
       FormSpectrumOptions options;

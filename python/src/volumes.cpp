@@ -20,16 +20,6 @@
 namespace polydec::python {
 namespace {
 
-Eigen::MatrixX3d positions_from_array(const PositionArray& V) {
-  if (V.ndim() != 2 || V.shape(1) != 3)
-    throw std::invalid_argument("positions must be an array of shape (|V|, 3)");
-  Eigen::MatrixX3d X(long(V.shape(0)), 3);
-  const double* v = V.data();
-  for (long i = 0; i < X.rows(); ++i)
-    for (int c = 0; c < 3; ++c) X(i, c) = v[3 * i + c];
-  return X;
-}
-
 std::vector<int> to_vector(const IndexArray& a) {
   if (a.ndim() != 1) throw std::invalid_argument("index lists must be 1-D arrays");
   return std::vector<int>(a.data(), a.data() + a.size());
@@ -152,6 +142,51 @@ void register_volumes(py::module_& m) {
               return VolumeMesh(builder.take());
             });
           })
+      // Cells by VTK type (10 tetra, 12 hexahedron, 13 wedge, 14 pyramid: their vertices in VTK's
+      // order; 42 polyhedron: VTK's face stream, the number of faces, then per face its size and
+      // vertices), concatenated in `items` with offsets per cell; vertex indices checked by the caller.
+      .def_static(
+          "from_typed_cells",
+          [](const PositionArray& V, const IndexArray& types, const IndexArray& items, const IndexArray& offsets) {
+            const std::vector<int> t = to_vector(types), it = to_vector(items), off = to_vector(offsets);
+            check_offsets(off, it.size(), "cell");
+            if (off.size() != t.size() + 1)
+              throw std::invalid_argument("one cell type per cell expected");
+            PolyhedronSoupBuilder builder(positions_from_array(V));
+            return released([&] {
+              for (size_t c = 0; c < t.size(); ++c) {
+                const int* x = it.data() + off[c];
+                const int n = off[c + 1] - off[c];
+                const std::string where = "cell " + std::to_string(c);
+                if (t[c] == kVtkPolyhedron) {
+                  int k = 1;
+                  for (int face = 0; n > 0 && face < x[0]; ++face) {
+                    if (k >= n || x[k] < 3 || x[k] > n - k - 1)
+                      throw InvalidMeshError("cell", long(c), where + ": truncated polyhedron face stream");
+                    if (builder.add_polygon({x + k + 1, size_t(x[k])}) < 0)
+                      throw InvalidMeshError("cell", long(c), where + ", face " + std::to_string(face) +
+                                                                  ": the vertices of an earlier face in another "
+                                                                  "cyclic order");
+                    k += x[k] + 1;
+                  }
+                  if (n == 0 || k != n)
+                    throw InvalidMeshError("cell", long(c), where + ": malformed polyhedron face stream");
+                  builder.end_cell();
+                  continue;
+                }
+                if (vtk_cell_size(t[c]) == 0)
+                  throw InvalidMeshError("cell", long(c),
+                                         where + ": unsupported VTK cell type " + std::to_string(t[c]));
+                if (n != vtk_cell_size(t[c]))
+                  throw InvalidMeshError("cell", long(c), where + ": " + std::to_string(vtk_cell_size(t[c])) +
+                                                              " vertices expected, got " + std::to_string(n));
+                if (!builder.add_vtk_cell(t[c], {x, size_t(n)}))
+                  throw InvalidMeshError("cell", long(c), where + ": a face has the vertices of an earlier face "
+                                                                  "in another cyclic order");
+              }
+              return VolumeMesh(builder.take());
+            });
+          })
       .def_static("read",
                   [](const std::string& path) { return released([&] { return read_volume_mesh(path); }); })
       .def("write",
@@ -170,6 +205,13 @@ void register_volumes(py::module_& m) {
                                            " positions expected, got " + std::to_string(X.rows()));
              return released([&] { return mesh.with_positions(std::move(X)); });
            })
+      .def("with_precision",
+           [](const VolumeMesh& mesh, double noise, double planarity_tolerance) {
+             return mesh.with_precision(CoordinatePrecision{noise, planarity_tolerance});
+           })
+      .def_property_readonly("coordinate_noise", [](const VolumeMesh& m) { return m.precision().noise; })
+      .def_property_readonly("planarity_tolerance",
+                             [](const VolumeMesh& m) { return m.precision().planarity_tolerance; })
       .def_property_readonly("n_vertices", &VolumeMesh::n_vertices)
       .def_property_readonly("n_edges", &VolumeMesh::n_edges)
       .def_property_readonly("n_faces", &VolumeMesh::n_faces)

@@ -16,9 +16,10 @@ import polydec
 
 @pytest.fixture(scope="module")
 def big_mesh():
-    """61440 quads (one Catmull-Clark step of hex_sphere(5)), converted once: the calls measured are
-    the extension's, not the input conversion."""
-    V, F = polydec.catmull_clark(*polydec.hex_sphere(5))
+    """61440 quads (one Catmull-Clark step of hex_sphere(5)) as arrays, converted once: the calls
+    measured are the extension's (validation of a new Mesh, refinement, assembly), not the input
+    conversion."""
+    V, F = polydec.catmull_clark(polydec.hex_sphere(5))
     return polydec._convert.mesh(V, F)
 
 
@@ -53,7 +54,8 @@ def test_python_threads_run_during_assembly(big_mesh):
 
     def work():
         for _ in range(3):
-            polydec._polydec.operators(X, idx, off, "ours", {"S", "M", "M_lumped", "G"}, 1)
+            h = polydec._polydec.Mesh.from_arrays(X, idx, off, 0.0, 0.0)
+            polydec._polydec.operators(h, "ours", {"S", "M", "M_lumped", "G"}, 1, -1.0)
 
     during, alone = _count_during(work, 0.2)
     assert during > 0.1 * alone, f"spinner rate during assembly {during:.0f}/s, alone {alone:.0f}/s"
@@ -64,7 +66,8 @@ def test_python_threads_run_during_factorization_and_solves(big_mesh):
     heat = {}
 
     def factor():
-        heat["h"] = polydec._polydec.HeatGeodesics(X, idx, off, "ours", 1.0, True, True)
+        h = polydec._polydec.Mesh.from_arrays(X, idx, off, 0.0, 0.0)
+        heat["h"] = polydec._polydec.HeatGeodesics(h, "ours", 1.0, True, True, -1.0)
 
     during, alone = _count_during(factor, 0.2)
     assert during > 0.1 * alone, f"spinner rate during factorization {during:.0f}/s, alone {alone:.0f}/s"

@@ -24,7 +24,8 @@ def test_face_forms_agree():
     assert (polydec.stiffness(V0, tuple(tuple(f) for f in F_MIXED)) != S).nnz == 0
     assert (polydec.stiffness(V0, [np.array(f, dtype=np.int16) for f in F_MIXED]) != S).nnz == 0
     # (F, k) arrays of any integer dtype.
-    Vq, Fq = polydec.quad_grid(3, 2)
+    grid = polydec.quad_grid(3, 2)
+    Vq, Fq = grid.positions, grid.face_array()
     assert isinstance(Fq, np.ndarray) and Fq.shape == (6, 4) and Fq.dtype == np.int64
     Sq = polydec.stiffness(Vq, Fq)
     for dtype in [np.int8, np.uint16, np.int32, np.uint64]:
@@ -37,7 +38,7 @@ def test_face_forms_agree():
 
 
 def test_position_dtypes_are_converted_exactly_or_refused():
-    Vq, Fq = polydec.quad_grid(2, 2)
+    Vq, Fq = polydec.quad_grid(2, 2).positions, polydec.quad_grid(2, 2).face_array()
     Vi = np.round(Vq * 2).astype(np.int32)      # integer grid coordinates
     S = polydec.stiffness(Vi.astype(np.float64), Fq)
     for dtype in [np.int8, np.int16, np.int64, np.uint32, np.float16, np.float32]:
@@ -63,7 +64,7 @@ def test_position_dtypes_are_converted_exactly_or_refused():
 
 
 def test_errors_name_the_face_or_vertex():
-    Vq, Fq = polydec.quad_grid(2, 2)
+    Vq, Fq = polydec.quad_grid(2, 2).positions, polydec.quad_grid(2, 2).face_array()
     bad = Fq.copy()
     bad[2, 1] = 99
     with pytest.raises(ValueError, match="face 2") as e:
@@ -105,11 +106,12 @@ def test_read_write_round_trip(tmp_path):
         assert np.array_equal(V, V2), ext                         # 17 digits: bit-exact
         assert np.array_equal(F[0], F2[0]) and np.array_equal(F[1], F2[1]), ext
     polydec.write_mesh(tmp_path / "b.ply", V, F, binary=True, scalars={"u": V[:, 0]})
-    V3, F3 = polydec.read_mesh(tmp_path / "b.ply", faces="list")
-    assert np.array_equal(V, V3) and isinstance(F3, list) and len(F3) == len(F[1]) - 1
+    b = polydec.read_mesh(tmp_path / "b.ply")
+    F3 = b.face_list()
+    assert np.array_equal(V, b.positions) and isinstance(F3, list) and len(F3) == len(F[1]) - 1
     assert F3[0] == F[0][F[1][0]:F[1][1]].tolist()
-    with pytest.raises(ValueError, match="valence"):
-        polydec.read_mesh(tmp_path / "b.ply", faces="array")
+    with pytest.raises(ValueError, match="one size"):
+        b.face_array()
 
 
 def test_read_paper_meshes_in_file_order():
@@ -117,7 +119,8 @@ def test_read_paper_meshes_in_file_order():
     info = polydec.mesh_info(Vb, Fb)
     assert info["vertices"] == Vb.shape[0] and info["euler_characteristic"] == 2
     V, F = polydec.read_mesh(shared_mesh("quad-plane.obj"))
-    assert F.shape == (64, 4) and V[0].tolist() == [float(x) for x in first_vertex(shared_mesh("quad-plane.obj"))]
+    assert F[0].shape == (256,) and np.array_equal(F[1], 4 * np.arange(65))
+    assert V[0].tolist() == [float(x) for x in first_vertex(shared_mesh("quad-plane.obj"))]
 
 
 def first_vertex(path):
@@ -163,7 +166,7 @@ def test_generators_and_transformations():
         assert info["euler_characteristic"] == chi
     V, F = polydec.cube_sphere(2)
     Vc, Fc = polydec.catmull_clark(V, F)
-    assert Vc.shape == (26 + 48 + 24, 3) and Fc.shape == (96, 4)
+    assert Vc.shape == (26 + 48 + 24, 3) and np.array_equal(Fc[1], 4 * np.arange(97))
     Vd, Fd = polydec.dual(V, F)
     assert Vd.shape[0] == 24 and polydec.mesh_info(Vd, Fd)["faces"] == V.shape[0]
     Vp, _ = polydec.project_to_unit_sphere(2 * V, F)

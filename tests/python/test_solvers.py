@@ -43,7 +43,7 @@ def test_heat_geodesics_on_the_sphere(sphere):
 
 
 def test_heat_geodesics_unreachable_is_infinite():
-    V1, F1 = polydec.quad_grid(3, 3)
+    V1, F1 = polydec.quad_grid(3, 3).positions, polydec.quad_grid(3, 3).face_array()
     V = np.vstack([V1, V1 + [5, 0, 0]])
     F = np.vstack([F1, F1 + V1.shape[0]])
     d = polydec.HeatGeodesics(V, F).distance(0)
