@@ -70,7 +70,7 @@ std::string virtual_vertices_markdown(const nlohmann::json& results) {
       "affine point (the paper's operator, `ours`), the closest point on the unit sphere "
       "(`--virtual-lift sphere:0,0,0,1`), or the local quadric lift (`--virtual-lift quadric`; docs/extensions.md). "
       "Lumped mass. Table 2: `polydec curvature MESH --unit-sphere --virtual-lift LIFT --json`; Table 3: "
-      "`polydec harmonics MESH --virtual-lift LIFT --json`; spectrum: `polydec spectrum MESH -k 100 --virtual-lift "
+      "`polydec harmonics MESH --virtual-lift LIFT --json`; spectrum: `polydec spectrum MESH --k 100 --virtual-lift "
       "LIFT` on the projected mesh. \"off sphere\": mean | |x_f| - 1 | of the virtual vertices.\n\n";
   if (!results.contains("virtual_vertices")) return s + "(not run)\n\n";
   auto v = [](const nlohmann::json& x, const char* fmt_spec) {
