@@ -29,7 +29,7 @@ SOURCES=(dec/io/mesh_io.cpp dec/io/obj.cpp dec/io/off.cpp dec/io/ply.cpp dec/io/
          dec/surface/virtual_vertex.cpp dec/surface/refinement.cpp dec/surface/refinement_check.cpp dec/volume/refinement_check.cpp dec/surface/complex.cpp dec/surface/prolongation.cpp
          operators/surface/local_matrices.cpp operators/surface/laplacian.cpp operators/surface/gradient.cpp dec/surface/whitney.cpp
          dec/mesh/volume_mesh.cpp dec/mesh/polyhedron_builder.cpp dec/mesh/volume_cells.cpp dec/io/volume_io.cpp dec/io/ovm.cpp
-         dec/io/vtk.cpp dec/io/medit.cpp dec/io/msh.cpp dec/io/meshb.cpp)
+         dec/io/vtk.cpp dec/io/medit.cpp dec/io/msh.cpp dec/io/meshb.cpp dec/io/virtual_positions.cpp dec/surface/virtual_lift.cpp)
 for rel in "${SOURCES[@]}"; do
   src=$ROOT/$rel
   obj="$OUT/objects/$(basename "$(dirname "$src")")_$(basename "${src%.cpp}").o"
@@ -42,7 +42,7 @@ if ((${#stale[@]})); then
 fi
 [[ -f $OUT/libpolydec_fuzz.a ]] || ar rcs "$OUT/libpolydec_fuzz.a" "$OUT"/objects/*.o
 
-TARGETS=(obj off ply assemble mtx ovm vtk medit msh meshb)
+TARGETS=(obj off ply assemble mtx ovm vtk medit msh meshb virtual_positions)
 for t in "${TARGETS[@]}"; do
   bin="$OUT/fuzz_$t"
   src="$ROOT/fuzz/fuzz_$t.cpp"

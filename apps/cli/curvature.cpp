@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "polydec/apps/cli/command.h"
+#include "polydec/apps/cli/virtual_lift.h"
 #include "polydec/apps/pictures/render.h"
 #include "polydec/dec/mesh/generators.h"
 #include "polydec/dec/io/mesh_io.h"
@@ -15,6 +16,7 @@ namespace {
 struct Options {
   bool repair = false;  // --repair
   std::string mesh, out, png, mass = "lumped", laplacian = "ours";
+  VirtualLiftArgs lift;
   bool json = false, unit_sphere = false;
 };
 
@@ -22,7 +24,10 @@ void run(const Options& o) {
   if (o.mass != "lumped" && o.mass != "unlumped") throw UsageError("--mass must be lumped or unlumped");
   Mesh mesh = load_mesh(o.mesh, o.repair);
   if (o.unit_sphere) mesh = project_to_unit_sphere(mesh);
-  const OperatorSet ops = build_operators(mesh, parse_laplacian(o.laplacian), false);
+  OperatorOptions oopt;
+  oopt.with_gradient = false;
+  oopt.lift = virtual_lift(o.lift, mesh);
+  const OperatorSet ops = build_operators(mesh, parse_laplacian(o.laplacian), oopt);
   CurvatureOptions copt;
   copt.lumped_mass = o.mass == "lumped";
   const Eigen::VectorXd H = mean_curvature(ops, copt).head(ops.n_input_vertices);
@@ -71,6 +76,7 @@ const RegisterCommand reg(
       app.add_option("--out", o->out, "output mesh with a 'mean_curvature' vertex property (.ply)");
       app.add_option("--png", o->png, "picture of the mean curvature with a colour bar (.png)");
       app.add_flag("--json", o->json, "print one JSON object instead of text");
+      add_virtual_lift_options(app, o->lift);
       add_repair_flag(app, o->repair);
       app.callback([o] { run(*o); });
     });

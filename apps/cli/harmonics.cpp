@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "polydec/apps/cli/command.h"
+#include "polydec/apps/cli/virtual_lift.h"
 #include "polydec/apps/pictures/render.h"
 #include "polydec/dec/mesh/generators.h"
 #include "polydec/dec/io/mesh_io.h"
@@ -15,6 +16,7 @@ namespace {
 struct Options {
   bool repair = false;  // --repair
   std::string mesh, png, mass = "lumped", laplacian = "ours";
+  VirtualLiftArgs lift;
   bool json = false, keep_positions = false;
 };
 
@@ -22,7 +24,10 @@ void run(const Options& o) {
   if (o.mass != "lumped" && o.mass != "unlumped") throw UsageError("--mass must be lumped or unlumped");
   Mesh mesh = load_mesh(o.mesh, o.repair);
   if (!o.keep_positions) mesh = project_to_unit_sphere(mesh);
-  const OperatorSet ops = build_operators(mesh, parse_laplacian(o.laplacian), false);
+  OperatorOptions oopt;
+  oopt.with_gradient = false;
+  oopt.lift = virtual_lift(o.lift, mesh);
+  const OperatorSet ops = build_operators(mesh, parse_laplacian(o.laplacian), oopt);
   HarmonicsOptions hopt;
   hopt.max_band = 9;
   hopt.lumped_mass = o.mass == "lumped";
@@ -75,6 +80,7 @@ const RegisterCommand reg(
       app.add_option("--png", o->png,
                      "picture of where the error sits (per-vertex share per unit area) (.png)");
       app.add_flag("--json", o->json, "print one JSON object instead of text");
+      add_virtual_lift_options(app, o->lift);
       add_repair_flag(app, o->repair);
       app.callback([o] { run(*o); });
     });

@@ -4,6 +4,7 @@
 // pattern and values; load time excluded) and writes no files. Volume meshes (.ovm, .vtk, .mesh,
 // or --volume) get S, M, M_lumped and P of the polyhedral refinement (operators/volume/laplacian.h).
 #include "polydec/apps/cli/command.h"
+#include "polydec/apps/cli/virtual_lift.h"
 #include "polydec/dec/io/mesh_io.h"
 #include "polydec/dec/io/volume_io.h"
 #include "polydec/dec/detail/threads.h"
@@ -25,6 +26,7 @@ struct Options {
   std::string mesh, out, rule = "squared-area", cell_rule = "squared-volume";
   int repeat = 0, threads = 1;
   bool json = false, volume = false;
+  VirtualLiftArgs lift;  // --virtual-lift, --virtual-positions (surfaces)
 };
 
 // CPU time of the calling thread in ms (robust to other processes on a busy machine).
@@ -160,12 +162,15 @@ void run(const Options& o) {
   if (o.threads < 0) throw UsageError("--threads must be at least 0 (0: all hardware threads)");
   if (o.repeat == 0 && o.out.empty()) throw UsageError("--out DIR is required (or --repeat N to time the assembly)");
   if (o.volume || is_volume_mesh_path(o.mesh)) {
+    if (o.lift.lift != "none" || !o.lift.positions.empty())
+      throw UsageError("--virtual-lift and --virtual-positions apply to surface meshes only");
     run_volume(o);
     return;
   }
   const Mesh mesh = load_mesh(o.mesh, o.repair);
   RefinementOptions ropt;
   ropt.rule = parse_virtual_vertex_rule(o.rule);
+  ropt.lift = virtual_lift(o.lift, mesh);
   AssemblyOptions aopt;
   aopt.threads = resolve_threads(o.threads);
   ropt.threads = aopt.threads;
@@ -192,6 +197,7 @@ void run(const Options& o) {
                       {"S_nonzeros", L.S.nonZeros()},
                       {"fan_degenerate", r.quality.n_degenerate},
                       {"fan_inverted", r.quality.n_inverted},
+                      {"virtual_lift", to_string(ropt.lift)},
                       {"files", {"S.mtx", "M.mtx", "M_lumped.mtx", "G.mtx", "D.mtx", "P.mtx"}}};
   if (o.json) {
     print_json(j);
@@ -213,6 +219,7 @@ const RegisterCommand reg("operators", "Assemble S, M, lumped M, G, D, P and wri
   app.add_option("--repeat", o->repeat, "time N assemblies of S, M, lumped M instead of writing files");
   app.add_option("--threads", o->threads, "threads for the virtual vertices and the assembly (default 1; 0: all hardware threads)");
   app.add_flag("--json", o->json, "print one JSON object instead of text");
+  add_virtual_lift_options(app, o->lift);
   add_repair_flag(app, o->repair);
   app.callback([o] { run(*o); });
 });

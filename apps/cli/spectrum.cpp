@@ -12,6 +12,7 @@
 
 #include "polydec/apps/applications/form_spectrum.h"
 #include "polydec/apps/cli/command.h"
+#include "polydec/apps/cli/virtual_lift.h"
 #include "polydec/apps/cli/engine.h"
 #include "polydec/apps/pictures/render.h"
 #include "polydec/apps/pictures/vector_field.h"
@@ -32,6 +33,7 @@ struct Options {
   std::string complex = "complete";  // --complex, for --form 1|2
   bool json = false, volume = false;
   EngineOptions engine;  // --engine, --solver, --petsc-options
+  VirtualLiftArgs lift;  // --virtual-lift, --virtual-positions (serial surface spectra)
 };
 
 void report(const Options& o, const LazyMesh& mesh, const std::string& laplacian, int n_in, const Spectrum& sp,
@@ -114,6 +116,9 @@ void run_volume(const Options& o) {
 
 void run(const Options& o) {
   if (o.mass != "lumped" && o.mass != "unlumped") throw UsageError("--mass must be lumped or unlumped");
+  const bool lifted = o.lift.lift != "none" || !o.lift.positions.empty();
+  if (lifted && (o.volume || is_volume_mesh_path(o.mesh) || o.form != 0 || o.engine.engine != "serial"))
+    throw UsageError("--virtual-lift and --virtual-positions apply to the serial surface spectrum only");
   if (o.volume || is_volume_mesh_path(o.mesh)) return run_volume(o);
   if (o.form != 0) {
     run_form(o);
@@ -135,7 +140,10 @@ void run(const Options& o) {
   }
   if (o.engine.engine != "serial") throw UsageError("--engine must be serial or petsc");
   const Mesh mesh = load_mesh(o.mesh, o.repair);
-  const OperatorSet ops = build_operators(mesh, parse_laplacian(o.laplacian), false);
+  OperatorOptions oopt;
+  oopt.with_gradient = false;
+  oopt.lift = virtual_lift(o.lift, mesh);
+  const OperatorSet ops = build_operators(mesh, parse_laplacian(o.laplacian), oopt);
   SpectrumOptions sopt;
   sopt.k = o.k;
   sopt.lumped_mass = o.mass == "lumped";
@@ -338,6 +346,7 @@ const RegisterCommand reg(
                      "--form 1|2: the cells, complete (default; the paper's vertex pairs and triples) or mesh "
                      "(the mesh's edges and faces, dec/surface/mesh_complex.h)");
       app.add_flag("--json", o->json, "print one JSON object instead of text");
+      add_virtual_lift_options(app, o->lift);
       add_repair_flag(app, o->repair);
       add_engine_options(app, o->engine);
       app.callback([o] { run(*o); });

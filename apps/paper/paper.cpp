@@ -17,6 +17,7 @@
 #include "polydec/apps/pictures/image.h"
 #include "polydec/apps/paper/metrics.h"
 #include "polydec/apps/paper/sphere_spectrum.h"
+#include "polydec/apps/paper/virtual_vertices.h"
 #include "polydec/apps/paper/volume_tables.h"
 #include "polydec/apps/applications/parametrization.h"
 #include "polydec/apps/pictures/plot.h"
@@ -200,6 +201,10 @@ class Evaluation {
         for (const std::string& m : kAllMethods)
           steps_.push_back({fmt::format("Spectrum: {} / {}", s, m), s == "HEX SPHERE" ? 3.0 : 0.5,
                             [this, s, m] { r_["spectrum100"][s][m] = sphere_spectrum_errors(mesh(s), m); }});
+    // Beyond the paper (apps/paper/virtual_vertices.h): lifted virtual vertices; spectra as above.
+    for (const std::string& s : spheres())
+      steps_.push_back({"Beyond the paper: virtual vertices, " + s, s == "FINE SPHERE" ? 20.0 : s == "HEX SPHERE" ? 8.0 : 1.0,
+                        [this, s] { r_["virtual_vertices"][s] = virtual_vertex_rows(mesh(s), s != "FINE SPHERE"); }});
     // The volume tables (apps/paper/volume_tables.h): 3D Poisson on the shared cubes, ball eigenvalues.
     steps_.push_back({"Volumes: 3D Poisson, ball eigenvalues", o_.quick ? 1.0 : 20.0,
                       [this] { r_["volumes"] = volume_tables(o_.data_dir, o_.quick); }});
@@ -789,6 +794,7 @@ std::string paper_report_markdown(const json& r) {
   s += "Pictures: `figure7-geodesics.png`, `figure8-geodesics.png` (one colour range for every tile: that of "
        "`ours`; isolines at 1/15 of it).\n\n";
   s += sphere_spectrum_markdown(r, kAllMethods);
+  s += virtual_vertices_markdown(r);
   s += volume_tables_markdown(r);
   return s;
 }

@@ -10,10 +10,13 @@
 
 namespace polydec {
 
-nlohmann::json sphere_spectrum_errors(const Mesh& mesh, const std::string& method) {
+nlohmann::json sphere_spectrum_errors(const Mesh& mesh, const std::string& method, const VirtualLift& lift) {
   nlohmann::json out;
   try {
-    const OperatorSet ops = build_operators(mesh, parse_laplacian(method), false);
+    OperatorOptions options;
+    options.with_gradient = false;
+    options.lift = lift;
+    const OperatorSet ops = build_operators(mesh, parse_laplacian(method), options);
     SpectrumOptions o;
     o.k = 100;
     const Spectrum sp = laplacian_spectrum(ops, o);

@@ -29,6 +29,43 @@ PlanarityCut face_planarity(const Mesh& mesh, const RefinementOptions& o, double
       o.planarity_tolerance > 0 ? o.planarity_tolerance : mesh.precision().planarity_tolerance, noise, x, n);
 }
 
+// Classifies the n fan triangles (x_k, x_{k+1}, xf) of a face with corners x and centred corners Y
+// (row by row) into fan[0..n), counting them into `count`.
+void classify_fan(const double* x, const double* Y, int n, const double* xf, double tol, FanTriangle* fan,
+                  FanQuality& count) {
+  // Polygon vector area (twice), independent of x_f.
+  double normal[3] = {0, 0, 0};
+  for (int k = 0; k < n; ++k) {
+    const double* p = Y + 3 * k;
+    const double* q = Y + 3 * (k + 1 == n ? 0 : k + 1);
+    normal[0] += p[1] * q[2] - p[2] * q[1];
+    normal[1] += p[2] * q[0] - p[0] * q[2];
+    normal[2] += p[0] * q[1] - p[1] * q[0];
+  }
+  bool affected = false;
+  for (int k = 0; k < n; ++k) {
+    const double* p = x + 3 * k;
+    const double* q = x + 3 * (k + 1 == n ? 0 : k + 1);
+    const double a[3] = {p[0] - xf[0], p[1] - xf[1], p[2] - xf[2]};
+    const double b[3] = {q[0] - xf[0], q[1] - xf[1], q[2] - xf[2]};
+    const double area2[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+    const double e[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    const double longest2 = std::max({a[0] * a[0] + a[1] * a[1] + a[2] * a[2], b[0] * b[0] + b[1] * b[1] + b[2] * b[2],
+                                      e[0] * e[0] + e[1] * e[1] + e[2] * e[2]});
+    const double norm = std::sqrt(area2[0] * area2[0] + area2[1] * area2[1] + area2[2] * area2[2]);
+    FanTriangle quality = FanTriangle::Valid;
+    if (norm <= tol * longest2)
+      quality = FanTriangle::Degenerate;
+    else if (area2[0] * normal[0] + area2[1] * normal[1] + area2[2] * normal[2] < 0)
+      quality = FanTriangle::Inverted;
+    fan[k] = quality;
+    if (quality == FanTriangle::Degenerate) ++count.n_degenerate;
+    if (quality == FanTriangle::Inverted) ++count.n_inverted;
+    affected = affected || quality != FanTriangle::Valid;
+  }
+  if (affected) ++count.n_faces_affected;
+}
+
 // Virtual vertex and fan classification of face f with N corners (0: any), written into r.
 // x, Y and work are scratch of 3 * max_face_size doubles each; `noise` is the mesh's absolute
 // coordinate noise (Mesh::coordinate_noise()).
@@ -64,39 +101,29 @@ void refine_face(const Mesh& mesh, int f, Refinement& r, FanQuality& count, doub
     }
   const double xf[3] = {c[0] + s[0], c[1] + s[1], c[2] + s[2]};
   for (int d = 0; d < 3; ++d) r.virtual_points(f, d) = xf[d];
+  classify_fan(x, Y, n, xf, r.options.degenerate_tolerance, r.fan.data() + h0, count);
+}
 
-  // Polygon vector area (twice), independent of x_f.
-  double normal[3] = {0, 0, 0};
-  for (int k = 0; k < n; ++k) {
-    const double* p = Y + 3 * k;
-    const double* q = Y + 3 * (k + 1 == n ? 0 : k + 1);
-    normal[0] += p[1] * q[2] - p[2] * q[1];
-    normal[1] += p[2] * q[0] - p[0] * q[2];
-    normal[2] += p[0] * q[1] - p[1] * q[0];
+// Moves the virtual points of r to their lift (r.options.lift) and classifies the fans anew.
+void lift_virtual_points(const Mesh& mesh, Refinement& r) {
+  r.virtual_points = lifted_virtual_points(mesh, r.virtual_points, r.options.lift);
+  r.quality = FanQuality();
+  std::vector<double> x(3 * size_t(mesh.max_face_size())), Y(x.size());
+  for (int f = 0; f < mesh.n_faces(); ++f) {
+    const auto face = mesh.face(f);
+    const int n = int(face.size());
+    double c[3] = {0, 0, 0};
+    for (int k = 0; k < n; ++k)
+      for (int d = 0; d < 3; ++d) {
+        x[3 * k + d] = mesh.positions()(face[k], d);
+        c[d] += x[3 * k + d];
+      }
+    for (int k = 0; k < n; ++k)
+      for (int d = 0; d < 3; ++d) Y[3 * k + d] = x[3 * k + d] - c[d] / n;
+    const double xf[3] = {r.virtual_points(f, 0), r.virtual_points(f, 1), r.virtual_points(f, 2)};
+    classify_fan(x.data(), Y.data(), n, xf, r.options.degenerate_tolerance, r.fan.data() + mesh.face_offsets()[f],
+                 r.quality);
   }
-  const double tol = r.options.degenerate_tolerance;
-  bool affected = false;
-  for (int k = 0; k < n; ++k) {
-    const double* p = x + 3 * k;
-    const double* q = x + 3 * (k + 1 == n ? 0 : k + 1);
-    const double a[3] = {p[0] - xf[0], p[1] - xf[1], p[2] - xf[2]};
-    const double b[3] = {q[0] - xf[0], q[1] - xf[1], q[2] - xf[2]};
-    const double area2[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-    const double e[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-    const double longest2 = std::max({a[0] * a[0] + a[1] * a[1] + a[2] * a[2], b[0] * b[0] + b[1] * b[1] + b[2] * b[2],
-                                      e[0] * e[0] + e[1] * e[1] + e[2] * e[2]});
-    const double norm = std::sqrt(area2[0] * area2[0] + area2[1] * area2[1] + area2[2] * area2[2]);
-    FanTriangle quality = FanTriangle::Valid;
-    if (norm <= tol * longest2)
-      quality = FanTriangle::Degenerate;
-    else if (area2[0] * normal[0] + area2[1] * normal[1] + area2[2] * normal[2] < 0)
-      quality = FanTriangle::Inverted;
-    r.fan[h0 + k] = quality;
-    if (quality == FanTriangle::Degenerate) ++count.n_degenerate;
-    if (quality == FanTriangle::Inverted) ++count.n_inverted;
-    affected = affected || quality != FanTriangle::Valid;
-  }
-  if (affected) ++count.n_faces_affected;
 }
 
 }  // namespace
@@ -140,6 +167,7 @@ Refinement refine(const Mesh& mesh, const RefinementOptions& options) {
     r.quality.n_inverted += c.n_inverted;
     r.quality.n_faces_affected += c.n_faces_affected;
   }
+  if (options.lift.kind != VirtualLiftKind::None) lift_virtual_points(mesh, r);
   return r;
 }
 

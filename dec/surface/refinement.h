@@ -5,6 +5,7 @@
 #pragma once
 
 #include "polydec/dec/mesh/mesh.h"
+#include "polydec/dec/surface/virtual_lift.h"
 #include "polydec/dec/surface/virtual_vertex.h"
 
 #include <cstdint>
@@ -27,6 +28,9 @@ struct RefinementOptions {
   double planarity_tolerance = 0.0;
   // Threads for the per-face work (0: all hardware threads). Results do not depend on it.
   int threads = 1;
+  // Where the virtual vertices sit (dec/surface/virtual_lift.h): the affine points of the weights
+  // (default, the paper's operator) or given or lifted positions; the weights define P either way.
+  VirtualLift lift = {};
 };
 
 // Fan-triangle quality, per halfedge.
@@ -46,16 +50,18 @@ struct FanQuality {
 struct Refinement {
   RefinementOptions options;
   std::vector<double> weights;         // one per corner, aligned with Mesh::face_indices(); each face sums to 1
-  Eigen::MatrixX3d virtual_points;     // |F| x 3, x_f = sum_i w_fi x_i (eq. 10)
+  Eigen::MatrixX3d virtual_points;     // |F| x 3, x_f = sum_i w_fi x_i (eq. 10), or its lift (options.lift)
   std::vector<FanTriangle> fan;        // one per halfedge: the quality of fan triangle (x_h, x_next(h), x_f)
   FanQuality quality;
 };
 
-// Computes the virtual vertices of all faces and classifies every fan triangle.
+// Computes the virtual vertices of all faces and classifies every fan triangle. Throws
+// std::invalid_argument for a lift that does not fit the mesh (lifted_virtual_points).
 Refinement refine(const Mesh& mesh, const RefinementOptions& options = {});
 
 // Recomputes the virtual points and the fan classification for moved vertex positions,
-// keeping the options (weights are recomputed too: they depend on the geometry).
+// keeping the options (weights are recomputed too: they depend on the geometry; given virtual
+// positions, VirtualLiftKind::Positions, stay where they were given).
 Refinement refine(const Mesh& mesh, const Refinement& previous);
 
 // The explicit refined triangle mesh: vertices 0..|V|-1 are the mesh's, vertex |V|+f is the

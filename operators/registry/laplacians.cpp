@@ -95,6 +95,7 @@ OperatorSet virtual_vertex_operators(const Mesh& mesh, VirtualVertexRule rule,
   ops.n_input_vertices = mesh.n_vertices();
   RefinementOptions ro;
   ro.rule = rule;
+  ro.lift = options.lift;
   const Refinement r = refine(mesh, ro);
   AssemblyOptions aopt;
   aopt.threads = options.threads;
@@ -153,9 +154,11 @@ OperatorSet triangulated_operators(const Mesh& mesh, TriangulationRule rule, boo
   return ops;
 }
 
-OperatorSet refined_operators(const Mesh& mesh, bool with_gradient) {
+OperatorSet refined_operators(const Mesh& mesh, const VirtualLift& lift, bool with_gradient) {
   OperatorSet ops;
-  const Refinement r = refine(mesh);
+  RefinementOptions ro;
+  ro.lift = lift;
+  const Refinement r = refine(mesh, ro);
   ops.domain = refined_mesh(mesh, r);
   ops.n_input_vertices = mesh.n_vertices();
   ops.quality = r.quality;
@@ -184,6 +187,11 @@ OperatorSet intrinsic_delaunay_operators(const Mesh& mesh, bool with_gradient) {
   return ops;
 }
 
+// Methods built on a Refinement, whose virtual vertices OperatorOptions::lift can move.
+bool takes_virtual_lift(const std::string& m) {
+  return m == "ours" || m == "centroid" || m == "abs-area" || m == "convex" || m == "trace-min" || m == "refined";
+}
+
 // Returns each method's set as a prvalue: `ops = f(...)` would deep-copy S, M, G and D (Eigen
 // 3.4's SparseMatrix has no move assignment; ~10 s of the 1.5M-quad heat-method set-up).
 OperatorSet operators_by_name(const Mesh& mesh, const LaplacianChoice& choice,
@@ -199,7 +207,7 @@ OperatorSet operators_by_name(const Mesh& mesh, const LaplacianChoice& choice,
     return triangulated_operators(mesh, TriangulationRule::MinSquaredArea, with_gradient);
   if (m == "triangulated-maxminangle")
     return triangulated_operators(mesh, TriangulationRule::MaxMinAngle, with_gradient);
-  if (m == "refined") return refined_operators(mesh, with_gradient);
+  if (m == "refined") return refined_operators(mesh, options.lift, with_gradient);
   if (m == "intrinsic-delaunay") return intrinsic_delaunay_operators(mesh, with_gradient);
   if (m == "aw11") return aw11_operators(mesh, choice.parameter, with_gradient);
   if (m == "degoes20") return degoes20_operators(mesh, choice.parameter, with_gradient);
@@ -210,8 +218,13 @@ OperatorSet operators_by_name(const Mesh& mesh, const LaplacianChoice& choice,
 }  // namespace
 
 OperatorSet build_operators(const Mesh& mesh, const LaplacianChoice& choice, const OperatorOptions& options) {
+  const bool lifted = options.lift.kind != VirtualLiftKind::None;
+  if (lifted && !takes_virtual_lift(choice.method))
+    throw std::invalid_argument("Laplacian '" + choice.canonical_name() +
+                                "' has no virtual vertices to lift (ours, centroid, abs-area, convex, trace-min, refined)");
   OperatorSet ops = operators_by_name(mesh, choice, options);
   ops.name = choice.canonical_name();
+  if (lifted) ops.name += "+lift:" + to_string(options.lift);
   if (ops.mean_edge_length == 0.0) ops.mean_edge_length = mesh.mean_edge_length();
   return ops;
 }

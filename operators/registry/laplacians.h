@@ -76,6 +76,10 @@ struct OperatorOptions {
   bool with_gradient = true;  // G and D too
   int threads = 1;            // assembly threads of "ours" and its virtual-vertex variants (0: all
                               // hardware threads); the results do not depend on it
+  // Virtual vertices off their affine points (dec/surface/virtual_lift.h) for "ours", its virtual-vertex
+  // variants and "refined"; another method with a lift other than none throws std::invalid_argument.
+  // A lift appends "+lift:NAME" to OperatorSet::name (e.g. "ours+lift:sphere").
+  VirtualLift lift = {};
 };
 
 // Builds the operator set of `choice` on `mesh`, e.g.

@@ -60,7 +60,7 @@ __all__ = [
     "hex_ball_volume", "volume_laplacian_names", "volume_operators", "volume_stiffness", "volume_mass",
     "volume_lumped_mass", "volume_laplacian", "volume_gradient", "volume_divergence", "volume_dec_max_degree",
     "volume_dec", "VolumeHeatGeodesics", "volume_spectrum", "ball_eigenvalues", "volume_poisson",
-    "volume_franke_poisson", "VolumeHodgeDecomposer",
+    "volume_franke_poisson", "VolumeHodgeDecomposer", "lifted_laplacian",
     "read_mesh_groups",
 ]
 
@@ -750,6 +750,7 @@ from ._meshio import from_meshio, to_meshio  # noqa: E402
 from ._spectral import (  # noqa: E402
     biharmonic_distance, diffusion_distance, form_spectrum, heat_kernel_signature, hks_times, lowpass_filter,
     wave_kernel_signature)
+from ._virtual_lift import lifted_laplacian  # noqa: E402
 from ._volume import (  # noqa: E402
     VolumeHeatGeodesics, VolumeHodgeDecomposer, VolumeMesh, ball_eigenvalues, cuboctahedra_volume, hex_ball_volume,
     hex_grid_volume, hex_torus_volume, jitter_interior, pyramid_grid_volume, read_volume_mesh, tet_grid_volume,

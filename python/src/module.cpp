@@ -122,4 +122,5 @@ PYBIND11_MODULE(_polydec, m) {
   register_spectral(m);
   register_volumes(m);
   register_groups(m);
+  register_virtual_lift(m);
 }
