@@ -51,8 +51,8 @@ Mesh load_mesh(const std::string& path, bool repair_first, std::vector<int>* ver
   }
 }
 
-VolumeMesh load_volume_mesh(const std::string& path) {
-  return load_detail::with_global_options(read_volume_mesh(path));
+VolumeMesh load_volume_mesh(const std::string& path, VolumeReadNotes* notes) {
+  return load_detail::with_global_options(read_volume_mesh(path, notes));
 }
 
 void add_repair_flag(CLI::App& app, bool& flag) {

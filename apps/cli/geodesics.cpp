@@ -305,9 +305,9 @@ const RegisterCommand reg("geodesics", "Geodesic distances by the heat method (p
   auto o = std::make_shared<Options>();
   app.add_option("mesh", o->mesh, "input mesh (.obj, .off, .ply; volumes: .ovm, .vtk, .mesh)")->required();
   app.add_option("--source", o->sources, "source vertex (0-based; repeat for several)")->required();
-  app.add_option(
-      "--out", o->out,
-      "output mesh with a 'distance' vertex property (.ply; volumes: .vtk with POINT_DATA 'distance')");
+  app.add_option("--out", o->out,
+                 "output mesh with a 'distance' vertex property (.ply or .vtu; volumes: .vtk with POINT_DATA "
+                 "'distance', or .vtu with point data 'distance')");
   app.add_option(
       "--png", o->png,
       "picture of the distance with isolines and a colour bar (.png; volumes: the solid cut by the plane "

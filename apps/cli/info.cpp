@@ -1,6 +1,7 @@
 // apps/cli/info.cpp — `polydec info MESH`: counts, valence histogram, boundary loops, Euler
 // characteristic and genus, planarity and convexity statistics, fan quality; on a volume mesh
-// (.ovm, .vtk, .mesh or --volume) counts, cell shapes, volumes, boundary and face planarity.
+// (.ovm, .vtk, .vtu, .mesh or --volume) counts, cells skipped by the reader, cell shapes, volumes,
+// boundary and face planarity.
 #include "polydec/apps/cli/command.h"
 #include "polydec/apps/applications/mesh_statistics.h"
 #include "polydec/dec/io/mesh_io.h"
@@ -45,7 +46,8 @@ double face_nonplanarity(const VolumeMesh& m, int f, double& diameter_out) {
 
 void run_volume(const Options& o) {
   if (o.repair) throw UsageError("--repair applies to surface meshes only");
-  const VolumeMesh m = load_volume_mesh(o.mesh);
+  VolumeReadNotes notes;
+  const VolumeMesh m = load_volume_mesh(o.mesh, &notes);
   std::map<std::string, int> shapes{
       {"tetrahedron", 0}, {"pyramid", 0}, {"wedge", 0}, {"hexahedron", 0}, {"other", 0}};
   double min_volume = m.n_cells() ? 1e308 : 0.0, max_volume = m.n_cells() ? -1e308 : 0.0;
@@ -89,38 +91,45 @@ void run_volume(const Options& o) {
   nlohmann::json fs = nlohmann::json::object();
   for (const auto& [n, c] : face_sizes) fs[std::to_string(n)] = c;
   const int chi_boundary = boundary_vertices - int(boundary_edges.size()) + boundary_faces;
-  const nlohmann::json j = {{"mesh", o.mesh},
-                            {"kind", "volume"},
-                            {"vertices", m.n_vertices()},
-                            {"edges", m.n_edges()},
-                            {"faces", m.n_faces()},
-                            {"cells", m.n_cells()},
-                            {"cell_shapes", shapes},
-                            {"face_size_histogram", fs},
-                            {"euler_characteristic", m.n_vertices() - m.n_edges() + m.n_faces() - m.n_cells()},
-                            {"unreferenced_vertices", m.n_unreferenced_vertices()},
-                            {"volume", m.volume()},
-                            {"min_cell_volume", min_volume},
-                            {"max_cell_volume", max_volume},
-                            {"nonpositive_cells", nonpositive},
-                            {"boundary_faces", boundary_faces},
-                            {"boundary_edges", boundary_edges.size()},
-                            {"boundary_vertices", boundary_vertices},
-                            {"boundary_euler_characteristic", chi_boundary},
-                            {"mean_edge_length", m.mean_edge_length()},
-                            {"bounding_box_diagonal", m.bounding_box_diagonal()},
-                            {"planarity_tolerance", tolerance},
-                            {"coordinate_precision", m.precision().noise},
-                            {"coordinate_noise", noise},
-                            {"nonplanar_faces", nonplanar},
-                            {"max_nonplanarity", max_np},
-                            {"mean_nonplanarity", m.n_faces() ? sum_np / m.n_faces() : 0.0}};
+  const nlohmann::json j = {
+      {"mesh", o.mesh},
+      {"kind", "volume"},
+      {"vertices", m.n_vertices()},
+      {"edges", m.n_edges()},
+      {"faces", m.n_faces()},
+      {"cells", m.n_cells()},
+      {"cell_shapes", shapes},
+      {"face_size_histogram", fs},
+      {"euler_characteristic", m.n_vertices() - m.n_edges() + m.n_faces() - m.n_cells()},
+      {"unreferenced_vertices", m.n_unreferenced_vertices()},
+      {"volume", m.volume()},
+      {"min_cell_volume", min_volume},
+      {"max_cell_volume", max_volume},
+      {"nonpositive_cells", nonpositive},
+      {"boundary_faces", boundary_faces},
+      {"boundary_edges", boundary_edges.size()},
+      {"boundary_vertices", boundary_vertices},
+      {"boundary_euler_characteristic", chi_boundary},
+      {"mean_edge_length", m.mean_edge_length()},
+      {"bounding_box_diagonal", m.bounding_box_diagonal()},
+      {"planarity_tolerance", tolerance},
+      {"coordinate_precision", m.precision().noise},
+      {"coordinate_noise", noise},
+      {"nonplanar_faces", nonplanar},
+      {"max_nonplanarity", max_np},
+      {"mean_nonplanarity", m.n_faces() ? sum_np / m.n_faces() : 0.0},
+      {"skipped_cells", notes.skipped_cells}};
   if (o.json) {
     print_json(j);
     return;
   }
   fmt::print("{} (volume mesh)\n", o.mesh);
   fmt::print("  vertices {}, edges {}, faces {}, cells {}\n", m.n_vertices(), m.n_edges(), m.n_faces(), m.n_cells());
+  std::string skipped;
+  for (const auto& [kind, n] : notes.skipped_cells)
+    skipped += fmt::format("{}{} {}", skipped.empty() ? "" : ", ", n, kind);
+  if (!skipped.empty())
+    fmt::print("  skipped lower-dimensional cells beside the volume cells: {}\n", skipped);
   fmt::print("  cells: {} tetrahedra, {} pyramids, {} wedges, {} hexahedra, {} other\n", shapes["tetrahedron"],
              shapes["pyramid"], shapes["wedge"], shapes["hexahedron"], shapes["other"]);
   std::string h;

@@ -10,6 +10,7 @@
 #include <fstream>
 
 #include "polydec/dec/detail/io_common.h"
+#include "polydec/dec/io/vtu.h"
 
 namespace polydec {
 
@@ -57,12 +58,15 @@ namespace {
 
 using namespace io_detail;
 
+constexpr const char* kSurfaceFormats = "obj, off, ply, vtu; volumes: ovm, vtk, vtu, mesh";
+
 SoupRead read_any(std::string_view bytes, std::string_view format, const std::string& name) {
   const std::string f = lower(format);
   if (f == "obj") return read_obj(bytes, name);
   if (f == "off") return read_off(bytes, name);
   if (f == "ply") return read_ply(bytes, name);
-  throw FileError(name, 0, -1, fmt::format("unknown mesh format '{}' (obj, off, ply)", f));
+  if (f == "vtu") return read_vtu_surface(bytes, name);
+  throw FileError(name, 0, -1, fmt::format("unknown mesh format '{}' ({})", f, kSurfaceFormats));
 }
 
 // Validates; an InvalidMeshError about a vertex or face names its line or byte offset.
@@ -88,8 +92,9 @@ Mesh validate(SoupRead r, const std::string& name) {
 
 PolygonSoup read_polygon_soup(const std::string& path) {
   const std::string ext = io_detail::extension(path);
-  if (ext != "obj" && ext != "off" && ext != "ply")
-    throw FileError(path, 0, -1, fmt::format("unknown mesh format '.{}' (obj, off, ply)", ext));
+  if (ext != "obj" && ext != "off" && ext != "ply" && ext != "vtu")
+    throw FileError(path, 0, -1,
+                    fmt::format("unknown mesh format '.{}' ({})", ext, mesh_io_detail::kSurfaceFormats));
   return mesh_io_detail::read_any(io_detail::slurp(path), ext, path).soup;
 }
 
@@ -100,8 +105,9 @@ PolygonSoup read_polygon_soup_from_memory(std::string_view bytes, std::string_vi
 
 Mesh read_mesh(const std::string& path) {
   const std::string ext = io_detail::extension(path);
-  if (ext != "obj" && ext != "off" && ext != "ply")
-    throw FileError(path, 0, -1, fmt::format("unknown mesh format '.{}' (obj, off, ply)", ext));
+  if (ext != "obj" && ext != "off" && ext != "ply" && ext != "vtu")
+    throw FileError(path, 0, -1,
+                    fmt::format("unknown mesh format '.{}' ({})", ext, mesh_io_detail::kSurfaceFormats));
   return mesh_io_detail::validate(mesh_io_detail::read_any(io_detail::slurp(path), ext, path), path);
 }
 
@@ -113,6 +119,10 @@ void write_mesh(const std::string& path, const Mesh& mesh, const VertexScalars& 
                 const WriteOptions& options) {
   const std::string ext = io_detail::extension(path);
   std::string data;
+  if ((ext == "obj" || ext == "off") && !scalars.empty())
+    throw FileError(path, 0, -1,
+                    fmt::format("{} cannot hold the vertex scalars ({} of them): write .ply or .vtu",
+                                ext == "obj" ? "OBJ" : "OFF", scalars.size()));
   if (ext == "obj") {
     data = io_detail::write_obj(mesh);
   } else if (ext == "off") {
@@ -128,8 +138,16 @@ void write_mesh(const std::string& path, const Mesh& mesh, const VertexScalars& 
                                     mesh.n_vertices()));
     }
     data = io_detail::write_ply(mesh, scalars, options.binary);
+  } else if (ext == "vtu") {
+    VtuFields fields;
+    fields.point_scalars = scalars;
+    try {
+      data = write_vtu_to_string(mesh, fields, options.binary);
+    } catch (const std::invalid_argument& e) {
+      throw FileError(path, 0, -1, e.what());
+    }
   } else {
-    throw FileError(path, 0, -1, fmt::format("unknown mesh format '.{}' (obj, off, ply)", ext));
+    throw FileError(path, 0, -1, fmt::format("unknown mesh format '.{}' (obj, off, ply, vtu)", ext));
   }
   std::ofstream out(path, std::ios::binary);
   if (!out) throw FileError(path, 0, -1, "cannot open file for writing");

@@ -57,7 +57,7 @@ def _mesh_result(arrays, faces):
 
 
 def read_mesh(path, faces="auto"):
-    """Reads an OBJ, OFF or PLY file (by extension) -> (V, F), in the file's vertex order.
+    """Reads an OBJ, OFF, PLY or VTK XML .vtu file (by extension) -> (V, F), in the file's vertex order.
 
     V: (|V|, 3) float64. F: with faces="auto" an (|F|, k) int64 array when every face has k
     vertices, else the flat tuple (indices, offsets); "array", "flat" or "list" force a form.
@@ -68,10 +68,11 @@ def read_mesh(path, faces="auto"):
 
 
 def write_mesh(path, V, F, scalars=None, binary=False):
-    """Writes (V, F) as OBJ, OFF or PLY (by extension), positions with 17 significant digits.
+    """Writes (V, F) as OBJ, OFF, PLY or VTK XML .vtu (by extension), positions with 17 significant digits.
 
-    scalars: optional {name: (|V|,) array}, written as PLY vertex properties (PLY only).
-    binary: binary PLY (bit-exact) or OFF BINARY (float32, lossy). Raises FileError.
+    scalars: optional {name: (|V|,) array}, written as PLY vertex properties or .vtu point data
+    (OBJ and OFF hold none: FileError). binary: binary PLY or base64 .vtu (bit-exact) or OFF BINARY
+    (float32, lossy). Raises FileError.
     """
     s = {str(k): np.asarray(v, dtype=np.float64).reshape(-1) for k, v in (scalars or {}).items()}
     _polydec.write_mesh(os.fspath(path), *_convert.mesh(V, F), s, bool(binary))
