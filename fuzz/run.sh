@@ -29,7 +29,8 @@ SOURCES=(dec/io/mesh_io.cpp dec/io/obj.cpp dec/io/off.cpp dec/io/ply.cpp dec/io/
          dec/surface/virtual_vertex.cpp dec/surface/refinement.cpp dec/surface/refinement_check.cpp dec/volume/refinement_check.cpp dec/surface/complex.cpp dec/surface/prolongation.cpp
          operators/surface/local_matrices.cpp operators/surface/laplacian.cpp operators/surface/gradient.cpp dec/surface/whitney.cpp
          dec/mesh/volume_mesh.cpp dec/mesh/polyhedron_builder.cpp dec/mesh/volume_cells.cpp dec/io/volume_io.cpp dec/io/ovm.cpp
-         dec/io/vtk.cpp dec/io/medit.cpp dec/io/msh.cpp dec/io/meshb.cpp dec/io/virtual_positions.cpp dec/surface/virtual_lift.cpp)
+         dec/io/vtk.cpp dec/io/medit.cpp dec/io/msh.cpp dec/io/meshb.cpp dec/io/virtual_positions.cpp dec/surface/virtual_lift.cpp
+         dec/io/vtu.cpp)
 for rel in "${SOURCES[@]}"; do
   src=$ROOT/$rel
   obj="$OUT/objects/$(basename "$(dirname "$src")")_$(basename "${src%.cpp}").o"
@@ -42,13 +43,13 @@ if ((${#stale[@]})); then
 fi
 [[ -f $OUT/libpolydec_fuzz.a ]] || ar rcs "$OUT/libpolydec_fuzz.a" "$OUT"/objects/*.o
 
-TARGETS=(obj off ply assemble mtx ovm vtk medit msh meshb virtual_positions)
+TARGETS=(obj off ply assemble mtx ovm vtk medit msh meshb virtual_positions vtu)
 for t in "${TARGETS[@]}"; do
   bin="$OUT/fuzz_$t"
   src="$ROOT/fuzz/fuzz_$t.cpp"
   if [[ ! -f $bin || $src -nt $bin || $ROOT/fuzz/fuzz_common.h -nt $bin || $ROOT/fuzz/fuzz_volume.h -nt $bin ||
         $OUT/libpolydec_fuzz.a -nt $bin ]]; then
-    "$CXX" "${CFLAGS[@]}" -fsanitize=fuzzer "$src" "$OUT/libpolydec_fuzz.a" -lfmt -o "$bin"
+    "$CXX" "${CFLAGS[@]}" -fsanitize=fuzzer "$src" "$OUT/libpolydec_fuzz.a" -lfmt -lexpat -lz -o "$bin"
   fi
 done
 echo "fuzz/run.sh: build took $(( $(date +%s) - t0 )) s"

@@ -52,9 +52,9 @@ Mesh load_mesh(const std::string& path, bool repair_first, std::vector<int>* ver
   }
 }
 
-VolumeMesh load_volume_mesh(const std::string& path) {
+VolumeMesh load_volume_mesh(const std::string& path, VolumeReadNotes* notes) {
   global_options().last_input = path;
-  return load_detail::with_global_options(read_volume_mesh(path));
+  return load_detail::with_global_options(read_volume_mesh(path, notes));
 }
 
 void add_repair_flag(CLI::App& app, bool& flag) {

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "polydec/dec/io/volume_io.h"
 #include "polydec/dec/mesh/mesh.h"
 #include "polydec/dec/mesh/volume_mesh.h"
 
@@ -43,10 +44,10 @@ void print_json(const nlohmann::json& j);
 // step that changed something; `vertex_map` (if given) receives file vertex -> mesh vertex (-1 when removed).
 Mesh load_mesh(const std::string& path, bool repair_first, std::vector<int>* vertex_map = nullptr);
 
-// Reads the volume mesh at `path` (.ovm, .vtk or .mesh by extension; dec/io/volume_io.h), with the
-// global --planarity-tolerance as its precision's planarity_tolerance when one is given. Throws
-// FileError (exit code 3) for an unreadable or invalid file.
-VolumeMesh load_volume_mesh(const std::string& path);
+// Reads the volume mesh at `path` (.ovm, .vtk, .vtu or .mesh by extension; dec/io/volume_io.h), with
+// the global --planarity-tolerance as its precision's planarity_tolerance when one is given; `notes`
+// receives what the reader skipped. Throws FileError (exit code 3) for an unreadable or invalid file.
+VolumeMesh load_volume_mesh(const std::string& path, VolumeReadNotes* notes = nullptr);
 
 // Options given before (or, by fall-through, after) the subcommand, for every command.
 struct GlobalOptions {

@@ -35,8 +35,9 @@ WriteOptions write_options(const Options& o) {
   const std::string out = o.out.size() >= 4 ? o.out.substr(o.out.size() - 4) : o.out;
   std::string ext;
   for (char c : out) ext += char(std::tolower(static_cast<unsigned char>(c)));
-  if (o.binary && ext != ".vtk" && ext != ".ply" && ext != ".off")
-    throw UsageError(fmt::format("--binary: {} has no binary form here (.vtk, .ply, .off have)", o.out));
+  if (o.binary && ext != ".vtk" && ext != ".vtu" && ext != ".ply" && ext != ".off")
+    throw UsageError(
+        fmt::format("--binary: {} has no binary form here (.vtk, .vtu, .ply, .off have)", o.out));
   return w;
 }
 
@@ -65,8 +66,8 @@ void run_volume(const Options& o) {
                  b.n_vertices(), b.n_unreferenced_vertices(), b.n_faces());
   } else {
     if (!is_volume_mesh_path(o.out) && !is_msh(o.out))
-      throw UsageError(
-          fmt::format("{}: a volume mesh is written as .ovm, .vtk, .mesh or .msh (or use --boundary)", o.out));
+      throw UsageError(fmt::format(
+          "{}: a volume mesh is written as .ovm, .vtk, .vtu, .mesh or .msh (or use --boundary)", o.out));
     write_volume_mesh(m, o.out, write_options(o));
     j["vertices"] = m.n_vertices();
     j["faces"] = m.n_faces();

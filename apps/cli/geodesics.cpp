@@ -331,9 +331,9 @@ const RegisterCommand reg("geodesics", "Geodesic distances by the heat method (p
   app.add_option("--source-group", o->source_groups,
                  "every vertex of this named group of the file (gmsh physical group) is a source; repeatable, "
                  "combines with --source");
-  app.add_option(
-      "--out", o->out,
-      "output mesh with a 'distance' vertex property (.ply; volumes: .vtk with POINT_DATA 'distance')");
+  app.add_option("--out", o->out,
+                 "output mesh with a 'distance' vertex property (.ply or .vtu; volumes: .vtk with POINT_DATA "
+                 "'distance', or .vtu with point data 'distance')");
   app.add_option(
       "--png", o->png,
       "picture of the distance with isolines and a colour bar (.png; volumes: the solid cut by the plane "

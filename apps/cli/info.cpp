@@ -1,8 +1,8 @@
 // apps/cli/info.cpp — `polydec info MESH`: counts, valence histogram, boundary loops, Euler
 // characteristic and genus, planarity and convexity statistics, fan quality; on a volume mesh
-// (.ovm, .vtk, .mesh, .meshb, a gmsh .msh with 3-D elements, or --volume) counts, cell shapes,
-// volumes, boundary and face planarity; for every kind the file's named groups and the
-// lower-dimensional elements the reader skipped (gmsh .msh, MEDIT .meshb).
+// (.ovm, .vtk, .vtu, .mesh, .meshb, a gmsh .msh with 3-D elements, or --volume) counts, cells
+// skipped by the reader, cell shapes, volumes, boundary and face planarity; for every kind the
+// file's named groups and the lower-dimensional elements the reader skipped (gmsh .msh, MEDIT .meshb).
 #include "polydec/apps/cli/command.h"
 #include "polydec/apps/applications/mesh_statistics.h"
 #include "polydec/dec/io/mesh_groups.h"
@@ -77,7 +77,8 @@ void print_groups(const nlohmann::json& j, const char* elements) {
 
 void run_volume(const Options& o) {
   if (o.repair) throw UsageError("--repair applies to surface meshes only");
-  const VolumeMesh m = load_volume_mesh(o.mesh);
+  VolumeReadNotes notes;
+  const VolumeMesh m = load_volume_mesh(o.mesh, &notes);
   std::map<std::string, int> shapes{
       {"tetrahedron", 0}, {"pyramid", 0}, {"wedge", 0}, {"hexahedron", 0}, {"other", 0}};
   double min_volume = m.n_cells() ? 1e308 : 0.0, max_volume = m.n_cells() ? -1e308 : 0.0;
@@ -146,7 +147,8 @@ void run_volume(const Options& o) {
                             {"coordinate_noise", noise},
                             {"nonplanar_faces", nonplanar},
                             {"max_nonplanarity", max_np},
-                            {"mean_nonplanarity", m.n_faces() ? sum_np / m.n_faces() : 0.0}};
+                            {"mean_nonplanarity", m.n_faces() ? sum_np / m.n_faces() : 0.0},
+                            {"skipped_cells", notes.skipped_cells}};
   add_groups(o.mesh, "cells", j);
   if (o.json) {
     print_json(j);
@@ -154,6 +156,11 @@ void run_volume(const Options& o) {
   }
   fmt::print("{} (volume mesh)\n", o.mesh);
   fmt::print("  vertices {}, edges {}, faces {}, cells {}\n", m.n_vertices(), m.n_edges(), m.n_faces(), m.n_cells());
+  std::string skipped;
+  for (const auto& [kind, n] : notes.skipped_cells)
+    skipped += fmt::format("{}{} {}", skipped.empty() ? "" : ", ", n, kind);
+  if (!skipped.empty())
+    fmt::print("  skipped lower-dimensional cells beside the volume cells: {}\n", skipped);
   fmt::print("  cells: {} tetrahedra, {} pyramids, {} wedges, {} hexahedra, {} other\n", shapes["tetrahedron"],
              shapes["pyramid"], shapes["wedge"], shapes["hexahedron"], shapes["other"]);
   std::string h;

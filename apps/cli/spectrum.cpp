@@ -2,7 +2,8 @@
 // -S x = lambda M x (manifold harmonics) with Spectra's shift-invert solver; with --form 1|2 those
 // of the Hodge Laplacian on Whitney 1- or 2-forms (apps/applications/form_spectrum.h). On a volume mesh
 // (.ovm, .vtk, .mesh or --volume): the volume operators (operators/registry/volume_laplacians.h), Neumann,
-// eigenvectors as VTK point data, the picture on a planar cut (apps/pictures/volume_cut.h).
+// eigenvectors as VTK point data (.vtk, or .vtu with --vtu), the picture on a planar cut
+// (apps/pictures/volume_cut.h).
 #include "polydec/apps/applications/spectrum.h"
 
 #include <fmt/format.h>
@@ -32,6 +33,7 @@ struct Options {
   int k = 10, png_index = 1, form = 0;
   std::string complex = "complete";  // --complex, for --form 1|2
   bool json = false, volume = false;
+  bool vtu = false;      // --vtu: volume eigenvectors as eigenvectors.vtu
   EngineOptions engine;  // --engine, --solver, --petsc-options
   VirtualLiftArgs lift;  // --virtual-lift, --virtual-positions (serial surface spectra)
 };
@@ -89,9 +91,10 @@ void run_volume(const Options& o) {
     write_dense_matrix_market(o.out + "/eigenvectors.mtx", sp.eigenvectors);
     VertexScalars props;
     for (int i = 0; i < o.k; ++i) props[fmt::format("u{:03d}", i)] = sp.eigenvectors.col(i);
-    write_volume_vtk_with_point_data(mesh, o.out + "/eigenvectors.vtk", props);
+    const std::string field_file = o.vtu ? "eigenvectors.vtu" : "eigenvectors.vtk";
+    write_volume_vtk_with_point_data(mesh, o.out + "/" + field_file, props);
     j["out"] = o.out;
-    j["files"] = {"eigenvalues.txt", "eigenvectors.mtx", "eigenvectors.vtk"};
+    j["files"] = {"eigenvalues.txt", "eigenvectors.mtx", field_file};
   }
   if (!o.png.empty()) {
     render_volume_cut_png(o.png, mesh, *ops.volume_refinement, sp.eigenvectors.col(o.png_index),
@@ -110,8 +113,8 @@ void run_volume(const Options& o) {
   if (!o.png.empty()) fmt::print("wrote {}\n", o.png);
   if (!o.out.empty())
     fmt::print(
-        "wrote eigenvalues.txt, eigenvectors.mtx (|V| x k) and eigenvectors.vtk (point data u000..) to {}\n",
-        o.out);
+        "wrote eigenvalues.txt, eigenvectors.mtx (|V| x k) and eigenvectors.{} (point data u000..) to {}\n",
+        o.vtu ? "vtu" : "vtk", o.out);
 }
 
 void run(const Options& o) {
@@ -332,7 +335,9 @@ const RegisterCommand reg(
           "(eigen-cochains, their Hodge parts; --mass is the 0-form mass M0 of the 1-form problem)");
       app.add_option("--out", o->out,
                      "output directory: eigenvalues.txt, eigenvectors.mtx, eigenvectors.ply (volumes: "
-                     "eigenvectors.vtk with point data u000..)");
+                     "eigenvectors.vtk, or with --vtu eigenvectors.vtu, with point data u000..)");
+      app.add_flag("--vtu", o->vtu,
+                   "volumes: write the eigenvectors as VTK XML (eigenvectors.vtu, ParaView's format)");
       app.add_option("--mass", o->mass, "lumped (default) or unlumped mass");
       app.add_option("--laplacian", o->laplacian,
                      "Laplacian: " + fmt::format("{}", fmt::join(laplacian_names(), ", ")) +

@@ -30,6 +30,8 @@ struct SoupRead {
 SoupRead read_obj(std::string_view bytes, const std::string& name);
 SoupRead read_off(std::string_view bytes, const std::string& name);
 SoupRead read_ply(std::string_view bytes, const std::string& name);
+// The triangles, quads, pixels and polygons of a .vtu file without volume cells (dec/io/vtu.cpp).
+SoupRead read_vtu_surface(std::string_view bytes, const std::string& name);
 
 std::string write_obj(const Mesh& mesh);
 std::string write_off(const Mesh& mesh, bool binary);

@@ -6,12 +6,15 @@
 #include <algorithm>
 #include <climits>
 #include <cstdint>
+#include <map>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "polydec/dec/detail/io_common.h"
 #include "polydec/dec/io/volume_io.h"
+#include "polydec/dec/mesh/polyhedron_builder.h"
 
 namespace polydec::io_detail {
 
@@ -22,6 +25,7 @@ struct PolyhedronRead {
   PolyhedronSoup soup;
   std::vector<long> vertex_where, face_where, cell_where;
   bool where_is_byte_offset = false;
+  std::map<std::string, long> skipped;  // cells of lower dimension left out, by VTK cell name
 };
 
 // Whitespace-separated tokens with the line each starts on; errors are FileErrors naming the file
@@ -150,6 +154,28 @@ class VolumeTokens {
 PolyhedronRead read_ovm(std::string_view bytes, const std::string& name);
 PolyhedronRead read_vtk(std::string_view bytes, const std::string& name);
 PolyhedronRead read_medit(std::string_view bytes, const std::string& name);
+// VTK XML unstructured grid (.vtu): the volume cells (dec/io/vtu.cpp); surface cells beside them
+// are skipped and counted.
+PolyhedronRead read_vtu(std::string_view bytes, const std::string& name);
+
+// The dimension of a VTK cell type: 3 for the volume cells read (10 tetra, 11 voxel, 12 hexahedron,
+// 13 wedge, 14 pyramid, 42 polyhedron), 0 to 2 for vertex, poly-vertex, line, poly-line, triangle,
+// triangle strip, polygon, pixel and quad cells; -1 for any other type.
+int vtk_cell_dimension(long long type);
+// The VTK name of a cell type of known dimension ("triangle"), "" for others.
+const char* vtk_cell_name(long long type);
+// "3 triangle, 2 line" for skipped cells by name ("none" when empty).
+std::string skipped_summary(const std::map<std::string, long>& skipped);
+// The problem with lower-dimensional cell number c of VTK type `type` (0 to 2 dimensions) and
+// point ids `cell`, which a volume reader skips: a count its type does not allow (a triangle's 3,
+// a line's 2, ...), or a point id outside [0, nv); empty when there is none.
+std::string vtk_lower_cell_problem(int type, std::span<const int> cell, long long nv, long long c);
+// Adds volume cell number c of VTK type `type` to the builder and closes it: for 10, 11, 12, 13, 14
+// `cell` holds its point ids (a voxel's reordered to a hexahedron's), for 42 its face stream
+// "n_faces k_1 ids_1 .. k_n ids_n"; point ids are checked against [0, nv). Returns the problem
+// (naming the cell), empty when there is none.
+std::string add_vtk_volume_cell(PolyhedronSoupBuilder& builder, int type, std::span<const int> cell,
+                                long long nv, long long c);
 
 std::string write_ovm(const VolumeMesh& mesh);
 // VTK legacy: ASCII, or BINARY (big-endian payloads) with `binary`; `name` (the file) is named
@@ -159,6 +185,10 @@ std::string write_vtk(const VolumeMesh& mesh, const std::string& name, bool bina
 // bounds every number in the list; ASCII and BINARY readers take it as int32): a FileError naming
 // `file`, `what`, the value and the limit INT32_MAX when it does not fit, instead of a corrupt file.
 void check_vtk_int32(const std::string& file, std::string_view what, std::uint64_t value);
+// The classic VTK cell list of the mesh (per cell its count, then its point ids in VTK's order or,
+// for a polyhedron (42), its face stream with outward faces) and the cells' VTK types.
+void vtk_cells(const VolumeMesh& mesh, const std::string& file, std::vector<int>& entries,
+               std::vector<int>& types);
 std::string write_medit(const VolumeMesh& mesh, const std::string& name);
 
 }  // namespace polydec::io_detail

@@ -11,6 +11,7 @@
 
 #include "polydec/dec/detail/io_common.h"
 #include "polydec/dec/detail/msh_io.h"
+#include "polydec/dec/io/vtu.h"
 
 namespace polydec {
 
@@ -59,7 +60,7 @@ namespace {
 using namespace io_detail;
 
 // Every format polydec reads, for the "unknown format" messages.
-constexpr const char* kFormats = "surfaces: obj, off, ply, msh; volumes: ovm, vtk, mesh, meshb, msh";
+constexpr const char* kFormats = "surfaces: obj, off, ply, msh, vtu; volumes: ovm, vtk, vtu, mesh, meshb, msh";
 
 SoupRead read_any(std::string_view bytes, std::string_view format, const std::string& name) {
   const std::string f = lower(format);
@@ -67,13 +68,15 @@ SoupRead read_any(std::string_view bytes, std::string_view format, const std::st
   if (f == "off") return read_off(bytes, name);
   if (f == "ply") return read_ply(bytes, name);
   if (f == "msh") return read_msh_surface(bytes, name);
+  if (f == "vtu") return read_vtu_surface(bytes, name);
   throw FileError(name, 0, -1, fmt::format("unknown mesh format '{}' ({})", f, kFormats));
 }
 
-// The file's bytes and format: by extension, else by content (gmsh's "$MeshFormat").
+// The file's bytes and format: by extension, else by content (gmsh's "$MeshFormat", VTK XML's
+// "<?xml" or "<VTKFile").
 std::pair<std::string, std::string> read_file(const std::string& path) {
   const std::string ext = extension(path);
-  if (ext == "obj" || ext == "off" || ext == "ply" || ext == "msh") return {slurp(path), ext};
+  if (ext == "obj" || ext == "off" || ext == "ply" || ext == "msh" || ext == "vtu") return {slurp(path), ext};
   const FileError unknown(path, 0, -1, fmt::format("unknown mesh format '.{}' ({})", ext, kFormats));
   std::string bytes;
   try {
@@ -81,8 +84,12 @@ std::pair<std::string, std::string> read_file(const std::string& path) {
   } catch (const FileError&) {
     throw unknown;
   }
-  if (!looks_like_msh(bytes)) throw unknown;
-  return {std::move(bytes), "msh"};
+  if (looks_like_msh(bytes)) return {std::move(bytes), "msh"};
+  std::string_view t = strip_bom(bytes);
+  while (!t.empty() && (is_space(t.front()) || t.front() == '\n')) t.remove_prefix(1);
+  const std::string head = lower(t.substr(0, 20));
+  if (head.rfind("<?xml", 0) == 0 || head.rfind("<vtkfile", 0) == 0) return {std::move(bytes), "vtu"};
+  throw unknown;
 }
 
 // Validates; an InvalidMeshError about a vertex or face names its line or byte offset.
@@ -136,6 +143,10 @@ void write_mesh(const std::string& path, const Mesh& mesh, const VertexScalars& 
                 const WriteOptions& options) {
   const std::string ext = io_detail::extension(path);
   std::string data;
+  if ((ext == "obj" || ext == "off") && !scalars.empty())
+    throw FileError(path, 0, -1,
+                    fmt::format("{} cannot hold the vertex scalars ({} of them): write .ply or .vtu",
+                                ext == "obj" ? "OBJ" : "OFF", scalars.size()));
   if (ext == "obj") {
     data = io_detail::write_obj(mesh);
   } else if (ext == "off") {
@@ -153,8 +164,16 @@ void write_mesh(const std::string& path, const Mesh& mesh, const VertexScalars& 
     data = io_detail::write_ply(mesh, scalars, options.binary);
   } else if (ext == "msh") {
     data = io_detail::write_msh(mesh, path);
+  } else if (ext == "vtu") {
+    VtuFields fields;
+    fields.point_scalars = scalars;
+    try {
+      data = write_vtu_to_string(mesh, fields, options.binary);
+    } catch (const std::invalid_argument& e) {
+      throw FileError(path, 0, -1, e.what());
+    }
   } else {
-    throw FileError(path, 0, -1, fmt::format("unknown mesh format '.{}' (obj, off, ply, msh)", ext));
+    throw FileError(path, 0, -1, fmt::format("unknown mesh format '.{}' (obj, off, ply, msh, vtu)", ext));
   }
   std::ofstream out(path, std::ios::binary);
   if (!out) throw FileError(path, 0, -1, "cannot open file for writing");

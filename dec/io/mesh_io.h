@@ -1,6 +1,6 @@
-// dec/io/mesh_io.h — reading and writing polygon meshes (OBJ, OFF ascii/binary, PLY ascii/binary) and
-// sparse matrices (Matrix Market). Readers keep the file's vertex order exactly; what each
-// format accepts and rejects is documented in docs/io.md.
+// dec/io/mesh_io.h — reading and writing polygon meshes (OBJ, OFF ascii/binary, PLY ascii/binary, VTK XML
+// .vtu) and sparse matrices (Matrix Market). Readers keep the file's vertex order exactly; what each format
+// accepts and rejects is documented in docs/io.md.
 #pragma once
 
 #include <Eigen/Sparse>
@@ -25,12 +25,14 @@ class FileError : public std::runtime_error {
   std::string reason;
 };
 
-// Reads OBJ, OFF, PLY or gmsh .msh (its triangles and quadrangles), chosen by the file's extension
-// (case-insensitive), or for another extension by the content "$MeshFormat". Throws FileError.
+// Reads OBJ, OFF, PLY, gmsh .msh (its triangles and quadrangles) or .vtu (triangle, quad, pixel and
+// polygon cells of a file without volume cells; vertex and line cells skipped), chosen by the
+// file's extension (case-insensitive), or for another extension by the content ("$MeshFormat",
+// "<?xml", "<VTKFile"). Throws FileError.
 // No validation beyond what the format needs (indices in range); Mesh validates the rest.
 PolygonSoup read_polygon_soup(const std::string& path);
 
-// The same from bytes in memory; `format` is "obj", "off", "ply" or "msh" (case-insensitive) and
+// The same from bytes in memory; `format` is "obj", "off", "ply", "msh" or "vtu" (case-insensitive) and
 // `name` is used in error messages only.
 PolygonSoup read_polygon_soup_from_memory(std::string_view bytes, std::string_view format,
                                           const std::string& name);
@@ -46,12 +48,15 @@ using VertexScalars = std::map<std::string, Eigen::VectorXd>;
 struct WriteOptions {
   // PLY: binary_little_endian instead of ascii (doubles, bit-exact either way).
   // OFF: "OFF BINARY" in pmp-library's layout (little-endian, float32 positions: lossy).
+  // VTU: inline base64 (little-endian Float64, bit-exact) instead of ASCII.
   // OBJ: no binary form; ignored.
   bool binary = false;
 };
 
-// Writers, chosen by extension (.obj, .off, .ply, .msh: gmsh 4.1 ASCII of triangles and quadrangles). Scalars are written only to PLY (as
-// `property double NAME`; names must be non-empty without whitespace, one value per vertex).
+// Writers, chosen by extension (.obj, .off, .ply, .msh: gmsh 4.1 ASCII of triangles and
+// quadrangles, .vtu). Scalars are written to PLY (as `property double NAME`; names must be
+// non-empty without whitespace) and .vtu (Float64 point data; vector fields too through write_vtu,
+// dec/io/vtu.h), one value per vertex; OBJ, OFF and .msh hold none and refuse them (FileError).
 // Text positions with 17 significant digits (bit-exact). Throw FileError when the file
 // cannot be written or a scalar field does not fit the mesh.
 void write_mesh(const std::string& path, const Mesh& mesh, const VertexScalars& scalars = {},

@@ -12,6 +12,7 @@
 #include "polydec/dec/detail/io_common.h"
 #include "polydec/dec/detail/msh_io.h"
 #include "polydec/dec/detail/volume_io_common.h"
+#include "polydec/dec/io/vtu.h"
 
 namespace polydec {
 namespace io_volume_detail {
@@ -19,9 +20,11 @@ namespace {
 
 using namespace io_detail;
 
-constexpr const char* kFormats = "ovm, vtk, mesh, meshb, msh; surfaces: obj, off, ply, msh";
+constexpr const char* kFormats = "ovm, vtk, vtu, mesh, meshb, msh; surfaces: obj, off, ply, msh, vtu";
 
-bool known(const std::string& f) { return f == "ovm" || f == "vtk" || f == "mesh" || f == "meshb" || f == "msh"; }
+bool known(const std::string& f) {
+  return f == "ovm" || f == "vtk" || f == "vtu" || f == "mesh" || f == "meshb" || f == "msh";
+}
 
 void write_bytes(const std::string& path, const std::string& data) {
   std::ofstream out(path, std::ios::binary);
@@ -44,6 +47,7 @@ std::string checked_format(const std::string& path, std::string_view bytes) {
   if (head.rfind("meshversionformatted", 0) == 0) return "mesh";
   if (looks_like_msh(bytes)) return "msh";
   if (looks_like_meshb(bytes)) return "meshb";
+  if (head.rfind("<?xml", 0) == 0 || head.rfind("<vtkfile", 0) == 0) return "vtu";
   throw FileError(
       path, 0, -1,
       fmt::format("unknown volume mesh format '.{}' ({}; nor does the file start like one)", ext, kFormats));
@@ -56,10 +60,12 @@ PolyhedronRead read_any(std::string_view bytes, std::string_view format, const s
   if (f == "mesh") return read_medit(bytes, name);
   if (f == "meshb") return read_meshb(bytes, name);
   if (f == "msh") return read_msh_volume(bytes, name);
+  if (f == "vtu") return read_vtu(bytes, name);
   throw FileError(name, 0, -1, fmt::format("unknown volume mesh format '{}' ({})", f, kFormats));
 }
 
-VolumeMesh validate(PolyhedronRead r, const std::string& name) {
+VolumeMesh validate(PolyhedronRead r, const std::string& name, VolumeReadNotes* notes = nullptr) {
+  if (notes) notes->skipped_cells = r.skipped;
   const auto vertex_where = std::move(r.vertex_where);
   const auto face_where = std::move(r.face_where);
   const auto cell_where = std::move(r.cell_where);
@@ -110,9 +116,9 @@ PolyhedronSoup read_polyhedron_soup_from_memory(std::string_view bytes, std::str
   return read_any(bytes, format, name).soup;
 }
 
-VolumeMesh read_volume_mesh(const std::string& path) {
+VolumeMesh read_volume_mesh(const std::string& path, VolumeReadNotes* notes) {
   const std::string bytes = slurp(path);
-  return validate(read_any(bytes, checked_format(path, bytes), path), path);
+  return validate(read_any(bytes, checked_format(path, bytes), path), path, notes);
 }
 
 VolumeMesh read_volume_mesh_with_groups(const std::string& path, MeshGroups& groups) {
@@ -148,6 +154,7 @@ std::string write_volume_mesh_to_string(const VolumeMesh& mesh, std::string_view
   if (f == "vtk") return io_detail::write_vtk(mesh, "(memory)", options.binary);
   if (f == "mesh") return io_detail::write_medit(mesh, "(memory)");
   if (f == "msh") return io_detail::write_msh(mesh, "(memory)");
+  if (f == "vtu") return write_vtu_to_string(mesh, {}, options.binary);
   throw FileError("(memory)", 0, -1, fmt::format("unknown volume mesh format '{}' ({})", f, kFormats));
 }
 
@@ -165,7 +172,12 @@ void write_volume_mesh(const VolumeMesh& mesh, const std::string& path, const Wr
 
 void write_volume_vtk_with_point_data(const VolumeMesh& mesh, const std::string& path,
                                       const VertexScalars& scalars) {
-  if (extension(path) != "vtk") throw FileError(path, 0, -1, "point data needs a VTK file (.vtk)");
+  if (extension(path) == "vtu") {
+    VtuFields fields;
+    fields.point_scalars = scalars;
+    return write_vtu(path, mesh, fields);
+  }
+  if (extension(path) != "vtk") throw FileError(path, 0, -1, "point data needs a VTK file (.vtk or .vtu)");
   std::string data = io_detail::write_vtk(mesh, path);
   if (!scalars.empty()) data += fmt::format("POINT_DATA {}\n", mesh.n_vertices());
   for (const auto& [name, values] : scalars) {

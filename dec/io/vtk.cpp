@@ -9,12 +9,15 @@
 // by cells are identified by their vertex sets. Dataset-level FIELD data before POINTS (its
 // arrays of any VTK type, strings included) is skipped; sections after CELL_TYPES (POINT_DATA,
 // CELL_DATA, FIELD) are ignored.
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <climits>
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <optional>
+#include <span>
 
 #include "polydec/dec/detail/io_common.h"
 #include "polydec/dec/detail/volume_io_common.h"
@@ -26,25 +29,6 @@ namespace io_vtk_detail {
 namespace {
 
 using namespace io_detail;
-
-const char* type_name(long long t) {
-  switch (t) {
-    case 1:
-      return " (vertex)";
-    case 3:
-      return " (line)";
-    case 5:
-      return " (triangle)";
-    case 7:
-      return " (polygon)";
-    case 9:
-      return " (quad)";
-    case 11:
-      return " (voxel)";
-    default:
-      return "";
-  }
-}
 
 // How the values of a field array of VTK data type `type` are stored: numbers of `width` bytes
 // in BINARY files (1, 2, 4, 8), bits packed 8 to a byte, strings (ASCII one line each; BINARY
@@ -229,10 +213,179 @@ struct Input {
   size_t end_ = 0;
 };
 
+// Coordinates that no writer means: non-finite, subnormal, or with a magnitude beyond 1e30 times
+// (or below 1e-30 times) the median nonzero magnitude of the others; `values` decoded as floats
+// of `width` bytes in the byte order `big_endian`.
+long implausible(std::string_view values, size_t width, bool big_endian, const std::string& name) {
+  io_detail::BinaryCursor cur(values, 0, big_endian, name);
+  std::vector<double> sane;
+  long bad = 0;
+  while (cur.remaining() >= width) {
+    bool normal = false;
+    double x = 0;
+    if (width == 4) {
+      const float f = cur.read<float>("a coordinate");
+      normal = std::isnormal(f), x = std::abs(double(f));
+    } else {
+      x = std::abs(cur.read<double>("a coordinate"));
+      normal = std::isnormal(x);
+    }
+    if (x == 0) continue;
+    if (normal)
+      sane.push_back(x);
+    else
+      ++bad;
+  }
+  if (sane.empty()) return bad;
+  std::nth_element(sane.begin(), sane.begin() + long(sane.size() / 2), sane.end());
+  const double median = sane[sane.size() / 2];
+  for (double x : sane) bad += x > 1e30 * median || x < 1e-30 * median;
+  return bad;
+}
+
+// Refuses binary coordinates that are evidently little-endian (the legacy format is big-endian):
+// implausible values read big-endian while none are read byte-swapped.
+void check_byte_order(std::string_view values, size_t width, io_detail::VolumeTokens& in) {
+  const std::string name = "coordinates";
+  const long big = implausible(values, width, true, name);
+  if (big == 0) return;
+  const long little = implausible(values, width, false, name);
+  if (little == 0)
+    in.fail(
+        long(in.position()),
+        fmt::format("the binary point coordinates are little-endian: {} of {} read big-endian (as the VTK "
+                    "legacy format requires) are non-finite, subnormal or absurdly large or small, and none "
+                    "read little-endian; write the file big-endian (VTK's writers do)",
+                    big, values.size() / width));
+}
+
 }  // namespace
 }  // namespace io_vtk_detail
 
 namespace io_detail {
+
+int vtk_cell_dimension(long long type) {
+  switch (type) {
+    case 1:  // vertex
+    case 2:  // poly-vertex
+      return 0;
+    case 3:  // line
+    case 4:  // poly-line
+      return 1;
+    case 5:  // triangle
+    case 6:  // triangle strip
+    case 7:  // polygon
+    case 8:  // pixel
+    case 9:  // quad
+      return 2;
+    case kVtkTetra:
+    case kVtkVoxel:
+    case kVtkHexahedron:
+    case kVtkWedge:
+    case kVtkPyramid:
+    case kVtkPolyhedron:
+      return 3;
+    default:
+      return -1;
+  }
+}
+
+const char* vtk_cell_name(long long type) {
+  switch (type) {
+    case 1:
+      return "vertex";
+    case 2:
+      return "poly-vertex";
+    case 3:
+      return "line";
+    case 4:
+      return "poly-line";
+    case 5:
+      return "triangle";
+    case 6:
+      return "triangle strip";
+    case 7:
+      return "polygon";
+    case 8:
+      return "pixel";
+    case 9:
+      return "quad";
+    case kVtkTetra:
+      return "tetra";
+    case kVtkVoxel:
+      return "voxel";
+    case kVtkHexahedron:
+      return "hexahedron";
+    case kVtkWedge:
+      return "wedge";
+    case kVtkPyramid:
+      return "pyramid";
+    case kVtkPolyhedron:
+      return "polyhedron";
+    default:
+      return "";
+  }
+}
+
+std::string skipped_summary(const std::map<std::string, long>& skipped) {
+  std::string s;
+  for (const auto& [kind, n] : skipped) s += fmt::format("{}{} {}", s.empty() ? "" : ", ", n, kind);
+  return s.empty() ? "none" : s;
+}
+
+std::string vtk_lower_cell_problem(int type, std::span<const int> cell, long long nv, long long c) {
+  static const std::map<int, size_t> kSize{{1, 1}, {3, 2}, {5, 3}, {8, 4}, {9, 4}};
+  const auto fixed = kSize.find(type);
+  const size_t least = type == 6 || type == 7 ? 3 : 1;
+  if ((fixed != kSize.end() && cell.size() != fixed->second) || cell.size() < least)
+    return fmt::format("cell {} of type {} ({}) cannot have {} points", c, type, vtk_cell_name(type),
+                       cell.size());
+  for (int v : cell)
+    if (v < 0 || v >= nv) return fmt::format("point index {} out of range [0, {})", v, nv);
+  return {};
+}
+
+std::string add_vtk_volume_cell(PolyhedronSoupBuilder& builder, int type, std::span<const int> cell,
+                                long long nv, long long c) {
+  if (type == kVtkPolyhedron) {
+    if (cell.empty()) return fmt::format("polyhedron cell {} is empty", c);
+    std::vector<int> poly;
+    size_t p = 1;
+    for (int f = 0; f < cell[0]; ++f) {
+      if (p >= cell.size())
+        return fmt::format("polyhedron cell {}: face {} lies beyond the cell's numbers", c, f);
+      const size_t k = size_t(cell[p]);
+      if (k > cell.size() - p - 1)
+        return fmt::format("polyhedron cell {}: face {} lists {} points, beyond the cell's numbers", c, f, k);
+      if (k < 3) return fmt::format("polyhedron cell {}: face {} has {} points (at least 3 needed)", c, f, k);
+      poly.assign(cell.begin() + p + 1, cell.begin() + p + 1 + k);
+      for (int v : poly)
+        if (v < 0 || v >= nv) return fmt::format("point index {} out of range [0, {})", v, nv);
+      if (builder.add_polygon(poly) < 0)
+        return fmt::format("polyhedron cell {}: face {} has the points of face {} in another cyclic order", c,
+                           f, builder.last_face());
+      p += 1 + k;
+    }
+    if (p != cell.size())
+      return fmt::format("polyhedron cell {}: its {} faces use {} of its {} numbers", c, cell[0], p,
+                         cell.size());
+    builder.end_cell();
+    return {};
+  }
+  // A voxel is a hexahedron whose points 2, 3 and 6, 7 are swapped (x fastest, then y, then z).
+  const int linear = type == kVtkVoxel ? int(kVtkHexahedron) : type;
+  const int n = vtk_cell_size(linear);
+  if (int(cell.size()) != n)
+    return fmt::format("cell {} of type {} needs {} points, it lists {}", c, type, n, cell.size());
+  for (int v : cell)
+    if (v < 0 || v >= nv) return fmt::format("point index {} out of range [0, {})", v, nv);
+  std::array<int, 8> order{};
+  for (int i = 0; i < n; ++i) order[i] = cell[type == kVtkVoxel ? (i ^ ((i >> 1) & 1)) : i];
+  if (!builder.add_vtk_cell(linear, {order.data(), size_t(n)}))
+    return fmt::format("cell {}: a face has the points of face {} in another cyclic order", c,
+                       builder.last_face());
+  return {};
+}
 
 PolyhedronRead read_vtk(std::string_view bytes, const std::string& name) {
   const std::string_view text = strip_bom(bytes);
@@ -266,9 +419,9 @@ PolyhedronRead read_vtk(std::string_view bytes, const std::string& name) {
   const long long nv = in.count("point count", io.binary ? 12 : 6);
   const std::string_view point_type = in.expect("the point data type");
   const std::string pt = lower(point_type);
-  if (io.binary && pt != "float" && pt != "double")
-    in.fail(in.where(), fmt::format("point data type {} is not supported in binary files (float, double)",
-                                    quote(point_type)));
+  if (pt != "float" && pt != "double")
+    in.fail(in.where(),
+            fmt::format("point data type {} is not supported (float, double)", quote(point_type)));
   r.soup.positions.resize(nv, 3);
   r.vertex_where.resize(nv);
   if (io.binary) {
@@ -276,6 +429,7 @@ PolyhedronRead read_vtk(std::string_view bytes, const std::string& name) {
     const size_t width = pt == "float" ? 4 : 8;
     BinaryCursor cur(text, in.position(), true, name);
     cur.need(size_t(nv) * 3 * width, "point coordinates");
+    io_vtk_detail::check_byte_order(text.substr(in.position(), size_t(nv) * 3 * width), width, in);
     for (long long v = 0; v < nv; ++v) {
       r.vertex_where[v] = long(cur.position());
       for (int c = 0; c < 3; ++c) {
@@ -386,60 +540,34 @@ PolyhedronRead read_vtk(std::string_view bytes, const std::string& name) {
   for (long long c = 0; c < nc; ++c) {
     const long long ty = io.next("cell type", at);
     type_where[c] = at;
-    if (ty != kVtkTetra && ty != kVtkHexahedron && ty != kVtkWedge && ty != kVtkPyramid &&
-        ty != kVtkPolyhedron)
-      in.fail(at, fmt::format("unknown or unsupported cell type {}{} of cell {} (10 tetra, 12 hexahedron, 13 "
-                              "wedge, 14 pyramid, 42 polyhedron are read)",
-                              ty, io_vtk_detail::type_name(ty), c));
+    if (vtk_cell_dimension(ty) < 0)
+      in.fail(at, fmt::format(
+                      "unknown or unsupported cell type {}{} of cell {} (10 tetra, 11 voxel, 12 hexahedron, "
+                      "13 wedge, 14 pyramid, 42 polyhedron are read; vertex, line, triangle, quad and "
+                      "polygon cells beside them are skipped)",
+                      ty, vtk_cell_name(ty)[0] ? fmt::format(" ({})", vtk_cell_name(ty)) : "", c));
     types[c] = int(ty);
   }
   io.end_array();
 
   PolyhedronSoupBuilder builder(std::move(r.soup.positions));
-  std::vector<int> poly;
   for (long long c = 0; c < nc; ++c) {
     const long ln = cell_where[c];
     const std::span<const int> cell(ids.data() + offsets[c], size_t(offsets[c + 1] - offsets[c]));
-    const int type = types[c];
-    if (type == kVtkPolyhedron) {
-      if (cell.empty()) in.fail(ln, fmt::format("polyhedron cell {} is empty", c));
-      size_t p = 1;
-      for (int f = 0; f < cell[0]; ++f) {
-        if (p >= cell.size())
-          in.fail(ln, fmt::format("polyhedron cell {}: face {} lies beyond the cell's numbers", c, f));
-        const size_t k = size_t(cell[p]);
-        if (k > cell.size() - p - 1)
-          in.fail(ln, fmt::format("polyhedron cell {}: face {} lists {} points, beyond the cell's numbers", c,
-                                  f, k));
-        if (k < 3)
-          in.fail(ln, fmt::format("polyhedron cell {}: face {} has {} points (at least 3 needed)", c, f, k));
-        poly.assign(cell.begin() + p + 1, cell.begin() + p + 1 + k);
-        for (int v : poly)
-          if (v >= nv) in.fail(ln, fmt::format("point index {} out of range [0, {})", v, nv));
-        if (builder.add_polygon(poly) < 0)
-          in.fail(ln,
-                  fmt::format("polyhedron cell {}: face {} has the points of face {} in another cyclic order",
-                              c, f, builder.last_face()));
-        while (int(r.face_where.size()) < builder.n_faces()) r.face_where.push_back(ln);
-        p += 1 + k;
-      }
-      if (p != cell.size())
-        in.fail(ln, fmt::format("polyhedron cell {}: its {} faces use {} of its {} numbers", c, cell[0], p,
-                                cell.size()));
-      builder.end_cell();
-    } else {
-      const int n = vtk_cell_size(type);
-      if (int(cell.size()) != n)
-        in.fail(ln, fmt::format("cell {} of type {} needs {} points, it lists {}", c, type, n, cell.size()));
-      for (int v : cell)
-        if (v >= nv) in.fail(ln, fmt::format("point index {} out of range [0, {})", v, nv));
-      if (!builder.add_vtk_cell(type, cell))
-        in.fail(ln, fmt::format("cell {}: a face has the points of face {} in another cyclic order", c,
-                                builder.last_face()));
-      while (int(r.face_where.size()) < builder.n_faces()) r.face_where.push_back(ln);
+    const bool skip = vtk_cell_dimension(types[c]) < 3;
+    const std::string problem = skip ? vtk_lower_cell_problem(types[c], cell, nv, c)
+                                     : add_vtk_volume_cell(builder, types[c], cell, nv, c);
+    if (!problem.empty()) in.fail(ln, problem);
+    if (skip) {
+      ++r.skipped[vtk_cell_name(types[c])];
+      continue;
     }
+    while (int(r.face_where.size()) < builder.n_faces()) r.face_where.push_back(ln);
     r.cell_where.push_back(ln);
   }
+  if (r.cell_where.empty() && nc > 0)
+    in.fail(cells_where,
+            fmt::format("no volume cells: the file's {} cells are {}", nc, skipped_summary(r.skipped)));
   const CoordinatePrecision precision = r.soup.precision;
   r.soup = builder.take();
   r.soup.precision = precision;

@@ -14,6 +14,7 @@ namespace polydec {
 // VTK cell type numbers of the linear cells polydec reads and writes.
 enum VtkCellType : int {
   kVtkTetra = 10,
+  kVtkVoxel = 11,
   kVtkHexahedron = 12,
   kVtkWedge = 13,
   kVtkPyramid = 14,

@@ -68,7 +68,7 @@ __all__ = [
 # ----------------------------------------------------------------------------------------- meshes
 
 def read_mesh(path):
-    """Reads an OBJ, OFF, PLY or gmsh .msh file (by extension) -> Mesh, in the file's vertex order, keeping
+    """Reads an OBJ, OFF, PLY, gmsh .msh or VTK XML .vtu file (by extension) -> Mesh, in the file's vertex order, keeping
     what the file's digits resolve (so its matrices equal the command line's on the same file).
     `V, F = read_mesh(path)` unpacks positions and flat faces. Raises MeshFileNotFoundError (a
     FileError and a FileNotFoundError) for a missing file, FileError (OSError and ValueError)
@@ -85,11 +85,12 @@ def read_mesh(path):
 
 
 def write_mesh(path, V, F=None, scalars=None, binary=False):
-    """Writes a Mesh (or (V, F)) as OBJ, OFF or PLY (by extension), positions with 17 significant
-    digits.
+    """Writes a Mesh (or (V, F)) as OBJ, OFF, PLY or VTK XML .vtu (by extension), positions with 17
+    significant digits.
 
-    scalars: optional {name: (|V|,) array}, written as PLY vertex properties (PLY only).
-    binary: binary PLY (bit-exact) or OFF BINARY (float32, lossy). Raises FileError.
+    scalars: optional {name: (|V|,) array}, written as PLY vertex properties or .vtu point data
+    (OBJ and OFF hold none: FileError). binary: binary PLY or base64 .vtu (bit-exact) or OFF BINARY
+    (float32, lossy). Raises FileError.
 
     >>> import tempfile, os
     >>> path = os.path.join(tempfile.mkdtemp(), "t.ply")

@@ -256,7 +256,7 @@ def _mesh(mesh):
 
 
 def read_volume_mesh(path):
-    """Reads an OVM (OpenVolumeMesh ASCII), VTK legacy unstructured grid or MEDIT .mesh file (by
+    """Reads an OVM (OpenVolumeMesh ASCII), VTK legacy or XML (.vtu) unstructured grid or MEDIT .mesh file (by
     extension; others by their first word) -> VolumeMesh, in the file's vertex order. Raises
     MeshFileNotFoundError (a FileError and a FileNotFoundError) for a missing file, FileError
     (OSError and ValueError) naming the file and line for an unreadable or malformed file or an
@@ -272,9 +272,9 @@ def read_volume_mesh(path):
 
 
 def write_volume_mesh(path, mesh, scalars=None):
-    """Writes by extension (.ovm, .vtk, .mesh; MEDIT holds tetrahedra and hexahedra only),
+    """Writes by extension (.ovm, .vtk, .vtu, .mesh; MEDIT holds tetrahedra and hexahedra only),
     positions with 17 significant digits. scalars: optional {name: (|V|,) array}, written as VTK
-    POINT_DATA (.vtk only). Raises FileError.
+    point data (.vtk POINT_DATA or .vtu Float64 arrays only). Raises FileError.
 
     >>> import tempfile, os
     >>> path = os.path.join(tempfile.mkdtemp(), "grid.vtk")

@@ -188,8 +188,10 @@ TEST_CASE("VTK: hostile files name the line", "[volume]") {
   expect_file_error(replace(g, "CELLS 2 14", "CELLS 2000000000 2000000000"), "vtk", 8, "is too large");
   expect_file_error(replace(g, "6 1 3 2 5 7 6", "6 1 3 2 5 7 8"), "vtk", 10,
                     "point index 8 out of range [0, 8)");
-  expect_file_error(replace(g, "CELL_TYPES 2\n13\n13", "CELL_TYPES 2\n13\n5"), "vtk", 13,
-                    "unknown or unsupported cell type 5 (triangle) of cell 1");
+  expect_file_error(replace(g, "CELL_TYPES 2\n13\n13", "CELL_TYPES 2\n13\n5"), "vtk", 10,
+                    "cell 1 of type 5 (triangle) cannot have 6 points");
+  expect_file_error(replace(g, "CELL_TYPES 2\n13\n13", "CELL_TYPES 2\n13\n21"), "vtk", 13,
+                    "unknown or unsupported cell type 21 of cell 1");
   expect_file_error(replace(g, "CELL_TYPES 2\n13\n13", "CELL_TYPES 2\n13\n99"), "vtk", 13, "cell type 99");
   expect_file_error(replace(g, "CELL_TYPES 2\n", "CELL_TYPES 3\n"), "vtk", 11,
                     "CELL_TYPES lists 3 types for 2 cells");

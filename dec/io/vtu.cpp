@@ -1,0 +1,849 @@
+// dec/io/vtu.cpp — VTK XML unstructured grids (.vtu). The XML is parsed by expat up to an
+// <AppendedData> element (whose raw bytes are not XML); data arrays are ASCII, inline base64
+// ("binary") or appended (raw or base64) at their offset, each behind a UInt32 or UInt64 header
+// (byte_order LittleEndian or BigEndian), optionally zlib-compressed in vtkZLibDataCompressor's
+// blocks (header: block count, block size, last block size, compressed sizes), inflated by zlib.
+// Cells: connectivity, offsets, types, and for polyhedra (42) the faces / faceoffsets face
+// streams of VTK 9.1; volume cells (10, 11, 12, 13, 14, 42) with lower-dimensional cells skipped
+// and counted, or, with no volume cell, a surface of triangles 5, pixels 8, quads 9 and polygons 7.
+// The writer emits one piece, inline base64 or ASCII.
+#include "polydec/dec/io/vtu.h"
+
+#include <expat.h>
+#include <zlib.h>
+
+#include <array>
+#include <climits>
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <memory>
+
+#include "polydec/dec/detail/io_common.h"
+#include "polydec/dec/detail/volume_io_common.h"
+#include "polydec/dec/mesh/polyhedron_builder.h"
+
+namespace polydec {
+namespace io_vtu_detail {
+namespace {
+
+using namespace io_detail;
+
+// One XML element: name, attributes, character data (kept for DataArray only) and the line it
+// starts on.
+struct Node {
+  std::string name;
+  std::vector<std::pair<std::string, std::string>> attributes;
+  std::string text;
+  long line = 0;
+  std::vector<int> children;
+
+  const std::string* attribute(std::string_view key) const {
+    for (const auto& [k, v] : attributes)
+      if (k == key) return &v;
+    return nullptr;
+  }
+};
+
+// The parsed file: its elements (0 is the root) and where the appended data starts.
+struct Document {
+  std::vector<Node> nodes;
+  bool appended = false;
+  bool appended_base64 = false;
+  size_t appended_start = 0;  // the byte after the '_' marker
+};
+
+struct ParseState {
+  XML_Parser parser = nullptr;
+  Document* doc = nullptr;
+  std::vector<int> stack;
+  bool doctype = false;
+  bool appended_tag = false;
+  size_t appended_tag_end = 0;
+  std::string appended_encoding;
+};
+
+void XMLCALL on_start(void* data, const XML_Char* name, const XML_Char** attributes) {
+  auto& s = *static_cast<ParseState*>(data);
+  if (std::string_view(name) == "AppendedData") {
+    // Its content is raw bytes: stop here and read them by offset.
+    s.appended_tag = true;
+    s.appended_tag_end = size_t(XML_GetCurrentByteIndex(s.parser) + XML_GetCurrentByteCount(s.parser));
+    for (int i = 0; attributes[i]; i += 2)
+      if (std::string_view(attributes[i]) == "encoding") s.appended_encoding = attributes[i + 1];
+    XML_StopParser(s.parser, XML_FALSE);
+    return;
+  }
+  Node n;
+  n.name = name;
+  n.line = long(XML_GetCurrentLineNumber(s.parser));
+  for (int i = 0; attributes[i]; i += 2) n.attributes.emplace_back(attributes[i], attributes[i + 1]);
+  const int id = int(s.doc->nodes.size());
+  if (!s.stack.empty()) s.doc->nodes[size_t(s.stack.back())].children.push_back(id);
+  s.doc->nodes.push_back(std::move(n));
+  s.stack.push_back(id);
+}
+
+void XMLCALL on_end(void* data, const XML_Char*) {
+  auto& s = *static_cast<ParseState*>(data);
+  if (!s.stack.empty()) s.stack.pop_back();
+}
+
+void XMLCALL on_text(void* data, const XML_Char* text, int length) {
+  auto& s = *static_cast<ParseState*>(data);
+  if (s.stack.empty()) return;
+  Node& n = s.doc->nodes[size_t(s.stack.back())];
+  if (n.name == "DataArray") n.text.append(text, size_t(length));
+}
+
+void XMLCALL on_doctype(void* data, const XML_Char*, const XML_Char*, const XML_Char*, int) {
+  auto& s = *static_cast<ParseState*>(data);
+  s.doctype = true;
+  XML_StopParser(s.parser, XML_FALSE);
+}
+
+Document parse_xml(std::string_view bytes, const std::string& name) {
+  if (bytes.size() > size_t(INT_MAX)) throw FileError(name, 0, -1, "file larger than 2 GB: not read");
+  Document doc;
+  ParseState s;
+  s.doc = &doc;
+  std::unique_ptr<XML_ParserStruct, void (*)(XML_Parser)> parser(XML_ParserCreate(nullptr), XML_ParserFree);
+  if (!parser) throw std::bad_alloc();
+  s.parser = parser.get();
+  XML_SetUserData(s.parser, &s);
+  XML_SetElementHandler(s.parser, on_start, on_end);
+  XML_SetCharacterDataHandler(s.parser, on_text);
+  XML_SetStartDoctypeDeclHandler(s.parser, on_doctype);
+  const XML_Status status = XML_Parse(s.parser, bytes.data(), int(bytes.size()), XML_TRUE);
+  const long line = long(XML_GetCurrentLineNumber(s.parser));
+  if (s.doctype) throw FileError(name, line, -1, "a DOCTYPE declaration is not accepted in a VTK file");
+  if (status != XML_STATUS_OK && !s.appended_tag)
+    throw FileError(name, line, -1,
+                    fmt::format("not well-formed XML: {}", XML_ErrorString(XML_GetErrorCode(s.parser))));
+  if (doc.nodes.empty()) throw FileError(name, line, -1, "no XML element");
+  if (s.appended_tag) {
+    doc.appended = true;
+    const std::string e = lower(s.appended_encoding);
+    if (e != "raw" && e != "base64")
+      throw FileError(name, line, -1,
+                      fmt::format("AppendedData encoding {} is not supported (raw, base64)", quote(e)));
+    doc.appended_base64 = e == "base64";
+    size_t p = s.appended_tag_end;
+    while (p < bytes.size() && (is_space(bytes[p]) || bytes[p] == '\n')) ++p;
+    if (p >= bytes.size() || bytes[p] != '_')
+      throw FileError(name, line, -1, "AppendedData does not start with the '_' marker");
+    doc.appended_start = p + 1;
+  }
+  return doc;
+}
+
+// The file-wide encoding: header word size, byte order, compression.
+struct Encoding {
+  bool big_endian = false;
+  size_t header = 4;
+  bool zlib = false;
+};
+
+// The bytes of one binary array: raw (`base64` false) or base64 characters decoded on demand, group
+// by group, so that a header encoded apart from its data (padded) and one encoded with it both
+// read. Errors name `at`: the DataArray's line (line > 0) or the array's byte offset.
+class Bytes {
+ public:
+  Bytes(std::string_view source, bool base64, const std::string& name, long line, long byte)
+      : src_(source), base64_(base64), name_(name), line_(line), byte_(byte) {}
+
+  // An upper bound on the bytes left.
+  size_t capacity() const { return base64_ ? (src_.size() - pos_) / 4 * 3 + 3 : src_.size() - pos_; }
+
+  // Appends the next n bytes to out.
+  void read(size_t n, std::string& out, const char* what) {
+    if (n > capacity())
+      fail(fmt::format("truncated {}: {} bytes announced, at most {} follow", what, n, capacity()));
+    if (!base64_) {
+      out.append(src_.substr(pos_, n));
+      pos_ += n;
+      return;
+    }
+    while (n > 0) {
+      if (have_ == next_) decode_group(what);
+      const size_t k = std::min(n, have_ - next_);
+      out.append(group_.data() + next_, k);
+      next_ += k, n -= k;
+    }
+  }
+  template <class T>
+  T word(const Encoding& e, const char* what) {
+    std::string b;
+    read(sizeof(T), b, what);
+    return BinaryCursor(b, 0, e.big_endian, name_).read<T>(what);
+  }
+  // A header word (UInt32 or UInt64).
+  std::uint64_t header(const Encoding& e, const char* what) {
+    return e.header == 8 ? word<std::uint64_t>(e, what) : word<std::uint32_t>(e, what);
+  }
+
+  [[noreturn]] void fail(const std::string& reason) const {
+    throw FileError(name_, line_ > 0 ? line_ : 0, line_ > 0 ? -1 : byte_, reason);
+  }
+
+ private:
+  static int value(char c) {
+    if (c >= 'A' && c <= 'Z') return c - 'A';
+    if (c >= 'a' && c <= 'z') return c - 'a' + 26;
+    if (c >= '0' && c <= '9') return c - '0' + 52;
+    if (c == '+') return 62;
+    if (c == '/') return 63;
+    return -1;
+  }
+  void decode_group(const char* what) {
+    std::array<char, 4> q{};
+    for (int k = 0; k < 4;) {
+      if (pos_ >= src_.size()) fail(fmt::format("truncated base64 data in {}", what));
+      const char c = src_[pos_++];
+      if (is_space(c) || c == '\n') continue;
+      q[size_t(k++)] = c;
+    }
+    const int pad = q[3] != '=' ? 0 : q[2] != '=' ? 1 : 2;
+    std::uint32_t bits = 0;
+    for (int k = 0; k < 4; ++k) {
+      const int v = k >= 4 - pad ? 0 : value(q[size_t(k)]);
+      if (v < 0)
+        fail(fmt::format("invalid base64 character {} in {}", quote(std::string_view(&q[size_t(k)], 1)),
+                         what));
+      bits = (bits << 6) | std::uint32_t(v);
+    }
+    group_ = {char(bits >> 16), char((bits >> 8) & 0xff), char(bits & 0xff)};
+    next_ = 0, have_ = size_t(3 - pad);
+  }
+
+  std::string_view src_;
+  bool base64_;
+  const std::string& name_;
+  long line_, byte_;
+  size_t pos_ = 0;
+  std::array<char, 3> group_{};
+  size_t next_ = 0, have_ = 0;
+};
+
+// VTK data types: their width, and whether they are floating-point or signed.
+struct DataType {
+  int width = 0;
+  bool floating = false;
+  bool is_signed = false;
+};
+bool data_type(std::string_view t, DataType& d) {
+  static const std::array<std::pair<std::string_view, DataType>, 10> kTypes{{{"Int8", {1, false, true}},
+                                                                             {"UInt8", {1, false, false}},
+                                                                             {"Int16", {2, false, true}},
+                                                                             {"UInt16", {2, false, false}},
+                                                                             {"Int32", {4, false, true}},
+                                                                             {"UInt32", {4, false, false}},
+                                                                             {"Int64", {8, false, true}},
+                                                                             {"UInt64", {8, false, false}},
+                                                                             {"Float32", {4, true, true}},
+                                                                             {"Float64", {8, true, true}}}};
+  for (const auto& [n, type] : kTypes)
+    if (n == t) return d = type, true;
+  return false;
+}
+
+// One binary value of type t.
+double value(BinaryCursor& cur, const DataType& t, const char* what) {
+  if (t.floating) return t.width == 4 ? double(cur.read<float>(what)) : cur.read<double>(what);
+  switch (t.width) {
+    case 1:
+      return t.is_signed ? double(cur.read<std::int8_t>(what)) : double(cur.read<std::uint8_t>(what));
+    case 2:
+      return t.is_signed ? double(cur.read<std::int16_t>(what)) : double(cur.read<std::uint16_t>(what));
+    case 4:
+      return t.is_signed ? double(cur.read<std::int32_t>(what)) : double(cur.read<std::uint32_t>(what));
+    default:
+      return t.is_signed ? double(cur.read<std::int64_t>(what)) : double(cur.read<std::uint64_t>(what));
+  }
+}
+
+// Reads the data arrays of a parsed document.
+class Arrays {
+ public:
+  Arrays(std::string_view bytes, const Document& doc, const Encoding& e, const std::string& name)
+      : bytes_(bytes), doc_(doc), e_(e), name_(name) {}
+
+  [[noreturn]] void fail(const Node& n, const std::string& reason) const {
+    throw FileError(name_, n.line, -1, reason);
+  }
+
+  // The n values of DataArray `a` as doubles (`integers`: its type must be an integer type), with the
+  // digits of ASCII values counted in `digits` and `float32` set for a Float32 array.
+  std::vector<double> values(const Node& a, size_t n, const std::string& what, bool integers,
+                             DigitCounter* digits = nullptr, bool* float32 = nullptr) const {
+    const std::string* type = a.attribute("type");
+    DataType t;
+    if (!type || !data_type(*type, t))
+      fail(a, fmt::format("{} has the unsupported data type {} (Int8..UInt64, Float32, Float64)", what,
+                          quote(type ? *type : "(none)")));
+    if (integers && t.floating) fail(a, fmt::format("{} must have an integer type, not {}", what, *type));
+    if (float32) *float32 = t.floating && t.width == 4;
+    const std::string* format = a.attribute("format");
+    const std::string f = format ? *format : "ascii";
+    std::vector<double> out;
+    if (f == "ascii") {
+      if (n > a.text.size() / 2 + 1)
+        fail(a, fmt::format("{} needs {} values but holds only {} characters", what, n, a.text.size()));
+      out.reserve(n);
+      std::vector<std::string_view> tokens;
+      LineReader lines(a.text);
+      std::string_view line;
+      while (lines.next(line)) {
+        split(line, tokens);
+        for (std::string_view tok : tokens) {
+          double x = 0;
+          long long i = 0;
+          const bool ok = integers ? parse_int(tok, i) : parse_double(tok, x);
+          if (!ok) fail(a, fmt::format("bad value {} in {}", quote(tok), what));
+          if (out.size() == n) fail(a, fmt::format("{} holds more than the {} values expected", what, n));
+          if (integers) x = double(i);
+          if (digits) digits->see(tok, x);
+          out.push_back(x);
+        }
+      }
+      if (out.size() != n) fail(a, fmt::format("{} holds {} values, {} expected", what, out.size(), n));
+      return out;
+    }
+    std::string raw;
+    if (f == "binary") {
+      Bytes b(a.text, true, name_, a.line, -1);
+      payload(b, n * size_t(t.width), raw, what);
+    } else if (f == "appended") {
+      if (!doc_.appended) fail(a, fmt::format("{} is appended but the file has no AppendedData", what));
+      long long offset = 0;
+      const std::string* o = a.attribute("offset");
+      if (!o || !parse_int(*o, offset) || offset < 0 || size_t(offset) > bytes_.size() - doc_.appended_start)
+        fail(a, fmt::format("{} has a missing or out-of-range appended offset {}", what, quote(o ? *o : "")));
+      const size_t start = doc_.appended_start + size_t(offset);
+      Bytes b(bytes_.substr(start), doc_.appended_base64, name_, 0, long(start));
+      payload(b, n * size_t(t.width), raw, what);
+    } else {
+      fail(a, fmt::format("{} has the unsupported format {} (ascii, binary, appended)", what, quote(f)));
+    }
+    out.resize(n);
+    BinaryCursor cur(raw, 0, e_.big_endian, name_);
+    for (size_t k = 0; k < n; ++k) out[k] = value(cur, t, what.c_str());
+    return out;
+  }
+
+ private:
+  // The decoded bytes (exactly `expected` of them) of one binary array behind its header.
+  void payload(Bytes& b, size_t expected, std::string& raw, const std::string& what) const {
+    const char* w = what.c_str();
+    if (!e_.zlib) {
+      const std::uint64_t size = b.header(e_, w);
+      if (size != expected)
+        b.fail(fmt::format("{}: the header announces {} bytes, the array needs {}", what, size, expected));
+      b.read(size_t(size), raw, w);
+      return;
+    }
+    const std::uint64_t blocks = b.header(e_, w), block_size = b.header(e_, w), last = b.header(e_, w);
+    if (blocks > b.capacity() / e_.header)
+      b.fail(
+          fmt::format("{}: {} compressed blocks announced, the data cannot hold their sizes", what, blocks));
+    if (blocks > 0 && (block_size == 0 || last > block_size))
+      b.fail(
+          fmt::format("{}: block size {} and last block size {} are inconsistent", what, block_size, last));
+    if (blocks > 1 && block_size > expected / (blocks - 1))
+      b.fail(fmt::format("{}: {} blocks of {} bytes exceed the array's {} bytes", what, blocks, block_size,
+                         expected));
+    const std::uint64_t total = blocks == 0 ? 0 : (blocks - 1) * block_size + (last ? last : block_size);
+    if (total != expected)
+      b.fail(
+          fmt::format("{}: the compressed blocks hold {} bytes, the array needs {}", what, total, expected));
+    // Each block's size, checked before anything is allocated: the compressed bytes must be there,
+    // and zlib expands at most about 1032 to 1, so a larger block is not a zlib stream of that size.
+    std::vector<std::uint64_t> sizes(blocks);
+    std::uint64_t compressed = 0;
+    for (std::uint64_t k = 0; k < blocks; ++k) {
+      sizes[k] = b.header(e_, w);
+      const std::uint64_t want = k + 1 == blocks && last ? last : block_size;
+      compressed += std::min<std::uint64_t>(sizes[k], b.capacity() + 1);
+      if (compressed > b.capacity() || want > 1100 * sizes[k] + 64)
+        b.fail(fmt::format("{}: compressed block {} of {} bytes cannot hold {} bytes (or the data ends)",
+                           what, k, sizes[k], want));
+    }
+    raw.resize(expected);
+    std::string packed;
+    size_t at = 0;
+    for (std::uint64_t k = 0; k < blocks; ++k) {
+      const size_t want = k + 1 == blocks && last ? size_t(last) : size_t(block_size);
+      packed.clear();
+      b.read(size_t(sizes[k]), packed, w);
+      uLongf got = uLongf(want);
+      const int rc = uncompress(reinterpret_cast<Bytef*>(raw.data() + at), &got,
+                                reinterpret_cast<const Bytef*>(packed.data()), uLong(packed.size()));
+      if (rc != Z_OK || got != want)
+        b.fail(fmt::format("{}: compressed block {} is not a zlib stream of {} bytes ({})", what, k, want,
+                           rc == Z_OK ? fmt::format("{} bytes", got) : std::string(zError(rc))));
+      at += want;
+    }
+  }
+
+  std::string_view bytes_;
+  const Document& doc_;
+  Encoding e_;
+  const std::string& name_;
+};
+
+// The first child of n named `name` (for DataArray: with Name="array"), or null.
+const Node* child(const Document& doc, const Node& n, std::string_view name, std::string_view array = {}) {
+  for (int c : n.children) {
+    const Node& k = doc.nodes[size_t(c)];
+    const std::string* a = k.attribute("Name");
+    if (k.name == name && (array.empty() || (a && *a == array))) return &k;
+  }
+  return nullptr;
+}
+
+// A count attribute of n, in [0, INT_MAX / 2].
+long long count(const Node& n, const char* attribute, const std::string& name) {
+  const std::string* a = n.attribute(attribute);
+  long long x = 0;
+  if (!a || !parse_int(*a, x) || x < 0 || x > INT_MAX / 2)
+    throw FileError(name, n.line, -1,
+                    fmt::format("{} needs {} as a count in [0, {}], found {}", n.name, attribute, INT_MAX / 2,
+                                quote(a ? *a : "(none)")));
+  return x;
+}
+
+// The grid of a .vtu file: points, and cells as point ids with offsets (from 0), types, and the
+// face streams of polyhedra.
+struct Grid {
+  Eigen::MatrixX3d points;
+  CoordinatePrecision precision;
+  std::vector<int> connectivity, types, faces;
+  std::vector<long long> offsets{0};
+  std::vector<long long> face_begin, face_end;  // per cell its face stream (empty but for polyhedra)
+  long points_line = 0, cells_line = 0;
+};
+
+// Integer values in [lo, INT_MAX] of DataArray a.
+std::vector<int> integers(const Arrays& arrays, const Node& a, size_t n, const std::string& what,
+                          long long lo) {
+  const std::vector<double> v = arrays.values(a, n, what, true);
+  std::vector<int> out(n);
+  for (size_t k = 0; k < n; ++k) {
+    if (!(v[k] >= double(lo) && v[k] <= double(INT_MAX)))
+      arrays.fail(a, fmt::format("{} value {} (entry {}) out of range [{}, {}]", what, v[k], k, lo, INT_MAX));
+    out[k] = int(v[k]);
+  }
+  return out;
+}
+
+// The file's only Piece, after checking the root (VTKFile of type UnstructuredGrid) and reading its
+// encoding into e.
+const Node& only_piece(const Document& doc, Encoding& e, const std::string& name) {
+  const Node& root = doc.nodes[0];
+  auto fail = [&](const Node& n, const std::string& reason) { throw FileError(name, n.line, -1, reason); };
+  const std::string* type = root.attribute("type");
+  if (root.name != "VTKFile")
+    fail(root, fmt::format("expected the root element VTKFile, found {}", quote(root.name)));
+  if (!type || *type != "UnstructuredGrid")
+    fail(root, fmt::format("VTKFile type {} is not read (UnstructuredGrid)", quote(type ? *type : "(none)")));
+  const std::string* order = root.attribute("byte_order");
+  if (order && *order != "LittleEndian" && *order != "BigEndian")
+    fail(root, fmt::format("byte_order {} is neither LittleEndian nor BigEndian", quote(*order)));
+  e.big_endian = order && *order == "BigEndian";
+  const std::string* header = root.attribute("header_type");
+  if (header && *header != "UInt32" && *header != "UInt64")
+    fail(root, fmt::format("header_type {} is neither UInt32 nor UInt64", quote(*header)));
+  e.header = header && *header == "UInt64" ? 8 : 4;
+  const std::string* compressor = root.attribute("compressor");
+  if (compressor && !compressor->empty() && *compressor != "vtkZLibDataCompressor")
+    fail(root, fmt::format("compressor {} is not supported (vtkZLibDataCompressor)", quote(*compressor)));
+  e.zlib = compressor && !compressor->empty();
+  const Node* grid = child(doc, root, "UnstructuredGrid");
+  if (!grid) fail(root, "no UnstructuredGrid element");
+  int pieces = 0;
+  for (int c : grid->children) pieces += doc.nodes[size_t(c)].name == "Piece";
+  if (pieces != 1) fail(*grid, fmt::format("{} Piece elements (one is read)", pieces));
+  return *child(doc, *grid, "Piece");
+}
+
+Grid read_grid(std::string_view bytes, const std::string& name) {
+  const std::string_view text = strip_bom(bytes);
+  const Document doc = parse_xml(text, name);
+  auto fail = [&](const Node& n, const std::string& reason) { throw FileError(name, n.line, -1, reason); };
+  Encoding e;
+  const Node& piece = only_piece(doc, e, name);
+  const long long nv = count(piece, "NumberOfPoints", name), nc = count(piece, "NumberOfCells", name);
+  const Arrays arrays(text, doc, e, name);
+
+  Grid g;
+  const Node* points = child(doc, piece, "Points");
+  const Node* xyz = points ? child(doc, *points, "DataArray") : nullptr;
+  if (nv > 0 && !xyz) fail(piece, "no Points DataArray");
+  if (xyz) {
+    g.points_line = xyz->line;
+    const std::string* comps = xyz->attribute("NumberOfComponents");
+    if (!comps || *comps != "3") fail(*xyz, "the Points DataArray needs NumberOfComponents=\"3\"");
+    DigitCounter digits;
+    bool float32 = false;
+    const std::vector<double> x = arrays.values(*xyz, size_t(nv) * 3, "the points", false, &digits, &float32);
+    g.points.resize(nv, 3);  // after the values: their count is bounded by the file
+    for (long long k = 0; k < nv * 3; ++k) {
+      if (!std::isfinite(x[size_t(k)]))
+        fail(*xyz, fmt::format("point {} has a non-finite coordinate ({})", k / 3, x[size_t(k)]));
+      g.points(k / 3, k % 3) = x[size_t(k)];
+    }
+    g.precision = float32 ? float_precision(g.points) : digits.precision(g.points);
+  }
+
+  const Node* cells = child(doc, piece, "Cells");
+  if (nc == 0) return g;
+  if (!cells) fail(piece, "no Cells element");
+  g.cells_line = cells->line;
+  const Node* connectivity = child(doc, *cells, "DataArray", "connectivity");
+  const Node* offsets = child(doc, *cells, "DataArray", "offsets");
+  const Node* types = child(doc, *cells, "DataArray", "types");
+  if (!connectivity || !offsets || !types)
+    fail(*cells, "Cells needs the DataArrays connectivity, offsets and types");
+  const std::vector<int> ends = integers(arrays, *offsets, size_t(nc), "offsets", 0);
+  for (long long c = 0; c < nc; ++c) {
+    if (ends[size_t(c)] < g.offsets.back())
+      fail(*offsets, fmt::format("offset {} of cell {} is below the previous one", ends[size_t(c)], c));
+    g.offsets.push_back(ends[size_t(c)]);
+  }
+  g.connectivity = integers(arrays, *connectivity, size_t(g.offsets.back()), "connectivity", 0);
+  g.types = integers(arrays, *types, size_t(nc), "types", 0);
+  g.face_begin.assign(size_t(nc), 0);
+  g.face_end.assign(size_t(nc), 0);
+  if (std::find(g.types.begin(), g.types.end(), int(kVtkPolyhedron)) == g.types.end()) return g;
+  const Node* faces = child(doc, *cells, "DataArray", "faces");
+  const Node* faceoffsets = child(doc, *cells, "DataArray", "faceoffsets");
+  if (!faces || !faceoffsets) fail(*cells, "polyhedron cells need the DataArrays faces and faceoffsets");
+  const std::vector<int> face_ends = integers(arrays, *faceoffsets, size_t(nc), "faceoffsets", -1);
+  long long last = 0;
+  for (long long c = 0; c < nc; ++c) {
+    const int end = face_ends[size_t(c)];
+    if (end < 0) continue;
+    if (end < last)
+      fail(*faceoffsets, fmt::format("faceoffset {} of cell {} is below the previous one", end, c));
+    g.face_begin[size_t(c)] = last, g.face_end[size_t(c)] = end;
+    last = end;
+  }
+  g.faces = integers(arrays, *faces, size_t(last), "faces", 0);
+  return g;
+}
+
+// The ids of cell c: its point ids, or a polyhedron's face stream.
+std::span<const int> cell_ids(const Grid& g, size_t c) {
+  if (g.types[c] == kVtkPolyhedron)
+    return {g.faces.data() + g.face_begin[c], size_t(g.face_end[c] - g.face_begin[c])};
+  return {g.connectivity.data() + g.offsets[c], size_t(g.offsets[c + 1] - g.offsets[c])};
+}
+
+// Checks cell c's point ids (not a face stream) against the nv points.
+void check_ids(const Grid& g, size_t c, long nv, const std::string& name) {
+  for (long long k = g.offsets[c]; k < g.offsets[c + 1]; ++k)
+    if (g.connectivity[size_t(k)] >= nv)
+      throw FileError(
+          name, g.cells_line, -1,
+          fmt::format("cell {}: point index {} out of range [0, {})", c, g.connectivity[size_t(k)], nv));
+}
+
+// Cell c's type when it is one polydec knows, else a FileError.
+int known_type(const Grid& g, size_t c, const std::string& name) {
+  const int t = g.types[c];
+  if (vtk_cell_dimension(t) < 0)
+    throw FileError(
+        name, g.cells_line, -1,
+        fmt::format("unsupported cell type {} of cell {} (10 tetra, 11 voxel, 12 hexahedron, 13 "
+                    "wedge, 14 pyramid, 42 polyhedron; without them 5 triangle, 7 polygon, 8 pixel, "
+                    "9 quad; vertex, line and poly-line cells are skipped)",
+                    t, c));
+  return t;
+}
+
+// Base64 of bytes (with '=' padding).
+std::string base64(std::string_view bytes) {
+  static const char* kDigits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((bytes.size() + 2) / 3 * 4);
+  for (size_t i = 0; i < bytes.size(); i += 3) {
+    std::uint32_t bits = std::uint32_t(std::uint8_t(bytes[i])) << 16;
+    if (i + 1 < bytes.size()) bits |= std::uint32_t(std::uint8_t(bytes[i + 1])) << 8;
+    if (i + 2 < bytes.size()) bits |= std::uint8_t(bytes[i + 2]);
+    out += kDigits[(bits >> 18) & 63];
+    out += kDigits[(bits >> 12) & 63];
+    out += i + 1 < bytes.size() ? kDigits[(bits >> 6) & 63] : '=';
+    out += i + 2 < bytes.size() ? kDigits[bits & 63] : '=';
+  }
+  return out;
+}
+
+// A name as an XML attribute value.
+std::string escape(std::string_view s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '&')
+      out += "&amp;";
+    else if (c == '<')
+      out += "&lt;";
+    else if (c == '>')
+      out += "&gt;";
+    else if (c == '"')
+      out += "&quot;";
+    else if (c == '\n')
+      out += "&#10;";
+    else
+      out += c;
+  }
+  return out;
+}
+
+// Appends a DataArray of `values` of VTK type `type` (Float64, Int64 or UInt8) with `components`
+// per tuple: inline base64 of a UInt64 byte count and the little-endian values, or ASCII.
+template <class T>
+void data_array(std::string& out, std::string_view type, std::string_view array_name, int components,
+                const std::vector<T>& values, bool binary) {
+  out += fmt::format("        <DataArray type=\"{}\" Name=\"{}\"", type, escape(array_name));
+  if (components != 1) out += fmt::format(" NumberOfComponents=\"{}\"", components);
+  out += fmt::format(" format=\"{}\">\n          ", binary ? "binary" : "ascii");
+  if (binary) {
+    std::string raw;
+    raw.reserve(8 + values.size() * sizeof(T));
+    put_le(raw, std::uint64_t(values.size() * sizeof(T)));
+    for (T v : values) put_le(raw, v);
+    out += base64(raw);
+  } else {
+    fmt::memory_buffer b;
+    for (size_t k = 0; k < values.size(); ++k) {
+      if (k > 0) b.push_back(k % 12 ? ' ' : '\n');
+      if constexpr (std::is_floating_point_v<T>)
+        fmt::format_to(std::back_inserter(b), "{:.17g}", values[k]);
+      else
+        fmt::format_to(std::back_inserter(b), "{}", (long long)values[k]);
+    }
+    out.append(b.data(), b.size());
+  }
+  out += "\n        </DataArray>\n";
+}
+
+// A mesh's cells as the .vtu arrays (faces and faceoffsets empty without polyhedra).
+struct Cells {
+  std::vector<std::int64_t> connectivity, offsets, faces, faceoffsets;
+  std::vector<std::uint8_t> types;
+};
+
+// std::invalid_argument for a field without a name or with a row count other than `expected`.
+void check_field(std::string_view kind, const std::string& field, long size, long expected) {
+  if (field.empty()) throw std::invalid_argument(fmt::format("{} field with an empty name", kind));
+  if (size != expected)
+    throw std::invalid_argument(
+        fmt::format("{} field '{}' has {} rows for {} elements", kind, field, size, expected));
+}
+
+// The .vtu text of points X, the cells and the fields.
+std::string vtu_text(const Eigen::MatrixX3d& X, const Cells& cells, const VtuFields& fields, bool binary) {
+  const long nv = long(X.rows()), nc = long(cells.types.size());
+  for (const auto& [n, v] : fields.point_scalars) check_field("point", n, long(v.size()), nv);
+  for (const auto& [n, v] : fields.point_vectors) check_field("point", n, long(v.rows()), nv);
+  for (const auto& [n, v] : fields.cell_scalars) check_field("cell", n, long(v.size()), nc);
+  std::string out = fmt::format(
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" "
+      "byte_order=\"LittleEndian\" "
+      "header_type=\"UInt64\">\n  <UnstructuredGrid>\n    <Piece NumberOfPoints=\"{}\" "
+      "NumberOfCells=\"{}\">\n",
+      nv, nc);
+  auto column = [](const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); };
+  auto rows = [](const Eigen::MatrixX3d& m) {
+    std::vector<double> v;
+    v.reserve(size_t(m.rows()) * 3);
+    for (Eigen::Index i = 0; i < m.rows(); ++i)
+      for (int d = 0; d < 3; ++d) v.push_back(m(i, d));
+    return v;
+  };
+  out += "      <PointData>\n";
+  for (const auto& [n, v] : fields.point_scalars) data_array(out, "Float64", n, 1, column(v), binary);
+  for (const auto& [n, v] : fields.point_vectors) data_array(out, "Float64", n, 3, rows(v), binary);
+  out += "      </PointData>\n      <CellData>\n";
+  for (const auto& [n, v] : fields.cell_scalars) data_array(out, "Float64", n, 1, column(v), binary);
+  out += "      </CellData>\n      <Points>\n";
+  data_array(out, "Float64", "Points", 3, rows(X), binary);
+  out += "      </Points>\n      <Cells>\n";
+  data_array(out, "Int64", "connectivity", 1, cells.connectivity, binary);
+  data_array(out, "Int64", "offsets", 1, cells.offsets, binary);
+  data_array(out, "UInt8", "types", 1, cells.types, binary);
+  if (!cells.faces.empty()) {
+    data_array(out, "Int64", "faces", 1, cells.faces, binary);
+    data_array(out, "Int64", "faceoffsets", 1, cells.faceoffsets, binary);
+  }
+  out += "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
+  return out;
+}
+
+void write_file(const std::string& path, const std::string& data) {
+  std::ofstream out(path, std::ios::binary);
+  if (!out) throw FileError(path, 0, -1, "cannot open file for writing");
+  out.write(data.data(), std::streamsize(data.size()));
+  out.close();
+  if (!out) throw FileError(path, 0, -1, "write failed");
+}
+
+}  // namespace
+}  // namespace io_vtu_detail
+
+namespace io_detail {
+
+PolyhedronRead read_vtu(std::string_view bytes, const std::string& name) {
+  using namespace io_vtu_detail;
+  Grid g = read_grid(bytes, name);
+  PolyhedronRead r;
+  const long nv = long(g.points.rows());
+  r.vertex_where.assign(size_t(nv), g.points_line);
+  PolyhedronSoupBuilder builder(std::move(g.points));
+  for (size_t c = 0; c < g.types.size(); ++c) {
+    const int type = known_type(g, c, name);
+    check_ids(g, c, nv, name);
+    const bool skip = vtk_cell_dimension(type) < 3;
+    const std::string problem = skip ? vtk_lower_cell_problem(type, cell_ids(g, c), nv, (long long)c)
+                                     : add_vtk_volume_cell(builder, type, cell_ids(g, c), nv, (long long)c);
+    if (!problem.empty()) throw FileError(name, g.cells_line, -1, problem);
+    if (skip) {
+      ++r.skipped[vtk_cell_name(type)];
+      continue;
+    }
+    r.face_where.resize(size_t(builder.n_faces()), g.cells_line);
+    r.cell_where.push_back(g.cells_line);
+  }
+  if (r.cell_where.empty())
+    throw FileError(
+        name, g.cells_line, -1,
+        fmt::format("no volume cells (the file's cells: {}); a surface .vtu is read as a surface mesh",
+                    skipped_summary(r.skipped)));
+  r.soup = builder.take();
+  r.soup.precision = g.precision;
+  return r;
+}
+
+SoupRead read_vtu_surface(std::string_view bytes, const std::string& name) {
+  using namespace io_vtu_detail;
+  Grid g = read_grid(bytes, name);
+  SoupRead r;
+  r.soup.positions = std::move(g.points);
+  r.soup.precision = g.precision;
+  r.vertex_where.assign(size_t(r.soup.n_vertices()), g.points_line);
+  std::array<int, 4> pixel{};
+  for (size_t c = 0; c < g.types.size(); ++c) {
+    const int type = known_type(g, c, name);
+    const std::span<const int> ids = cell_ids(g, c);
+    if (vtk_cell_dimension(type) == 3)
+      throw FileError(name, g.cells_line, -1,
+                      fmt::format("cell {} is a {}: the file holds a volume mesh (read it as one)", c,
+                                  vtk_cell_name(type)));
+    const std::string problem = vtk_lower_cell_problem(type, ids, r.soup.n_vertices(), (long long)c);
+    if (!problem.empty()) throw FileError(name, g.cells_line, -1, problem);
+    if (vtk_cell_dimension(type) < 2) continue;
+    if (type == 6)
+      throw FileError(name, g.cells_line, -1, fmt::format("cell {} is a triangle strip (not read)", c));
+    if (type == 8) {  // a pixel's points run x fastest, then y: 0 1 3 2 around
+      pixel = {ids[0], ids[1], ids[3], ids[2]};
+      r.soup.add_face(pixel);
+    } else {
+      r.soup.add_face(ids);
+    }
+    r.face_where.push_back(g.cells_line);
+  }
+  if (r.soup.n_faces() == 0 && !g.types.empty())
+    throw FileError(name, g.cells_line, -1, "no polygon cells (only vertex and line cells)");
+  return r;
+}
+
+}  // namespace io_detail
+
+using namespace io_vtu_detail;
+
+std::string write_vtu_to_string(const VolumeMesh& mesh, const VtuFields& fields, bool binary) {
+  std::vector<int> entries, types;
+  io_detail::vtk_cells(mesh, "(vtu)", entries, types);
+  Cells cells;
+  std::vector<std::int64_t> seen;
+  for (size_t c = 0, k = 0; c < types.size(); ++c) {
+    const size_t n = size_t(entries[k]);
+    const std::span<const int> ids(entries.data() + k + 1, n);
+    k += n + 1;
+    cells.types.push_back(std::uint8_t(types[c]));
+    if (types[c] != kVtkPolyhedron) {
+      cells.connectivity.insert(cells.connectivity.end(), ids.begin(), ids.end());
+      cells.faceoffsets.push_back(-1);
+    } else {
+      // The face stream, and the cell's points once each in their order of appearance.
+      cells.faces.insert(cells.faces.end(), ids.begin(), ids.end());
+      cells.faceoffsets.push_back(std::int64_t(cells.faces.size()));
+      seen.clear();
+      for (size_t p = 1; p < n; p += size_t(ids[p]) + 1)
+        for (int i = 1; i <= ids[p]; ++i)
+          if (std::find(seen.begin(), seen.end(), ids[p + size_t(i)]) == seen.end())
+            seen.push_back(ids[p + size_t(i)]);
+      cells.connectivity.insert(cells.connectivity.end(), seen.begin(), seen.end());
+    }
+    cells.offsets.push_back(std::int64_t(cells.connectivity.size()));
+  }
+  if (cells.faces.empty()) cells.faceoffsets.clear();
+  return vtu_text(mesh.positions(), cells, fields, binary);
+}
+
+std::string write_vtu_to_string(const Mesh& mesh, const VtuFields& fields, bool binary) {
+  Cells cells;
+  for (int f = 0; f < mesh.n_faces(); ++f) {
+    const auto face = mesh.face(f);
+    cells.connectivity.insert(cells.connectivity.end(), face.begin(), face.end());
+    cells.offsets.push_back(std::int64_t(cells.connectivity.size()));
+    cells.types.push_back(face.size() == 3 ? 5 : face.size() == 4 ? 9 : 7);
+  }
+  return vtu_text(mesh.positions(), cells, fields, binary);
+}
+
+void write_vtu(const std::string& path, const VolumeMesh& mesh, const VtuFields& fields, bool binary) {
+  write_file(path, write_vtu_to_string(mesh, fields, binary));
+}
+
+void write_vtu(const std::string& path, const Mesh& mesh, const VtuFields& fields, bool binary) {
+  write_file(path, write_vtu_to_string(mesh, fields, binary));
+}
+
+VtuFields read_vtu_fields_from_memory(std::string_view bytes, const std::string& name) {
+  const std::string_view text = strip_bom(bytes);
+  const Document doc = parse_xml(text, name);
+  Encoding e;
+  const Node& piece = only_piece(doc, e, name);
+  const Arrays arrays(text, doc, e, name);
+  VtuFields fields;
+  for (const char* section : {"PointData", "CellData"}) {
+    const bool point = section[0] == 'P';
+    const long long n = count(piece, point ? "NumberOfPoints" : "NumberOfCells", name);
+    const Node* data = child(doc, piece, section);
+    if (!data) continue;
+    for (int c : data->children) {
+      const Node& a = doc.nodes[size_t(c)];
+      const std::string* array_name = a.attribute("Name");
+      const std::string* comps = a.attribute("NumberOfComponents");
+      const int k = !comps ? 1 : *comps == "1" ? 1 : *comps == "3" ? 3 : 0;
+      if (a.name != "DataArray" || !array_name || k == 0) continue;
+      const std::vector<double> v =
+          arrays.values(a, size_t(n) * size_t(k), "array " + quote(*array_name), false);
+      if (k == 3) {
+        Eigen::MatrixX3d m(n, 3);
+        for (long long i = 0; i < n * 3; ++i) m(i / 3, i % 3) = v[size_t(i)];
+        if (point) fields.point_vectors[*array_name] = m;
+      } else {
+        const Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(v.data(), Eigen::Index(n));
+        (point ? fields.point_scalars : fields.cell_scalars)[*array_name] = x;
+      }
+    }
+  }
+  return fields;
+}
+
+VtuFields read_vtu_fields(const std::string& path) {
+  return read_vtu_fields_from_memory(io_detail::slurp(path), path);
+}
+
+}  // namespace polydec

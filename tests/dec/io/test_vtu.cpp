@@ -1,0 +1,357 @@
+// tests/dec/io/test_vtu.cpp — VTK XML unstructured grids: the fixtures of tests/data/vtu (written by
+// VTK 9.1 and meshio in every encoding: ASCII, inline base64 with UInt32 and UInt64 headers,
+// appended raw and base64, zlib blocks, big-endian, Float32 points, Int32 and Int64 ids) read to the
+// same mesh with exact counts, the analytic volume and their point and cell data; bit-exact write ->
+// read round trips of volumes (polyhedra included) and surfaces with fields; hostile variants
+// refused with FileError; the legacy VTK reader's boundary cells, voxels, byte order and point type.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+#include "polydec/dec/detail/io_common.h"
+#include "polydec/dec/io/mesh_io.h"
+#include "polydec/dec/io/volume_io.h"
+#include "polydec/dec/io/vtu.h"
+#include "polydec/dec/mesh/generators.h"
+#include "polydec/dec/mesh/volume_cells.h"
+#include "polydec/dec/mesh/volume_generators.h"
+#include "tests/support/support.h"
+
+using namespace polydec;
+
+namespace test_vtu {
+namespace {
+
+std::string fixture(const std::string& name) { return std::string(POLYDEC_TEST_DATA) + "/vtu/" + name; }
+
+const std::vector<std::string> kVtkVolumes = {"vtk_ascii.vtu",
+                                              "vtk_binary_u32_int32.vtu",
+                                              "vtk_binary_u64.vtu",
+                                              "vtk_appended_raw.vtu",
+                                              "vtk_appended_base64.vtu",
+                                              "vtk_zlib_appended_raw.vtu",
+                                              "vtk_zlib_binary_u64.vtu",
+                                              "vtk_bigendian_binary.vtu",
+                                              "vtk_bigendian_zlib_appended.vtu",
+                                              "vtk_float32_appended_base64.vtu"};
+const std::vector<std::string> kMeshioVolumes = {"meshio_ascii.vtu", "meshio_binary.vtu", "meshio_zlib.vtu"};
+
+std::string replace(std::string s, const std::string& from, const std::string& to) {
+  const auto p = s.find(from);
+  REQUIRE(p != std::string::npos);
+  return s.replace(p, from.size(), to);
+}
+
+void expect_error(const std::string& bytes, const std::string& reason) {
+  try {
+    read_volume_mesh_from_memory(bytes, "vtu", "bad.vtu");
+    FAIL("accepted a bad file (" << reason << ")");
+  } catch (const FileError& e) {
+    INFO(e.what());
+    CHECK(e.file == "bad.vtu");
+    CHECK(e.reason.find(reason) != std::string::npos);
+  }
+}
+
+// The area of a planar surface: per face half the norm of its fan's summed cross products.
+double area(const Mesh& m) {
+  double a = 0;
+  for (int f = 0; f < m.n_faces(); ++f) {
+    const auto v = m.face(f);
+    Eigen::Vector3d n = Eigen::Vector3d::Zero();
+    for (size_t i = 1; i + 1 < v.size(); ++i)
+      n += (m.position(v[i]) - m.position(v[0])).cross(m.position(v[i + 1]) - m.position(v[0]));
+    a += 0.5 * n.norm();
+  }
+  return a;
+}
+
+// Same positions (bit-exact), faces and cells in the same order.
+void check_same(const VolumeMesh& a, const VolumeMesh& b) {
+  CHECK(a.positions() == b.positions());
+  REQUIRE(a.n_cells() == b.n_cells());
+  REQUIRE(a.n_faces() == b.n_faces());
+  int differ = 0;
+  for (int f = 0; f < a.n_faces(); ++f) {
+    const auto fa = a.face(f), fb = b.face(f);
+    differ += !std::equal(fa.begin(), fa.end(), fb.begin(), fb.end());
+  }
+  CHECK(differ == 0);
+  CHECK(b.volume() == a.volume());
+}
+
+}  // namespace
+
+TEST_CASE("VTU: VTK 9.1's files in every encoding read the same mesh, volume and data", "[vtu][io]") {
+  const VolumeMesh reference = read_volume_mesh(fixture("vtk_ascii.vtu"));
+  for (const std::string& name : kVtkVolumes) {
+    INFO(name);
+    VolumeReadNotes notes;
+    const VolumeMesh m = read_volume_mesh(fixture(name), &notes);
+    CHECK(m.n_vertices() == 33);
+    CHECK(m.n_cells() == 17);  // hexahedron, voxel, 2 wedges, polyhedron, 6 pyramids, 6 tetrahedra
+    CHECK(std::abs(m.volume() - 0.75) <= 1e-15);
+    std::map<std::string, int> shapes;
+    for (int c = 0; c < m.n_cells(); ++c) ++shapes[cell_shape_name(cell_shape(m, c))];
+    CHECK(shapes == std::map<std::string, int>{
+                        {"hexahedron", 2}, {"wedge", 2}, {"other", 1}, {"pyramid", 6}, {"tetrahedron", 6}});
+    CHECK(notes.skipped_cells ==
+          std::map<std::string, long>{
+              {"vertex", 1}, {"line", 1}, {"triangle", 2}, {"quad", 1}, {"polygon", 1}});
+    check_same(reference, m);
+    // The point data: f = x + 2y + 3z, v = (z, -y, x); the cell data: the cell's number.
+    const VtuFields fields = read_vtu_fields(fixture(name));
+    REQUIRE(fields.point_scalars.count("f"));
+    REQUIRE(fields.point_vectors.count("v"));
+    REQUIRE(fields.cell_scalars.count("cell_id"));
+    const Eigen::MatrixX3d& X = m.positions();
+    CHECK((fields.point_scalars.at("f") - (X.col(0) + 2 * X.col(1) + 3 * X.col(2))).cwiseAbs().maxCoeff() ==
+          0);
+    const Eigen::MatrixX3d& v = fields.point_vectors.at("v");
+    CHECK(v.col(0) == X.col(2));
+    CHECK(v.col(1) == -X.col(1));
+    CHECK(v.col(2) == X.col(0));
+    CHECK(fields.cell_scalars.at("cell_id") == Eigen::VectorXd::LinSpaced(23, 0, 22));
+  }
+}
+
+TEST_CASE("VTU: meshio's ASCII, binary and zlib files read the same mesh", "[vtu][io]") {
+  const VolumeMesh reference = read_volume_mesh(fixture("meshio_ascii.vtu"));
+  for (const std::string& name : kMeshioVolumes) {
+    INFO(name);
+    VolumeReadNotes notes;
+    const VolumeMesh m = read_volume_mesh(fixture(name), &notes);
+    CHECK(m.n_vertices() == 33);
+    CHECK(m.n_cells() == 15);  // no voxel, no polyhedron: 2 cubes of 0.125 fewer
+    CHECK(std::abs(m.volume() - 0.5) <= 1e-15);
+    CHECK(notes.skipped_cells ==
+          std::map<std::string, long>{{"vertex", 1}, {"line", 1}, {"triangle", 2}, {"quad", 1}});
+    CHECK(m.positions() == reference.positions());
+    CHECK(m.n_faces() == reference.n_faces());
+    const VtuFields fields = read_vtu_fields(fixture(name));
+    REQUIRE(fields.point_vectors.count("v"));
+    CHECK(fields.point_vectors.at("v").col(0) == m.positions().col(2));
+  }
+}
+
+TEST_CASE("VTU: surfaces (triangles, quads, polygons) when the file has no volume cells", "[vtu][io]") {
+  for (const char* name : {"vtk_surface_ascii.vtu", "vtk_surface_zlib_binary.vtu"}) {
+    INFO(name);
+    const Mesh m = read_mesh(fixture(name));
+    CHECK(m.n_vertices() == 8);
+    REQUIRE(m.n_faces() == 4);  // the line cell is skipped
+    CHECK(m.face_size(0) == 4);
+    CHECK(m.face_size(1) == 3);
+    CHECK(m.face_size(3) == 5);
+    CHECK(std::abs(area(m) - 1.0) <= 1e-15);  // the square [0, 1]^2, tiled
+    // A surface is not a volume: the volume reader says so.
+    try {
+      read_volume_mesh(fixture(name));
+      FAIL("a surface read as a volume");
+    } catch (const FileError& e) {
+      CHECK(e.reason.find("no volume cells") != std::string::npos);
+      CHECK(e.reason.find("read as a surface mesh") != std::string::npos);
+    }
+  }
+  const PolygonSoup s = read_polygon_soup(fixture("meshio_surface_zlib.vtu"));
+  CHECK(s.n_vertices() == 8);
+  CHECK(s.n_faces() == 3);
+  // And a volume file is not a surface.
+  CHECK_THROWS_WITH(read_mesh(fixture("vtk_ascii.vtu")), Catch::Contains("holds a volume mesh"));
+}
+
+TEST_CASE("VTU: written volumes and surfaces read back bit-exactly with their fields", "[vtu][io]") {
+  const VolumeMesh hex = hex_grid_volume(3, 2, 2, {0.2, 4});
+  const VolumeMesh tro = truncated_octahedra_volume(2);  // polyhedra: type 42
+  const VolumeMesh pyr = pyramid_grid_volume(2, 2, 2, {0.2, 6});
+  for (const VolumeMesh* m : {&hex, &tro, &pyr}) {
+    VtuFields fields;
+    fields.point_scalars["u"] = m->positions().col(0).array().sin().matrix() / 3.0;
+    fields.point_vectors["grad u"] = m->positions() * (1.0 / 7.0);
+    fields.cell_scalars["volume"] = Eigen::VectorXd::LinSpaced(m->n_cells(), 0.1, 1.0 / 3.0);
+    for (bool binary : {true, false}) {
+      INFO("binary " << binary);
+      const std::string bytes = write_vtu_to_string(*m, fields, binary);
+      check_same(*m, read_volume_mesh_from_memory(bytes, "vtu", "mem.vtu"));
+      const VtuFields back = read_vtu_fields_from_memory(bytes, "mem.vtu");
+      CHECK(back.point_scalars.at("u") == fields.point_scalars.at("u"));
+      CHECK(back.point_vectors.at("grad u") == fields.point_vectors.at("grad u"));
+      CHECK(back.cell_scalars.at("volume") == fields.cell_scalars.at("volume"));
+    }
+  }
+  // The truncated octahedra are written as polyhedra, the hexahedra as hexahedra.
+  CHECK(write_vtu_to_string(tro, {}, false).find("faceoffsets") != std::string::npos);
+  CHECK(write_vtu_to_string(hex, {}, false).find("faceoffsets") == std::string::npos);
+
+  const Mesh quads = quad_grid(3, 2);
+  test::ScratchDir dir("vtu");
+  const Eigen::VectorXd u = quads.positions().col(0) * 0.3;
+  write_mesh(dir.path("s.vtu"), quads, {{"u", u}});
+  const Mesh back = read_mesh(dir.path("s.vtu"));
+  CHECK(back.positions() == quads.positions());
+  CHECK(back.n_faces() == quads.n_faces());
+  CHECK(read_vtu_fields(dir.path("s.vtu")).point_scalars.at("u") == u);
+  VtuFields vectors;
+  vectors.point_vectors["n"] = quads.positions().rowwise().reverse();
+  write_vtu(dir.path("v.vtu"), quads, vectors);
+  CHECK(read_vtu_fields(dir.path("v.vtu")).point_vectors.at("n") == vectors.point_vectors.at("n"));
+  // Names are escaped; sizes are checked.
+  vectors.point_vectors["a<b & \"c\""] = vectors.point_vectors["n"];
+  CHECK(read_vtu_fields_from_memory(write_vtu_to_string(quads, vectors), "m")
+            .point_vectors.count("a<b & \"c\"") == 1);
+  VtuFields wrong;
+  wrong.point_scalars["w"] = Eigen::VectorXd::Zero(3);
+  CHECK_THROWS_AS(write_vtu_to_string(quads, wrong), std::invalid_argument);
+}
+
+TEST_CASE("OBJ and OFF refuse vertex scalars instead of dropping them", "[vtu][io]") {
+  const Mesh m = quad_grid(2, 2);
+  test::ScratchDir dir("vtu_scalars");
+  const VertexScalars s{{"u", Eigen::VectorXd::Zero(m.n_vertices())}};
+  for (const char* ext : {"obj", "off"}) {
+    const std::string path = dir.path(std::string("m.") + ext);
+    CHECK_THROWS_WITH(write_mesh(path, m, s),
+                      Catch::Contains("cannot hold the vertex scalars") && Catch::Contains(".ply or .vtu"));
+    CHECK_FALSE(std::filesystem::exists(path));
+    CHECK_NOTHROW(write_mesh(path, m));
+  }
+}
+
+TEST_CASE("VTU: hostile files are refused with FileError", "[vtu][io]") {
+  const std::string raw = io_detail::slurp(fixture("vtk_appended_raw.vtu"));
+  const std::string b64 = io_detail::slurp(fixture("vtk_binary_u64.vtu"));
+  const std::string zlib = io_detail::slurp(fixture("vtk_zlib_appended_raw.vtu"));
+  const std::string ascii = io_detail::slurp(fixture("vtk_ascii.vtu"));
+  // Truncated anywhere after the XML: appended data that ends early.
+  for (size_t keep : {raw.rfind("</AppendedData>") - 6, raw.size() - 100})
+    expect_error(raw.substr(0, keep), "truncated");
+  expect_error(raw.substr(0, raw.find("_", raw.find("<AppendedData")) + 3), "out-of-range appended offset");
+  expect_error(raw.substr(0, raw.find("<AppendedData")), "not well-formed XML");
+  // Inline base64: cut short, or a character that is not base64.
+  const size_t points = b64.find("Name=\"Points\"");
+  const size_t data = b64.find('>', points) + 20;
+  {
+    std::string bad = b64;
+    bad[data] = '*';
+    expect_error(bad, "invalid base64 character");
+  }
+  {
+    std::string cut = b64;
+    const size_t end = cut.find("</DataArray>", data);
+    cut.erase(data, end - data - 20);
+    expect_error(cut, "");
+  }
+  // zlib: a corrupted stream, a block size that cannot be inflated from its bytes.
+  {
+    // The points' 792 bytes in 13 blocks: a header of 16 UInt32, then the compressed blocks.
+    std::string bad = zlib;
+    const size_t offset = bad.find("offset=\"", bad.find("Name=\"Points\"")) + 8;
+    const size_t at = bad.find('_', bad.find("<AppendedData")) + 1 + std::stoul(bad.substr(offset, 12));
+    for (size_t k = 70; k < 80; ++k) bad[at + k] = char(bad[at + k] ^ 0x5a);
+    expect_error(bad, "compressed block");
+    // Point data is skipped unread: a corrupted scalar field does not stop the mesh.
+    std::string field = zlib;
+    const size_t f = field.find('_', field.find("<AppendedData")) + 1;
+    for (size_t k = 70; k < 80; ++k) field[f + k] = char(field[f + k] ^ 0x5a);
+    CHECK(read_volume_mesh_from_memory(field, "vtu", "f.vtu").n_cells() == 17);
+    CHECK_THROWS_AS(read_vtu_fields_from_memory(field, "f.vtu"), FileError);
+  }
+  // Offsets out of range, sizes that disagree with the headers, counts beyond the file.
+  expect_error(replace(raw, "offset=\"1160\"", "offset=\"99999999\""), "out-of-range appended offset");
+  expect_error(replace(raw, "NumberOfPoints=\"33\"", "NumberOfPoints=\"34\""), "the header announces");
+  expect_error(replace(raw, "NumberOfPoints=\"33\"", "NumberOfPoints=\"1000000000\""), "");
+  expect_error(replace(zlib, "NumberOfPoints=\"33\"", "NumberOfPoints=\"1000000000\""), "");
+  expect_error(replace(ascii, "NumberOfPoints=\"33\"", "NumberOfPoints=\"32\""), "holds more than");
+  expect_error(replace(ascii, "NumberOfPoints=\"33\"", "NumberOfPoints=\"-1\""), "NumberOfPoints as a count");
+  expect_error(replace(ascii, "NumberOfCells=\"23\"", "NumberOfCells=\"24\""), "");
+  expect_error(replace(ascii, "type=\"UnstructuredGrid\"", "type=\"PolyData\""), "'PolyData' is not read");
+  expect_error(replace(ascii, "byte_order=\"LittleEndian\"", "byte_order=\"Middle\""), "byte_order");
+  expect_error(
+      replace(raw, "header_type=\"UInt32\"", "header_type=\"UInt64\" compressor=\"vtkLZ4DataCompressor\""),
+      "compressor 'vtkLZ4DataCompressor' is not supported");
+  expect_error(replace(ascii, "<VTKFile", "<!DOCTYPE x [<!ENTITY a \"aaaa\">]>\n<VTKFile"), "DOCTYPE");
+  // A connectivity entry beyond the points.
+  {
+    const size_t c = ascii.find("Name=\"connectivity\"");
+    const size_t v = ascii.find_first_of("0123456789", ascii.find('>', c));
+    std::string bad = ascii;
+    bad.replace(v, 1, "99");
+    expect_error(bad, "out of range");
+  }
+}
+
+TEST_CASE("VTU: dispatch by extension and by content; messages list every format", "[vtu][io]") {
+  test::ScratchDir dir("vtu_dispatch");
+  const std::string path = dir.path("grid.dat");
+  std::filesystem::copy_file(fixture("vtk_zlib_binary_u64.vtu"), path);
+  CHECK(read_volume_mesh(path).n_cells() == 17);
+  CHECK(is_volume_mesh_path("x.VTU"));
+  CHECK_THROWS_WITH(read_volume_mesh(dir.path("none.xyz")), Catch::Contains("cannot open"));
+  {
+    std::ofstream(dir.path("t.xyz")) << "hello\n";
+    CHECK_THROWS_WITH(read_volume_mesh(dir.path("t.xyz")), Catch::Contains("ovm, vtk, vtu, mesh"));
+    CHECK_THROWS_WITH(read_mesh(dir.path("t.xyz")), Catch::Contains("obj, off, ply, vtu"));
+  }
+  // write_volume_mesh and the point-data writer take .vtu.
+  const VolumeMesh m = hex_grid_volume(2, 2, 2);
+  write_volume_mesh(m, dir.path("m.vtu"));
+  check_same(m, read_volume_mesh(dir.path("m.vtu")));
+  const Eigen::VectorXd d = m.positions().col(2);
+  write_volume_vtk_with_point_data(m, dir.path("d.vtu"), {{"distance", d}});
+  CHECK(read_vtu_fields(dir.path("d.vtu")).point_scalars.at("distance") == d);
+}
+
+TEST_CASE("VTK legacy: boundary cells beside volume cells are skipped and counted; voxels read",
+          "[vtu][io]") {
+  // Two unit cubes along x: a hexahedron and a voxel; a vertex, a line, a triangle, a quad and a
+  // polygon on the boundary.
+  const std::string cells =
+      "POINTS 12 double\n0 0 0 1 0 0 2 0 0 0 1 0 1 1 0 2 1 0\n0 0 1 1 0 1 2 0 1 0 1 1 1 1 1 2 1 1\n"
+      "CELLS 7 37\n8 0 1 4 3 6 7 10 9\n8 1 2 4 5 7 8 10 11\n1 0\n2 0 1\n3 0 1 4\n4 0 3 4 1\n4 2 5 11 8\n"
+      "CELL_TYPES 7\n12\n11\n1\n3\n5\n9\n7\n";
+  const std::string file =
+      "# vtk DataFile Version 3.0\ngmsh-like\nASCII\nDATASET UNSTRUCTURED_GRID\n" + cells;
+  test::ScratchDir dir("vtk_legacy");
+  const std::string path = dir.path("m.vtk");
+  std::ofstream(path) << file;
+  VolumeReadNotes notes;
+  const VolumeMesh m = read_volume_mesh(path, &notes);
+  CHECK(m.n_cells() == 2);
+  CHECK(m.n_faces() == 11);  // the cubes share a face
+  CHECK(std::abs(m.volume() - 2.0) <= 1e-15);
+  CHECK(cell_shape(m, 1) == CellShape::hexahedron);
+  CHECK(notes.skipped_cells == std::map<std::string, long>{
+                                   {"vertex", 1}, {"line", 1}, {"triangle", 1}, {"quad", 1}, {"polygon", 1}});
+  // Only boundary cells: no volume, said so.
+  const std::string only =
+      "# vtk DataFile Version 3.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 3 float\n0 0 0 1 "
+      "0 0 0 1 0\nCELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n5\n";
+  CHECK_THROWS_WITH(read_volume_mesh_from_memory(only, "vtk", "t.vtk"),
+                    Catch::Contains("no volume cells") && Catch::Contains("1 triangle"));
+  // POINTS needs float or double.
+  CHECK_THROWS_WITH(
+      read_volume_mesh_from_memory(
+          "# vtk DataFile Version 3.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 27 bogus\n" + std::string(200, '0'), "vtk", "t"),
+      Catch::Contains("point data type 'bogus' is not supported"));
+}
+
+TEST_CASE("VTK legacy BINARY: little-endian data (the format is big-endian) is refused as such",
+          "[vtu][io]") {
+  const VolumeMesh m = hex_grid_volume(2, 2, 2, {0.2, 3});
+  WriteOptions binary;
+  binary.binary = true;
+  const std::string good = write_volume_mesh_to_string(m, "vtk", binary);
+  CHECK(read_volume_mesh_from_memory(good, "vtk", "good").positions() == m.positions());
+  // Swap every coordinate's bytes, as a little-endian writer would have written them.
+  std::string little = good;
+  const size_t at = good.find("double\n") + 7;
+  for (int k = 0; k < 3 * m.n_vertices(); ++k)
+    std::reverse(little.begin() + long(at) + 8 * k, little.begin() + long(at) + 8 * k + 8);
+  CHECK_THROWS_WITH(read_volume_mesh_from_memory(little, "vtk", "le"),
+                    Catch::Contains("little-endian") && Catch::Contains("big-endian"));
+}
+
+}  // namespace test_vtu
