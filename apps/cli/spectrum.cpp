@@ -2,7 +2,8 @@
 // -S x = lambda M x (manifold harmonics) with Spectra's shift-invert solver; with --form 1|2 those
 // of the Hodge Laplacian on Whitney 1- or 2-forms (apps/applications/form_spectrum.h). On a volume mesh
 // (.ovm, .vtk, .mesh or --volume): the volume operators (operators/registry/volume_laplacians.h), Neumann,
-// eigenvectors as VTK point data, the picture on a planar cut (apps/pictures/volume_cut.h).
+// eigenvectors as VTK point data, the picture on a planar cut (apps/pictures/volume_cut.h). With
+// --order 2 the quadratic operators (apps/applications/quadratic.h); the files hold the vertex dofs.
 #include "polydec/apps/applications/spectrum.h"
 
 #include <fmt/format.h>
@@ -11,6 +12,7 @@
 #include <fstream>
 
 #include "polydec/apps/applications/form_spectrum.h"
+#include "polydec/apps/applications/quadratic.h"
 #include "polydec/apps/cli/command.h"
 #include "polydec/apps/cli/engine.h"
 #include "polydec/apps/pictures/render.h"
@@ -28,7 +30,7 @@ namespace {
 struct Options {
   bool repair = false;  // --repair
   std::string mesh, out, png, mass = "lumped", laplacian = "ours";
-  int k = 10, png_index = 1, form = 0;
+  int k = 10, png_index = 1, form = 0, order = 1;
   std::string complex = "complete";  // --complex, for --form 1|2
   bool json = false, volume = false;
   EngineOptions engine;  // --engine, --solver, --petsc-options
@@ -114,6 +116,10 @@ void run_volume(const Options& o) {
 
 void run(const Options& o) {
   if (o.mass != "lumped" && o.mass != "unlumped") throw UsageError("--mass must be lumped or unlumped");
+  if (o.order != 1 && o.order != 2) throw UsageError("--order must be 1 or 2");
+  if (o.order == 2 && (o.volume || is_volume_mesh_path(o.mesh) || o.form != 0 || o.engine.engine != "serial" ||
+                       o.laplacian != "ours"))
+    throw UsageError("--order 2: function spectra of surface meshes on the serial engine (no --form, --laplacian)");
   if (o.volume || is_volume_mesh_path(o.mesh)) return run_volume(o);
   if (o.form != 0) {
     run_form(o);
@@ -135,7 +141,8 @@ void run(const Options& o) {
   }
   if (o.engine.engine != "serial") throw UsageError("--engine must be serial or petsc");
   const Mesh mesh = load_mesh(o.mesh, o.repair);
-  const OperatorSet ops = build_operators(mesh, parse_laplacian(o.laplacian), false);
+  const OperatorSet ops = o.order == 2 ? quadratic_operator_set(mesh)
+                                       : build_operators(mesh, parse_laplacian(o.laplacian), false);
   SpectrumOptions sopt;
   sopt.k = o.k;
   sopt.lumped_mass = o.mass == "lumped";
@@ -334,6 +341,9 @@ const RegisterCommand reg(
           "picture of one eigenfunction with isolines (.png); --form 1: the eigen 1-form as arrows, "
           "--form 2: its density; volumes: on the solid cut by the plane z = centre");
       app.add_option("--png-index", o->png_index, "which eigenfunction to draw (default 1)");
+      app.add_option("--order", o->order,
+                     "1 (default): the paper's operators; 2: quadratic elements on vertex and edge dofs (HRZ-lumped "
+                     "or Galerkin mass; files and picture at the vertex dofs)");
       app.add_option("--complex", o->complex,
                      "--form 1|2: the cells, complete (default; the paper's vertex pairs and triples) or mesh "
                      "(the mesh's edges and faces, dec/surface/mesh_complex.h)");

@@ -45,7 +45,7 @@ __all__ = [
     "hex_ball_volume", "volume_laplacian_names", "volume_operators", "volume_stiffness", "volume_mass",
     "volume_lumped_mass", "volume_laplacian", "volume_gradient", "volume_divergence", "volume_dec_max_degree",
     "volume_dec", "VolumeHeatGeodesics", "volume_spectrum", "ball_eigenvalues", "volume_poisson",
-    "volume_franke_poisson", "VolumeHodgeDecomposer",
+    "volume_franke_poisson", "VolumeHodgeDecomposer", "quadratic_operators",
 ]
 
 
@@ -493,6 +493,7 @@ def conformal_distortion(V, F, uv):
     return _polydec.conformal_distortion(*_convert.mesh(V, F), np.asarray(uv, dtype=np.float64))
 
 
+from ._quadratic import quadratic_operators  # noqa: E402
 from ._spectral import (  # noqa: E402
     biharmonic_distance, diffusion_distance, form_spectrum, heat_kernel_signature, hks_times, lowpass_filter,
     wave_kernel_signature)

@@ -78,5 +78,6 @@ void register_operators(py::module_& m);
 void register_solvers(py::module_& m);
 void register_spectral(py::module_& m);
 void register_volumes(py::module_& m);
+void register_quadratic(py::module_& m);
 
 }  // namespace polydec::python

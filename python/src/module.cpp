@@ -101,4 +101,5 @@ PYBIND11_MODULE(_polydec, m) {
   register_solvers(m);
   register_spectral(m);
   register_volumes(m);
+  register_quadratic(m);
 }
