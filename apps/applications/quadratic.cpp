@@ -98,8 +98,8 @@ std::vector<QuadraticConvergenceSeries> franke_convergence_quadratic(const std::
     std::vector<double> h, l2, h1;
     for (int n : resolutions) {
       if (n < 1) throw std::invalid_argument("convergence study: resolutions must be >= 1");
-      const Mesh mesh = family == "triangles" ? triangle_grid(n, n)
-                        : family == "quads"   ? quad_grid(n, n)
+      const Mesh mesh = family == "triangles"  ? triangle_grid(n, n)
+                        : family == "quads"    ? quad_grid(n, n)
                         : family == "hexagons" ? hex_grid(n, n)
                                                : chevron_grid(n, n);
       const QuadraticPoissonError e = franke_poisson_quadratic(mesh);

@@ -245,8 +245,8 @@ const RegisterCommand reg(
       app.add_option("--png", o->png, "picture of the error on the coarsest hexagon grid (.png)");
       app.add_flag("--json", o->json, "print one JSON object instead of text");
       app.add_option("--order", o->order,
-                                 "1 (default): the paper's operators; 2: quadratic elements, L2 and H1 errors, a "
-                                 "fourth family of non-convex polygons (Galerkin mass)");
+                     "1 (default): the paper's operators; 2: quadratic elements, L2 and H1 errors, a "
+                     "fourth family of non-convex polygons (Galerkin mass)");
       app.callback([o, res, mass] {
         if (o->order == 2 && (mass->count() > 0 || o->laplacian != "ours"))
           throw UsageError("--order 2 uses the quadratic operators with the Galerkin mass (no --mass, --laplacian)");

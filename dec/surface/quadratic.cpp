@@ -33,7 +33,8 @@ Eigen::Matrix<double, 6, 3> p2_basis_gradients(const Eigen::Vector3d& l, const E
   return G;
 }
 
-Matrix6d p2_triangle_stiffness(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2) {
+Matrix6d p2_triangle_stiffness(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
+                               const Eigen::Vector3d& p2) {
   const double area = 0.5 * (p1 - p0).cross(p2 - p0).norm();
   Matrix6d K = Matrix6d::Zero();
   // The integrand is quadratic: the rule of the three edge midpoints (weights area/3) is exact.
@@ -68,6 +69,8 @@ Eigen::MatrixXd quadratic_face_weights(const PolygonPositions& X, const Eigen::V
   // units of the corners' rms radius, so the Vandermonde matrix is O(1) whatever the scale.
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd(Y, Eigen::ComputeFullV);
   const double s = std::sqrt(Y.squaredNorm() / n);
+  // A polygon collapsed to a point: only constants can be reproduced; uniform weights.
+  if (!(s > 0)) return Eigen::MatrixXd::Constant(n + 1, 2 * n, 0.5 / n);
   const Eigen::Vector3d e1 = svd.matrixV().col(0) / s, e2 = svd.matrixV().col(1) / s;
   auto monomials = [&](const Eigen::RowVector3d& x) {
     const double u = (x - c).dot(e1.transpose()), v = (x - c).dot(e2.transpose());
@@ -94,7 +97,8 @@ Eigen::MatrixX3d quadratic_dof_positions(const Mesh& mesh) {
   Eigen::MatrixX3d D(nv + ne, 3);
   D.topRows(nv) = mesh.positions();
   for (int e = 0; e < ne; ++e)
-    D.row(nv + e) = 0.5 * (mesh.positions().row(mesh.edges()(e, 0)) + mesh.positions().row(mesh.edges()(e, 1)));
+    D.row(nv + e) =
+        0.5 * (mesh.positions().row(mesh.edges()(e, 0)) + mesh.positions().row(mesh.edges()(e, 1)));
   return D;
 }
 
@@ -105,8 +109,8 @@ Eigen::MatrixX3d quadratic_refined_positions(const Mesh& mesh, const Refinement&
   D.topRows(nc) = quadratic_dof_positions(mesh);
   D.middleRows(nc, nf) = refinement.virtual_points;
   for (int h = 0; h < mesh.n_halfedges(); ++h)
-    D.row(nc + nf + h) =
-        0.5 * (mesh.positions().row(mesh.halfedge_source(h)) + refinement.virtual_points.row(mesh.halfedge_face(h)));
+    D.row(nc + nf + h) = 0.5 * (mesh.positions().row(mesh.halfedge_source(h)) +
+                                refinement.virtual_points.row(mesh.halfedge_face(h)));
   return D;
 }
 
@@ -120,7 +124,8 @@ Eigen::SparseMatrix<double> quadratic_prolongation(const Mesh& mesh, const Refin
   for (int f = 0; f < nf; ++f) {
     const auto face = mesh.face(f);
     const int n = int(face.size()), h0 = mesh.face_offsets()[f];
-    const Eigen::MatrixXd W = quadratic_face_weights(face_positions(mesh, f), refinement.virtual_points.row(f));
+    const Eigen::MatrixXd W =
+        quadratic_face_weights(face_positions(mesh, f), refinement.virtual_points.row(f));
     cols.assign(size_t(2 * n), 0);
     for (int k = 0; k < n; ++k) {
       cols[size_t(k)] = face[size_t(k)];

@@ -22,7 +22,8 @@ namespace polydec {
 // (the closed form area/180 [6 -1 -1 0 -4 0; ... 32 16 16], exact). A zero-area triangle gives
 // a zero stiffness.
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
-Matrix6d p2_triangle_stiffness(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2);
+Matrix6d p2_triangle_stiffness(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
+                               const Eigen::Vector3d& p2);
 Matrix6d p2_triangle_mass(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2);
 
 // The six P2 basis values at barycentric point l (node order as above).
@@ -40,7 +41,8 @@ Eigen::Matrix<double, 6, 3> p2_basis_gradients(const Eigen::Vector3d& l, const E
 // Vandermonde matrix of 1, u, v, u^2, uv, v^2; rank 6 whenever the edges span three or more
 // lines). Invariant under affine maps of the plane (they preserve quadratics), so under the
 // polygon's position, size and the frame chosen. For a triangle they are the P2 basis values.
-// `xf` is the virtual vertex (Refinement::virtual_points), used in 3-D for the elements.
+// `xf` is the virtual vertex (Refinement::virtual_points), used in 3-D for the elements. A polygon
+// whose corners coincide gets uniform weights 1 / (2n).
 Eigen::MatrixXd quadratic_face_weights(const PolygonPositions& X, const Eigen::Vector3d& xf);
 
 // Positions of the coarse dofs, (|V| + |E|) x 3: the vertices, then the edge midpoints.

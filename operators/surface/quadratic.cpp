@@ -2,7 +2,6 @@
 // and the refined P2 matrices of the explicit route.
 #include "polydec/operators/surface/quadratic.h"
 
-#include <algorithm>
 #include <array>
 #include <vector>
 
@@ -24,9 +23,10 @@ QuadraticLaplacian assemble_quadratic_laplacian(const Mesh& mesh, const Refineme
   check_refinement(mesh, refinement, "assemble_quadratic_laplacian");
   const int nv = mesh.n_vertices(), nd = nv + mesh.n_edges();
   std::vector<Eigen::Triplet<double>> ts, tm;
-  const long reserve = 4L * mesh.n_halfedges() * std::max(3, mesh.max_face_size());
-  ts.reserve(size_t(reserve));
-  tm.reserve(size_t(reserve));
+  size_t entries = 0;  // (2n)^2 per face
+  for (int f = 0; f < mesh.n_faces(); ++f) entries += 4 * mesh.face(f).size() * mesh.face(f).size();
+  ts.reserve(entries);
+  tm.reserve(entries);
   QuadraticLaplacian Q;
   Q.M_lumped = Eigen::VectorXd::Zero(nd);
   Q.quality = refinement.quality;
@@ -77,11 +77,14 @@ QuadraticLaplacian assemble_quadratic_laplacian(const Mesh& mesh, const Refineme
   return Q;
 }
 
-QuadraticLaplacian quadratic_laplacian(const Mesh& mesh) { return assemble_quadratic_laplacian(mesh, refine(mesh)); }
+QuadraticLaplacian quadratic_laplacian(const Mesh& mesh) {
+  return assemble_quadratic_laplacian(mesh, refine(mesh));
+}
 
 QuadraticRefinedMatrices quadratic_refined_matrices(const Mesh& mesh, const Refinement& refinement) {
   check_refinement(mesh, refinement, "quadratic_refined_matrices");
-  const int nv = mesh.n_vertices(), nc = nv + mesh.n_edges(), nf = mesh.n_faces(), nr = nc + nf + mesh.n_halfedges();
+  const int nv = mesh.n_vertices(), nc = nv + mesh.n_edges(), nf = mesh.n_faces(),
+            nr = nc + nf + mesh.n_halfedges();
   std::vector<Eigen::Triplet<double>> ts, tm;
   for (int f = 0; f < nf; ++f) {
     const int h0 = mesh.face_offsets()[f], n = mesh.face_offsets()[f + 1] - h0;
@@ -92,8 +95,12 @@ QuadraticRefinedMatrices quadratic_refined_matrices(const Mesh& mesh, const Refi
       const Eigen::Vector3d a = mesh.positions().row(mesh.halfedge_source(h)).transpose();
       const Eigen::Vector3d b = mesh.positions().row(mesh.halfedge_source(h1)).transpose();
       const Matrix6d Ke = p2_triangle_stiffness(a, b, xf), Me = p2_triangle_mass(a, b, xf);
-      const int nodes[6] = {mesh.halfedge_source(h), mesh.halfedge_source(h1), nc + f,
-                            nv + mesh.halfedge_edge(h), nc + nf + h1, nc + nf + h};
+      const int nodes[6] = {mesh.halfedge_source(h),
+                            mesh.halfedge_source(h1),
+                            nc + f,
+                            nv + mesh.halfedge_edge(h),
+                            nc + nf + h1,
+                            nc + nf + h};
       for (int i = 0; i < 6; ++i)
         for (int j = 0; j < 6; ++j) {
           ts.emplace_back(nodes[i], nodes[j], -Ke(i, j));

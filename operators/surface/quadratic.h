@@ -15,8 +15,8 @@
 namespace polydec {
 
 struct QuadraticLaplacian {
-  SparseMatrix S;            // stiffness, negative semi-definite
-  SparseMatrix M;            // Galerkin mass
+  SparseMatrix S;  // stiffness, negative semi-definite
+  SparseMatrix M;  // Galerkin mass
   // Lumped mass by diagonal scaling (Hinton, Rock & Zienkiewicz 1976) per face: face f's share of
   // dof k is its local mass diagonal (P_f^T M^f_f P_f)_kk times area_f / trace. Positive at every
   // dof of a face with positive area (row sums are not: on a triangle they vanish at the corners),

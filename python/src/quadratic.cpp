@@ -1,7 +1,8 @@
 // python/src/quadratic.cpp — binding of the quadratic polygon Laplacian (operators/surface/quadratic.h):
 // S, M, the HRZ-lumped M and the dof positions on the vertices and edge midpoints.
-#include "bindings.h"
 #include "polydec/operators/surface/quadratic.h"
+
+#include "bindings.h"
 
 namespace polydec::python {
 

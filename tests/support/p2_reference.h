@@ -12,14 +12,16 @@ struct P2Reference {
   Eigen::Matrix<double, 6, 6> K, M;  // int grad phi_a . grad phi_b, int phi_a phi_b
 };
 
-inline P2Reference p2_reference(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2) {
+inline P2Reference p2_reference(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
+                                const Eigen::Vector3d& p2) {
   const Eigen::Vector3d e1 = (p1 - p0).normalized();
   const Eigen::Vector3d nrm = (p1 - p0).cross(p2 - p0);
   const Eigen::Vector3d e2 = nrm.normalized().cross(e1);
   const double area = 0.5 * nrm.norm();
   auto uv = [&](const Eigen::Vector3d& x) { return Eigen::Vector2d((x - p0).dot(e1), (x - p0).dot(e2)); };
   const Eigen::Vector2d c[3] = {uv(p0), uv(p1), uv(p2)};
-  const Eigen::Vector2d nodes[6] = {c[0], c[1], c[2], (c[0] + c[1]) / 2, (c[1] + c[2]) / 2, (c[2] + c[0]) / 2};
+  const Eigen::Vector2d nodes[6] = {
+      c[0], c[1], c[2], (c[0] + c[1]) / 2, (c[1] + c[2]) / 2, (c[2] + c[0]) / 2};
   auto mono = [](const Eigen::Vector2d& x) {
     Eigen::Matrix<double, 6, 1> m;
     m << 1, x[0], x[1], x[0] * x[0], x[0] * x[1], x[1] * x[1];

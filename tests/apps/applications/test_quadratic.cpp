@@ -30,14 +30,16 @@ TEST_CASE("quadratic: Dirichlet solves are exact for quadratic solutions on ever
     const Eigen::MatrixX3d D = quadratic_dof_positions(mesh);
     const int nv = mesh.n_vertices(), nd = int(D.rows());
     Eigen::VectorXd exact(nd);
-    for (int i = 0; i < nd; ++i) exact[i] = D(i, 0) * D(i, 0) - 2 * D(i, 0) * D(i, 1) + 3 * D(i, 1) * D(i, 1) + D(i, 0);
+    for (int i = 0; i < nd; ++i)
+      exact[i] = D(i, 0) * D(i, 0) - 2 * D(i, 0) * D(i, 1) + 3 * D(i, 1) * D(i, 1) + D(i, 0);
     std::vector<int> fixed;
     for (int v = 0; v < nv; ++v)
       if (mesh.is_boundary_vertex(v)) fixed.push_back(v);
     for (int e = 0; e < mesh.n_edges(); ++e)
       if (mesh.is_boundary_edge(e)) fixed.push_back(nv + e);
     // Laplace(u) = 2 + 6 = 8; with the Galerkin mass the solve reproduces u at every dof.
-    const Eigen::VectorXd f = solve_dirichlet_poisson(ops, Eigen::VectorXd::Constant(nd, 8.0), fixed, exact, false);
+    const Eigen::VectorXd f =
+        solve_dirichlet_poisson(ops, Eigen::VectorXd::Constant(nd, 8.0), fixed, exact, false);
     CHECK((f - exact).cwiseAbs().maxCoeff() <= 1e-11 * exact.cwiseAbs().maxCoeff());
   }
 }

@@ -21,8 +21,8 @@ TEST_CASE("polydec operators --order 2", "[quadratic][cli]") {
   test::ScratchDir s("cli_quadratic");
   write_mesh(s.path("hex.obj"), hex_grid(3, 4));
   const Mesh mesh = read_mesh(s.path("hex.obj"));
-  const test::CliRun r = test::run_cli_in(s.dir, "operators " + s.path("hex.obj") + " --order 2 --out " +
-                                                     s.path("q") + " --json");
+  const test::CliRun r = test::run_cli_in(
+      s.dir, "operators " + s.path("hex.obj") + " --order 2 --out " + s.path("q") + " --json");
   REQUIRE(r.code == 0);
   const auto j = nlohmann::json::parse(r.out);
   const int nd = mesh.n_vertices() + mesh.n_edges();
@@ -42,7 +42,8 @@ TEST_CASE("polydec operators --order 2", "[quadratic][cli]") {
   CHECK(lines == nd);
   CHECK(worst == 0.0);
   // Refused: order 3, --repeat, volumes.
-  CHECK(test::run_cli_in(s.dir, "operators " + s.path("hex.obj") + " --order 3 --out " + s.path("x")).code == 2);
+  CHECK(test::run_cli_in(s.dir, "operators " + s.path("hex.obj") + " --order 3 --out " + s.path("x")).code ==
+        2);
   CHECK(test::run_cli_in(s.dir, "operators " + s.path("hex.obj") + " --order 2 --repeat 2").code == 2);
 }
 
@@ -61,13 +62,16 @@ TEST_CASE("polydec poisson --order 2 --json and spectrum --order 2", "[quadratic
   CHECK(test::run_cli_in(s.dir, "poisson --order 2 --mass lumped").code == 2);
 
   write_mesh(s.path("sphere.obj"), hex_sphere(1));
-  const test::CliRun sp = test::run_cli_in(s.dir, "spectrum " + s.path("sphere.obj") + " --order 2 --k 5 --json");
+  const test::CliRun sp =
+      test::run_cli_in(s.dir, "spectrum " + s.path("sphere.obj") + " --order 2 --k 5 --json");
   REQUIRE(sp.code == 0);
   const auto js = nlohmann::json::parse(sp.out);
   SpectrumOptions o;
   o.k = 5;
   const Spectrum ref = quadratic_spectrum(read_mesh(s.path("sphere.obj")), o);
-  for (int i = 1; i < 5; ++i) CHECK(std::abs(js["eigenvalues"][size_t(i)].get<double>() - ref.eigenvalues[i]) <= 1e-8 * ref.eigenvalues[i]);
+  for (int i = 1; i < 5; ++i)
+    CHECK(std::abs(js["eigenvalues"][size_t(i)].get<double>() - ref.eigenvalues[i]) <=
+          1e-8 * ref.eigenvalues[i]);
   CHECK(test::run_cli_in(s.dir, "spectrum " + s.path("sphere.obj") + " --order 2 --form 1").code == 2);
 }
 

@@ -2,15 +2,15 @@
 // matrices against an independent basis and quadrature, the per-face least-norm weights
 // (quadratic reproduction, minimum norm, invariance, the P2 basis on triangles) and the global
 // quadratic prolongation.
+#include <Eigen/Geometry>
+#include <catch2/catch.hpp>
+#include <random>
+
 #include "polydec/dec/mesh/generators.h"
 #include "polydec/dec/surface/quadratic.h"
 #include "tests/support/feec_meshes.h"
 #include "tests/support/p2_reference.h"
 #include "tests/support/support.h"
-
-#include <Eigen/Geometry>
-#include <catch2/catch.hpp>
-#include <random>
 
 using namespace polydec;
 
@@ -100,7 +100,8 @@ TEST_CASE("quadratic face weights reproduce the quadratics of the face's plane",
   for (int n : {3, 4, 5, 6, 9})
     for (int trial = 0; trial < 10; ++trial) {
       INFO("n = " << n << ", trial " << trial);
-      const PolygonPositions X = moved(test::star_polygon(n, rng, 0.4, 1.0, 0.0), rng, trial % 2 ? 1e-4 : 1e3);
+      const PolygonPositions X =
+          moved(test::star_polygon(n, rng, 0.4, 1.0, 0.0), rng, trial % 2 ? 1e-4 : 1e3);
       const Eigen::Vector3d xf = X.transpose() * squared_area_weights(X);
       const Eigen::MatrixXd W = quadratic_face_weights(X, xf);
       REQUIRE(W.rows() == n + 1);
@@ -122,8 +123,9 @@ TEST_CASE("quadratic face weights are the minimum-norm ones and do not depend on
     // plane z = 0, built here), i.e. is orthogonal to all weight changes that keep reproduction.
     Eigen::MatrixXd A(6, 2 * n);
     for (int k = 0; k < 2 * n; ++k) {
-      const Eigen::RowVector3d y = k < n ? Eigen::RowVector3d(X0.row(k))
-                                         : Eigen::RowVector3d(0.5 * (X0.row(k - n) + X0.row((k - n + 1) % n)));
+      const Eigen::RowVector3d y = k < n
+                                       ? Eigen::RowVector3d(X0.row(k))
+                                       : Eigen::RowVector3d(0.5 * (X0.row(k - n) + X0.row((k - n + 1) % n)));
       A.col(k) << 1, y[0], y[1], y[0] * y[0], y[0] * y[1], y[1] * y[1];
     }
     const Eigen::MatrixXd Q = Eigen::HouseholderQR<Eigen::MatrixXd>(A.transpose()).householderQ() *
@@ -157,13 +159,14 @@ TEST_CASE("on a triangle the quadratic weights are the P2 basis values", "[quadr
   // midpoint of corner k has l = (e_k + w) / 2.
   auto basis = [](const Eigen::Vector3d& l) {
     Eigen::Matrix<double, 6, 1> b;
-    b << l[0] * (2 * l[0] - 1), l[1] * (2 * l[1] - 1), l[2] * (2 * l[2] - 1), 4 * l[0] * l[1], 4 * l[1] * l[2],
-        4 * l[2] * l[0];
+    b << l[0] * (2 * l[0] - 1), l[1] * (2 * l[1] - 1), l[2] * (2 * l[2] - 1), 4 * l[0] * l[1],
+        4 * l[1] * l[2], 4 * l[2] * l[0];
     return b;
   };
   CHECK((W.row(0).transpose() - basis(w)).cwiseAbs().maxCoeff() <= 1e-13);
   for (int k = 0; k < 3; ++k)
-    CHECK((W.row(1 + k).transpose() - basis((Eigen::Vector3d::Unit(k) + w) / 2)).cwiseAbs().maxCoeff() <= 1e-13);
+    CHECK((W.row(1 + k).transpose() - basis((Eigen::Vector3d::Unit(k) + w) / 2)).cwiseAbs().maxCoeff() <=
+          1e-13);
 }
 
 TEST_CASE("non-planar faces: the weights of the polygon projected to its best-fit plane", "[quadratic]") {
@@ -185,7 +188,15 @@ TEST_CASE("non-planar faces: the weights of the polygon projected to its best-fi
   }
 }
 
-TEST_CASE("quadratic prolongation: identity on the coarse dofs, quadratics exact on planar meshes", "[quadratic]") {
+TEST_CASE("a polygon collapsed to a point gets finite uniform weights", "[quadratic]") {
+  const PolygonPositions X = PolygonPositions::Constant(4, 3, 0.25);
+  const Eigen::MatrixXd W = quadratic_face_weights(X, Eigen::Vector3d::Constant(0.25));
+  REQUIRE(W.allFinite());
+  CHECK((W.rowwise().sum().array() - 1.0).abs().maxCoeff() <= 1e-15);
+}
+
+TEST_CASE("quadratic prolongation: identity on the coarse dofs, quadratics exact on planar meshes",
+          "[quadratic]") {
   const Mesh meshes[] = {test::planar_grid(5, 4, 0.3, true), hex_grid(4, 4), chevron_grid(4, 3),
                          triangle_grid(3, 3)};
   for (const Mesh& mesh : meshes) {
@@ -196,7 +207,9 @@ TEST_CASE("quadratic prolongation: identity on the coarse dofs, quadratics exact
     REQUIRE(P.cols() == nc);
     const Eigen::MatrixX3d D = quadratic_dof_positions(mesh), R = quadratic_refined_positions(mesh, r);
     CHECK((R.topRows(nc) - D).norm() == 0.0);
-    auto q = [](const Eigen::RowVector3d& x) { return 0.3 + x[0] - 2 * x[1] + 1.5 * x[0] * x[0] - x[0] * x[1] + 0.7 * x[1] * x[1]; };
+    auto q = [](const Eigen::RowVector3d& x) {
+      return 0.3 + x[0] - 2 * x[1] + 1.5 * x[0] * x[0] - x[0] * x[1] + 0.7 * x[1] * x[1];
+    };
     Eigen::VectorXd u(nc), uf(R.rows());
     for (int i = 0; i < nc; ++i) u[i] = q(D.row(i));
     for (int i = 0; i < R.rows(); ++i) uf[i] = q(R.row(i));

@@ -3,16 +3,16 @@
 // equals the explicit P^T S^f P, standard P2 finite elements on triangle meshes (an independent
 // assembly, no refinement), the patch test on planar polygon meshes (convex and not), and the
 // HRZ lumping.
+#include <Eigen/Eigenvalues>
+#include <Eigen/SVD>
+#include <catch2/catch.hpp>
+
 #include "polydec/dec/io/mesh_io.h"
 #include "polydec/dec/mesh/generators.h"
 #include "polydec/operators/surface/quadratic.h"
 #include "tests/support/feec_meshes.h"
 #include "tests/support/p2_reference.h"
 #include "tests/support/support.h"
-
-#include <Eigen/Eigenvalues>
-#include <Eigen/SVD>
-#include <catch2/catch.hpp>
 
 using namespace polydec;
 
@@ -22,12 +22,9 @@ using polydec::test::relative_difference;
 namespace {
 
 std::vector<std::pair<std::string, Mesh>> surfaces() {
-  return {{"quad grid", quad_grid(4, 3)},
-          {"mixed planar grid", test::planar_grid(5, 4, 0.3, true)},
-          {"hex sphere", hex_sphere(1)},
-          {"noisy torus", add_noise(torus(8, 5), 0.15, 3)},
-          {"uv sphere", uv_sphere(5, 7)},
-          {"chevrons", chevron_grid(3, 3)}};
+  return {{"quad grid", quad_grid(4, 3)}, {"mixed planar grid", test::planar_grid(5, 4, 0.3, true)},
+          {"hex sphere", hex_sphere(1)},  {"noisy torus", add_noise(torus(8, 5), 0.15, 3)},
+          {"uv sphere", uv_sphere(5, 7)}, {"chevrons", chevron_grid(3, 3)}};
 }
 
 // Standard P2 finite elements on a triangle mesh, straight from the mesh's triangles with the
@@ -138,8 +135,8 @@ TEST_CASE("patch test: S u = Laplace(u) M 1 at interior dofs for quadratic u on 
       {"hexagons", hex_grid(5, 5)},
       {"mixed 3- to 6-gons", test::planar_grid(6, 6, 0.25, true)},
       {"non-convex chevrons", chevron_grid(5, 4)},
-      {"quads at 1e-6", test::planar_grid(4, 4, 0.3, false).with_positions(
-                            test::planar_grid(4, 4, 0.3, false).positions() * 1e-6)}};
+      {"quads at 1e-6", test::planar_grid(4, 4, 0.3, false)
+                            .with_positions(test::planar_grid(4, 4, 0.3, false).positions() * 1e-6)}};
   for (const char* file : {"L-plane.obj", "tetris.obj", "tetris_2.obj"}) {
     const std::string p = test::shared_path(file);
     if (!p.empty()) meshes.push_back({file, read_mesh(p)});
@@ -156,7 +153,8 @@ TEST_CASE("patch test: S u = Laplace(u) M 1 at interior dofs for quadratic u on 
     // Coordinates x, y in the mesh's plane (the L-PLANE file lies in a plane y = const), in units
     // of the mesh's size s.
     const Eigen::RowVector3d o = mesh.positions().colwise().mean();
-    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(Eigen::MatrixXd(mesh.positions().rowwise() - o), Eigen::ComputeThinV);
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(Eigen::MatrixXd(mesh.positions().rowwise() - o),
+                                                Eigen::ComputeThinV);
     REQUIRE(svd.singularValues()[2] <= 1e-12 * svd.singularValues()[0]);
     const double s = (mesh.positions().colwise().maxCoeff() - mesh.positions().colwise().minCoeff()).norm();
     const Eigen::Vector3d e1 = svd.matrixV().col(0) / s, e2 = svd.matrixV().col(1) / s;
@@ -183,7 +181,8 @@ TEST_CASE("patch test: S u = Laplace(u) M 1 at interior dofs for quadratic u on 
   }
 }
 
-TEST_CASE("the linear operator fails the quadratic patch test on hexagons (the test can fail)", "[quadratic]") {
+TEST_CASE("the linear operator fails the quadratic patch test on hexagons (the test can fail)",
+          "[quadratic]") {
   // The same check with the paper's linear S and M: exact for linear u only.
   const Mesh mesh = hex_grid(5, 5);
   const Refinement r = refine(mesh);
