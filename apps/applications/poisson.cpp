@@ -46,6 +46,15 @@ double franke_laplacian(double x, double y) {
   return l1 + l2 + l3 + l4;
 }
 
+Eigen::Vector2d franke_gradient(double x, double y) {
+  const FrankeTerms t(x, y);
+  // Each term's exponent differentiated: d/dx exp(-(9x - a)^2 / 4) = -9 (9x - a) / 2 exp(...), etc.
+  const double fx = -4.5 * (9 * x - 2) * t.g1 - 18.0 / 49 * (9 * x + 1) * t.g2 - 4.5 * (9 * x - 7) * t.g3 -
+                    18 * (9 * x - 4) * t.g4;
+  const double fy = -4.5 * (9 * y - 2) * t.g1 - 0.9 * t.g2 - 4.5 * (9 * y - 3) * t.g3 - 18 * (9 * y - 7) * t.g4;
+  return {fx, fy};
+}
+
 PoissonBlock poisson_free_block(const OperatorSet& ops, const std::vector<int>& fixed) {
   const int nv = int(ops.S.rows());
   PoissonBlock block;

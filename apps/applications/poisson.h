@@ -17,6 +17,8 @@ namespace polydec {
 // Franke's test function (Franke 1979) and its exact Laplacian f_xx + f_yy.
 double franke(double x, double y);
 double franke_laplacian(double x, double y);
+// Its gradient (f_x, f_y), for H1 errors.
+Eigen::Vector2d franke_gradient(double x, double y);
 
 // The Dirichlet Poisson system: A = -S restricted to the free vertices (not in `fixed`, with
 // positive lumped mass; symmetric positive definite when some vertex is fixed on every

@@ -3,6 +3,7 @@
 // times N assemblies of S, M and lumped M from the loaded mesh (virtual vertices, sparsity
 // pattern and values; load time excluded) and writes no files. Volume meshes (.ovm, .vtk, .mesh,
 // or --volume) get S, M, M_lumped and P of the polyhedral refinement (operators/volume/laplacian.h).
+// `--order 2`: the quadratic operators (operators/surface/quadratic.h) on the vertex and edge dofs.
 #include "polydec/apps/cli/command.h"
 #include "polydec/apps/cli/virtual_lift.h"
 #include "polydec/dec/io/mesh_io.h"
@@ -10,12 +11,14 @@
 #include "polydec/dec/detail/threads.h"
 #include "polydec/dec/surface/prolongation.h"
 #include "polydec/operators/surface/gradient.h"
+#include "polydec/operators/surface/quadratic.h"
 #include "polydec/operators/volume/laplacian.h"
 
 #include <algorithm>
 #include <chrono>
 #include <ctime>
 #include <filesystem>
+#include <fstream>
 #include <fmt/format.h>
 
 namespace polydec::cli::operators_command {
@@ -24,7 +27,7 @@ namespace {
 struct Options {
   bool repair = false;  // --repair
   std::string mesh, out, rule = "squared-area", cell_rule = "squared-volume";
-  int repeat = 0, threads = 1;
+  int repeat = 0, threads = 1, order = 1;
   bool json = false, volume = false;
   VirtualLiftArgs lift;  // --virtual-lift, --virtual-positions (surfaces)
 };
@@ -157,7 +160,49 @@ void run_volume(const Options& o) {
   fmt::print("wrote S.mtx M.mtx M_lumped.mtx P.mtx to {}\n", o.out);
 }
 
+// --order 2: S, M, M_lumped (HRZ) and P of the quadratic elements, dofs.txt (x y z per dof).
+void run_quadratic(const Options& o, const Mesh& mesh, const Refinement& r) {
+  const QuadraticLaplacian Q = assemble_quadratic_laplacian(mesh, r);
+  const int nd = int(Q.dofs.rows());
+  std::filesystem::create_directories(o.out);
+  SparseMatrix Ml(nd, nd);
+  Ml.setIdentity();
+  Ml.diagonal() = Q.M_lumped;
+  write_matrix_market(o.out + "/S.mtx", Q.S);
+  write_matrix_market(o.out + "/M.mtx", Q.M);
+  write_matrix_market(o.out + "/M_lumped.mtx", Ml);
+  write_matrix_market(o.out + "/P.mtx", quadratic_prolongation(mesh, r));
+  {
+    std::ofstream f(o.out + "/dofs.txt");
+    if (!f) throw FileError(o.out + "/dofs.txt", 0, -1, "cannot open file for writing");
+    for (int i = 0; i < nd; ++i) f << fmt::format("{:.17g} {:.17g} {:.17g}\n", Q.dofs(i, 0), Q.dofs(i, 1), Q.dofs(i, 2));
+  }
+  nlohmann::json j = {{"mesh", o.mesh},
+                      {"out", o.out},
+                      {"order", 2},
+                      {"vertices", mesh.n_vertices()},
+                      {"edges", mesh.n_edges()},
+                      {"faces", mesh.n_faces()},
+                      {"dofs", nd},
+                      {"S_nonzeros", Q.S.nonZeros()},
+                      {"fan_degenerate", r.quality.n_degenerate},
+                      {"fan_inverted", r.quality.n_inverted},
+                      {"files", {"S.mtx", "M.mtx", "M_lumped.mtx", "P.mtx", "dofs.txt"}}};
+  if (o.json) {
+    print_json(j);
+    return;
+  }
+  fmt::print("{}: {} vertices, {} edges, {} faces; order 2: {} dofs, S has {} non-zeros\n", o.mesh,
+             mesh.n_vertices(), mesh.n_edges(), mesh.n_faces(), nd, Q.S.nonZeros());
+  fmt::print("fan triangles: {} degenerate, {} inverted\n", r.quality.n_degenerate, r.quality.n_inverted);
+  fmt::print("wrote S.mtx M.mtx M_lumped.mtx P.mtx dofs.txt to {}\n", o.out);
+}
+
 void run(const Options& o) {
+  if (o.order != 1 && o.order != 2) throw UsageError("--order must be 1 or 2");
+  if (o.order == 2 && o.repeat > 0) throw UsageError("--repeat times the order 1 assembly only");
+  if (o.order == 2 && (o.volume || is_volume_mesh_path(o.mesh)))
+    throw UsageError("--order 2: surface meshes only (volumes: docs/extensions.md)");
   if (o.repeat < 0) throw UsageError("--repeat must be positive");
   if (o.threads < 0) throw UsageError("--threads must be at least 0 (0: all hardware threads)");
   if (o.repeat == 0 && o.out.empty()) throw UsageError("--out DIR is required (or --repeat N to time the assembly)");
@@ -179,6 +224,7 @@ void run(const Options& o) {
     return;
   }
   const Refinement r = refine(mesh, ropt);
+  if (o.order == 2) return run_quadratic(o, mesh, r);
   const Laplacian L = assemble_laplacian(mesh, r, {}, nullptr, aopt);
   std::filesystem::create_directories(o.out);
   SparseMatrix Ml(mesh.n_vertices(), mesh.n_vertices());
@@ -216,6 +262,7 @@ const RegisterCommand reg("operators", "Assemble S, M, lumped M, G, D, P and wri
   app.add_flag("--volume", o->volume, "read MESH as a volume mesh whatever its extension");
   app.add_option("--cell-point", o->cell_rule, "volumes: cell-point weights, squared-volume (default) or polylaplace");
   app.add_option("--virtual-vertex", o->rule, "virtual-vertex rule: squared-area (default), centroid");
+  app.add_option("--order", o->order, "1 (default): the paper's operators; 2: quadratic elements on vertex and edge dofs");
   app.add_option("--repeat", o->repeat, "time N assemblies of S, M, lumped M instead of writing files");
   app.add_option("--threads", o->threads, "threads for the virtual vertices and the assembly (default 1; 0: all hardware threads)");
   app.add_flag("--json", o->json, "print one JSON object instead of text");

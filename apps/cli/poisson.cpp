@@ -1,6 +1,7 @@
 // apps/cli/poisson.cpp — `polydec poisson`: the convergence study of the paper's section 5.8
 // (Figure 9), Franke's function on triangle, quad and hexagon grids of the unit square; with --volume
-// the 3D Franke study on the shared polyhedral cubes or generated grids of the unit cube.
+// the 3D Franke study on the shared polyhedral cubes or generated grids of the unit cube; with --order 2
+// the study with quadratic elements (apps/applications/quadratic.h), L2 and H1 errors.
 #include "polydec/apps/applications/poisson.h"
 
 #include <fmt/format.h>
@@ -8,6 +9,7 @@
 #include <cmath>
 #include <map>
 
+#include "polydec/apps/applications/quadratic.h"
 #include "polydec/apps/applications/volume/poisson.h"
 #include "polydec/apps/cli/command.h"
 #include "polydec/apps/pictures/plot.h"
@@ -23,6 +25,7 @@ struct Options {
   std::vector<int> resolutions{8, 16, 32, 64};
   std::string plot, png, mass = "lumped", laplacian = "ours";
   bool json = false;
+  int order = 1;
   // --volume
   bool volume = false;
   std::string family = "hex", data;
@@ -100,7 +103,63 @@ void run_volume(const Options& o) {
   }
 }
 
+// --order 2: the study with quadratic elements on four families (Galerkin mass for the load).
+void run_quadratic(const Options& o) {
+  const auto series = franke_convergence_quadratic(o.resolutions);
+  nlohmann::json fam = nlohmann::json::object();
+  for (const auto& s : series) {
+    nlohmann::json rows = nlohmann::json::array();
+    for (size_t i = 0; i < s.errors.size(); ++i)
+      rows.push_back({{"n", s.resolutions[i]},
+                      {"dofs", s.errors[i].n_dofs},
+                      {"h", s.errors[i].h},
+                      {"l2_error", s.errors[i].l2_error},
+                      {"h1_error", s.errors[i].h1_error}});
+    fam[s.family] = {{"l2_slope", s.l2_slope}, {"h1_slope", s.h1_slope}, {"levels", rows}};
+  }
+  nlohmann::json j = {{"laplacian", "quadratic"}, {"order", 2}, {"mass", "unlumped"}, {"families", fam}};
+  if (!o.plot.empty()) {
+    std::vector<PlotSeries> ps;
+    for (const auto& s : series) {
+      PlotSeries l2{s.family + " L2", {}, {}}, h1{s.family + " H1", {}, {}};
+      for (const auto& e : s.errors) {
+        l2.x.push_back(e.h);
+        l2.y.push_back(e.l2_error);
+        h1.x.push_back(e.h);
+        h1.y.push_back(e.h1_error);
+      }
+      ps.push_back(l2);
+      ps.push_back(h1);
+    }
+    PlotOptions popt;
+    popt.title = "Poisson, Franke function, quadratic elements: errors vs h";
+    popt.x_label = "h (mean edge length)";
+    popt.y_label = "L2 and H1 errors";
+    write_plot(o.plot, ps, popt);
+    j["plot"] = o.plot;
+  }
+  if (o.json) {
+    print_json(j);
+    return;
+  }
+  fmt::print(
+      "Poisson problem Delta f = b, Franke function, Dirichlet boundary, unit square; quadratic elements (order 2), "
+      "Galerkin mass\n");
+  for (const auto& s : series) {
+    fmt::print("{}: fitted slopes of log(error) vs log(h): L2 {:.3f}, H1 {:.3f}\n", s.family, s.l2_slope, s.h1_slope);
+    for (size_t i = 0; i < s.errors.size(); ++i)
+      fmt::print("  n = {:4d}  dofs = {:7d}  h = {:.5f}  L2 error = {:.6e}  H1 error = {:.6e}\n", s.resolutions[i],
+                 s.errors[i].n_dofs, s.errors[i].h, s.errors[i].l2_error, s.errors[i].h1_error);
+  }
+}
+
 void run(const Options& o) {
+  if (o.order != 1 && o.order != 2) throw UsageError("--order must be 1 or 2");
+  if (o.order == 2) {
+    if (o.volume) throw UsageError("--order 2: surface study only (volumes: docs/extensions.md)");
+    if (!o.png.empty()) throw UsageError("--png: order 1 only");
+    return run_quadratic(o);
+  }
   if (o.volume) return run_volume(o);
   if (o.mass != "lumped" && o.mass != "unlumped") throw UsageError("--mass must be lumped or unlumped");
   ConvergenceOptions copt;
@@ -185,7 +244,12 @@ const RegisterCommand reg(
       app.add_option("--plot", o->plot, "log-log plot of the error against h (.svg or .png)");
       app.add_option("--png", o->png, "picture of the error on the coarsest hexagon grid (.png)");
       app.add_flag("--json", o->json, "print one JSON object instead of text");
+      app.add_option("--order", o->order,
+                     "1 (default): the paper's operators; 2: quadratic elements, L2 and H1 errors, a "
+                     "fourth family of non-convex polygons (Galerkin mass)");
       app.callback([o, res, mass] {
+        if (o->order == 2 && (mass->count() > 0 || o->laplacian != "ours"))
+          throw UsageError("--order 2 uses the quadratic operators with the Galerkin mass (no --mass, --laplacian)");
         if (o->volume && res->count() == 0) o->resolutions = {4, 8, 16};
         if (o->volume && mass->count() == 0) o->mass = "unlumped";
         run(*o);

@@ -3,7 +3,8 @@
 // of the Hodge Laplacian on Whitney 1- or 2-forms (apps/applications/form_spectrum.h). On a volume mesh
 // (.ovm, .vtk, .mesh or --volume): the volume operators (operators/registry/volume_laplacians.h), Neumann,
 // eigenvectors as VTK point data (.vtk, or .vtu with --vtu), the picture on a planar cut
-// (apps/pictures/volume_cut.h).
+// (apps/pictures/volume_cut.h). With --order 2 the quadratic operators
+// (apps/applications/quadratic.h); the files hold the vertex dofs.
 #include "polydec/apps/applications/spectrum.h"
 
 #include <fmt/format.h>
@@ -12,6 +13,7 @@
 #include <fstream>
 
 #include "polydec/apps/applications/form_spectrum.h"
+#include "polydec/apps/applications/quadratic.h"
 #include "polydec/apps/cli/command.h"
 #include "polydec/apps/cli/virtual_lift.h"
 #include "polydec/apps/cli/engine.h"
@@ -30,7 +32,7 @@ namespace {
 struct Options {
   bool repair = false;  // --repair
   std::string mesh, out, png, mass = "lumped", laplacian = "ours";
-  int k = 10, png_index = 1, form = 0;
+  int k = 10, png_index = 1, form = 0, order = 1;
   std::string complex = "complete";  // --complex, for --form 1|2
   bool json = false, volume = false;
   bool vtu = false;      // --vtu: volume eigenvectors as eigenvectors.vtu
@@ -122,6 +124,11 @@ void run(const Options& o) {
   const bool lifted = o.lift.lift != "none" || !o.lift.positions.empty();
   if (lifted && (o.volume || is_volume_mesh_path(o.mesh) || o.form != 0 || o.engine.engine != "serial"))
     throw UsageError("--virtual-lift and --virtual-positions apply to the serial surface spectrum only");
+  if (o.order != 1 && o.order != 2) throw UsageError("--order must be 1 or 2");
+  if (o.order == 2 && (o.volume || is_volume_mesh_path(o.mesh) || o.form != 0 || o.engine.engine != "serial" ||
+                       o.laplacian != "ours" || lifted))
+    throw UsageError(
+        "--order 2: function spectra of surface meshes on the serial engine (no --form, --laplacian, --virtual-lift)");
   if (o.volume || is_volume_mesh_path(o.mesh)) return run_volume(o);
   if (o.form != 0) {
     run_form(o);
@@ -146,7 +153,8 @@ void run(const Options& o) {
   OperatorOptions oopt;
   oopt.with_gradient = false;
   oopt.lift = virtual_lift(o.lift, mesh);
-  const OperatorSet ops = build_operators(mesh, parse_laplacian(o.laplacian), oopt);
+  const OperatorSet ops =
+      o.order == 2 ? quadratic_operator_set(mesh) : build_operators(mesh, parse_laplacian(o.laplacian), oopt);
   SpectrumOptions sopt;
   sopt.k = o.k;
   sopt.lumped_mass = o.mass == "lumped";
@@ -347,6 +355,9 @@ const RegisterCommand reg(
           "picture of one eigenfunction with isolines (.png); --form 1: the eigen 1-form as arrows, "
           "--form 2: its density; volumes: on the solid cut by the plane z = centre");
       app.add_option("--png-index", o->png_index, "which eigenfunction to draw (default 1)");
+      app.add_option("--order", o->order,
+                     "1 (default): the paper's operators; 2: quadratic elements on vertex and edge dofs (HRZ-lumped "
+                     "or Galerkin mass; files and picture at the vertex dofs)");
       app.add_option("--complex", o->complex,
                      "--form 1|2: the cells, complete (default; the paper's vertex pairs and triples) or mesh "
                      "(the mesh's edges and faces, dec/surface/mesh_complex.h)");

@@ -74,6 +74,27 @@ Mesh triangle_grid(int nx, int ny) {
 
 Mesh hex_grid(int nx, int ny) { return dual(triangle_grid(nx, ny)); }
 
+Mesh chevron_grid(int nx, int ny, double dent) {
+  if (nx < 1 || ny < 1) throw std::invalid_argument("chevron_grid: needs at least one cell per direction");
+  if (!(dent > 0 && dent < 0.5)) throw std::invalid_argument("chevron_grid: dent must lie in (0, 1/2)");
+  std::vector<Eigen::Vector3d> p;
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i <= nx; ++i) p.emplace_back(double(i) / nx, double(j) / ny, 0.0);
+  const int corners = int(p.size());
+  for (int j = 0; j <= ny; ++j)  // midpoints of the horizontal edges, bent unless on the boundary
+    for (int i = 0; i < nx; ++i)
+      p.emplace_back((i + 0.5) / nx, (j + (j > 0 && j < ny ? dent : 0.0)) / ny, 0.0);
+  PolygonSoup s = soup_with_positions(p);
+  auto id = [&](int i, int j) { return j * (nx + 1) + i; };
+  auto mid = [&](int i, int j) { return corners + j * nx + i; };
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const std::array<int, 6> h{id(i, j), mid(i, j), id(i + 1, j), id(i + 1, j + 1), mid(i, j + 1), id(i, j + 1)};
+      s.add_face(h);
+    }
+  return Mesh(std::move(s));
+}
+
 Mesh uv_sphere(int n_lat, int n_lon) {
   if (n_lat < 2 || n_lon < 3) throw std::invalid_argument("uv_sphere: needs n_lat >= 2 and n_lon >= 3");
   check_size(double(n_lat) * n_lon, "uv_sphere");

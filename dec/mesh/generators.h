@@ -19,6 +19,11 @@ Mesh triangle_grid(int nx, int ny);
 // Hexagon-dominant tiling of [0,1]^2: the boundary-aware dual of triangle_grid(nx, ny); interior
 // faces are hexagons, boundary faces are the halves cut by the square's sides.
 Mesh hex_grid(int nx, int ny);
+// Non-convex tiling of [0,1]^2: the cells of quad_grid(nx, ny) with each interior horizontal edge
+// bent upwards at its midpoint by `dent` (fraction of a cell's height, in (0, 1/2)); each cell is a
+// hexagon (corner, bottom midpoint, corner, corner, top midpoint, corner) whose bottom midpoint is
+// a reflex corner, except in the bottom row (straight bottom side: convex).
+Mesh chevron_grid(int nx, int ny, double dent = 0.3);
 
 // UV sphere of radius 1 with n_lat latitude bands and n_lon longitude segments: quads, and
 // triangles around the two poles. The polar axis is z.

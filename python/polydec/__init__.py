@@ -60,7 +60,7 @@ __all__ = [
     "hex_ball_volume", "volume_laplacian_names", "volume_operators", "volume_stiffness", "volume_mass",
     "volume_lumped_mass", "volume_laplacian", "volume_gradient", "volume_divergence", "volume_dec_max_degree",
     "volume_dec", "VolumeHeatGeodesics", "volume_spectrum", "ball_eigenvalues", "volume_poisson",
-    "volume_franke_poisson", "VolumeHodgeDecomposer", "lifted_laplacian",
+    "volume_franke_poisson", "VolumeHodgeDecomposer", "lifted_laplacian", "quadratic_operators",
     "read_mesh_groups",
 ]
 
@@ -748,6 +748,7 @@ def conformal_distortion(V, F=None, uv=None):
 
 
 from ._meshio import from_meshio, to_meshio  # noqa: E402
+from ._quadratic import quadratic_operators  # noqa: E402
 from ._spectral import (  # noqa: E402
     biharmonic_distance, diffusion_distance, form_spectrum, heat_kernel_signature, hks_times, lowpass_filter,
     wave_kernel_signature)

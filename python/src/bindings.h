@@ -121,5 +121,6 @@ void register_spectral(py::module_& m);
 void register_volumes(py::module_& m);
 void register_groups(py::module_& m);
 void register_virtual_lift(py::module_& m);
+void register_quadratic(py::module_& m);
 
 }  // namespace polydec::python

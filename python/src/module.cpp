@@ -123,4 +123,5 @@ PYBIND11_MODULE(_polydec, m) {
   register_volumes(m);
   register_groups(m);
   register_virtual_lift(m);
+  register_quadratic(m);
 }
