@@ -7,8 +7,8 @@
 namespace polydec::python {
 
 void register_quadratic(py::module_& m) {
-  m.def("quadratic_operators", [](const PositionArray& V, const IndexArray& I, const IndexArray& O) {
-    const Mesh mesh = mesh_from_arrays(V, I, O);
+  m.def("quadratic_operators", [](const MeshHandle& h) {
+    const Mesh& mesh = h.mesh();
     QuadraticLaplacian Q;
     {
       py::gil_scoped_release release;

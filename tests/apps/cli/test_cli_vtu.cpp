@@ -2,6 +2,7 @@
 // written by VTK (counts, volume, the skipped boundary cells), `geodesics` and `spectrum --vtu` on a
 // volume writing their fields as .vtu point data (equal to the JSON and the .mtx), `convert` to .vtu.
 #include <catch2/catch.hpp>
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "polydec/dec/io/mesh_io.h"
