@@ -16,7 +16,8 @@ def edges(F):
 
 
 def test_layout_symmetry_and_mass():
-    V, F = polydec.hex_grid(4, 3, faces="list")
+    mesh = polydec.hex_grid(4, 3)
+    V, F = mesh.positions, mesh.face_list()
     S, M, dofs = polydec.quadratic_operators(V, F)
     E = edges(F)
     n = len(V) + len(E)
@@ -33,7 +34,8 @@ def test_layout_symmetry_and_mass():
 
 
 def test_patch_test_on_hexagons():
-    V, F = polydec.hex_grid(5, 5, faces="list")
+    mesh = polydec.hex_grid(5, 5)
+    V, F = mesh.positions, mesh.face_list()
     S, M, dofs = polydec.quadratic_operators(V, F)
     x, y = dofs[:, 0], dofs[:, 1]
     u = 2 * x * x - x * y + 0.5 * y * y + x
@@ -44,7 +46,8 @@ def test_patch_test_on_hexagons():
 
 
 def test_equals_the_command_line(cli, tmp_path):
-    V, F = polydec.hex_grid(3, 3, faces="list")
+    mesh = polydec.hex_grid(3, 3)
+    V, F = mesh.positions, mesh.face_list()
     path = tmp_path / "hex.obj"
     polydec.write_mesh(path, V, F)
     cli("operators", path, "--order", "2", "--out", tmp_path / "q")

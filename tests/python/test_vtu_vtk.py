@@ -54,7 +54,8 @@ def test_vtk_reads_our_volume_vtu(name, tmp_path):
 
 
 def test_vtk_reads_our_surface_vtu(tmp_path):
-    V, F = polydec.hex_grid(3, 3, faces="list")  # hexagons and boundary polygons: VTK polygons
+    mesh = polydec.hex_grid(3, 3)
+    V, F = mesh.positions, mesh.face_list()  # hexagons and boundary polygons: VTK polygons
     scalars = {"height": V[:, 0] * 0.25 - V[:, 1]}
     for binary in (False, True):
         path = tmp_path / f"s{int(binary)}.vtu"

@@ -227,7 +227,7 @@ TEST_CASE("gmsh volumes: each cell kind in 2.2 and 4.1, ASCII and binary", "[io]
   }
 }
 
-TEST_CASE("MEDIT prisms and pyramids; binary .meshb of GMF versions 3 and 4", "[io][msh][volume]") {
+TEST_CASE("MEDIT prisms and pyramids and binary .meshb of GMF versions 3 and 4", "[io][msh][volume]") {
   for (const std::string kind : {"tet", "hex", "prism", "pyramid"}) {
     INFO(kind);
     const VolumeMesh ref = read_volume_mesh(fixture(kind + "_41_ascii.msh"));

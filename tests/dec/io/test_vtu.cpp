@@ -283,7 +283,7 @@ TEST_CASE("VTU: hostile files are refused with FileError", "[vtu][io]") {
   }
 }
 
-TEST_CASE("VTU: dispatch by extension and by content; messages list every format", "[vtu][io]") {
+TEST_CASE("VTU: dispatch by extension and by content and messages that list every format", "[vtu][io]") {
   test::ScratchDir dir("vtu_dispatch");
   const std::string path = dir.path("grid.dat");
   std::filesystem::copy_file(fixture("vtk_zlib_binary_u64.vtu"), path);
@@ -304,7 +304,7 @@ TEST_CASE("VTU: dispatch by extension and by content; messages list every format
   CHECK(read_vtu_fields(dir.path("d.vtu")).point_scalars.at("distance") == d);
 }
 
-TEST_CASE("VTK legacy: boundary cells beside volume cells are skipped and counted; voxels read",
+TEST_CASE("VTK legacy: boundary cells beside volume cells are skipped and counted and voxels read",
           "[vtu][io]") {
   // Two unit cubes along x: a hexahedron and a voxel; a vertex, a line, a triangle, a quad and a
   // polygon on the boundary.

@@ -64,7 +64,7 @@ std::vector<bool> boundary_dofs(const Mesh& mesh) {
 
 }  // namespace
 
-TEST_CASE("quadratic S is symmetric, annihilates constants, is negative semi-definite; M sums to the area",
+TEST_CASE("quadratic S is symmetric, annihilates constants, is negative semi-definite and M sums to the area",
           "[quadratic]") {
   for (const auto& [name, mesh] : surfaces()) {
     INFO(name);
