@@ -292,8 +292,10 @@ TEST_CASE("VTU: dispatch by extension and by content and messages that list ever
   CHECK_THROWS_WITH(read_volume_mesh(dir.path("none.xyz")), Catch::Contains("cannot open"));
   {
     std::ofstream(dir.path("t.xyz")) << "hello\n";
-    CHECK_THROWS_WITH(read_volume_mesh(dir.path("t.xyz")), Catch::Contains("ovm, vtk, vtu, mesh"));
-    CHECK_THROWS_WITH(read_mesh(dir.path("t.xyz")), Catch::Contains("obj, off, ply, vtu"));
+    CHECK_THROWS_WITH(read_volume_mesh(dir.path("t.xyz")),
+                      Catch::Contains("ovm, vtk, vtu, mesh, meshb, msh") && Catch::Contains("obj, off, ply, msh, vtu"));
+    CHECK_THROWS_WITH(read_mesh(dir.path("t.xyz")),
+                      Catch::Contains("obj, off, ply, msh, vtu") && Catch::Contains("ovm, vtk, vtu, mesh, meshb, msh"));
   }
   // write_volume_mesh and the point-data writer take .vtu.
   const VolumeMesh m = hex_grid_volume(2, 2, 2);
