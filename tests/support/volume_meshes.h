@@ -224,4 +224,19 @@ inline VolumeMesh relisted_volume(const VolumeMesh& mesh) {
   return VolumeMesh(std::move(soup));
 }
 
+// Cell c's outward faces, each rotated to start at its smallest vertex, sorted: the cell up to
+// face numbering and order (for comparing meshes read from different files).
+inline std::vector<std::vector<int>> outward_faces(const VolumeMesh& m, int c) {
+  std::vector<std::vector<int>> faces;
+  for (int h : m.cell(c)) {
+    const auto f = m.face(h / 2);
+    std::vector<int> p(f.begin(), f.end());
+    if (h & 1) std::reverse(p.begin() + 1, p.end());
+    std::rotate(p.begin(), std::min_element(p.begin(), p.end()), p.end());
+    faces.push_back(p);
+  }
+  std::sort(faces.begin(), faces.end());
+  return faces;
+}
+
 }  // namespace polydec::test

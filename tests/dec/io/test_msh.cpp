@@ -20,6 +20,7 @@
 #include "polydec/dec/mesh/volume_generators.h"
 #include "polydec/dec/mesh/generators.h"
 #include "tests/support/support.h"
+#include "tests/support/volume_meshes.h"
 
 using namespace polydec;
 
@@ -43,19 +44,7 @@ std::vector<int> where(const Eigen::MatrixX3d& X, Pred pred) {
   return out;
 }
 
-// Cell c's outward faces, each rotated to start at its smallest vertex, sorted.
-std::vector<std::vector<int>> outward_faces(const VolumeMesh& m, int c) {
-  std::vector<std::vector<int>> faces;
-  for (int h : m.cell(c)) {
-    const auto f = m.face(h / 2);
-    std::vector<int> p(f.begin(), f.end());
-    if (h & 1) std::reverse(p.begin() + 1, p.end());
-    std::rotate(p.begin(), std::min_element(p.begin(), p.end()), p.end());
-    faces.push_back(p);
-  }
-  std::sort(faces.begin(), faces.end());
-  return faces;
-}
+using test::outward_faces;
 
 // The same cells with the same outward faces; positions equal to `tolerance` relative.
 void check_same(const VolumeMesh& a, const VolumeMesh& b, double tolerance = 0) {

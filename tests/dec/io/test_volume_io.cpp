@@ -11,6 +11,7 @@
 #include "polydec/dec/mesh/volume_cells.h"
 #include "polydec/dec/mesh/volume_generators.h"
 #include "tests/support/support.h"
+#include "tests/support/volume_meshes.h"
 
 using namespace polydec;
 
@@ -18,19 +19,7 @@ namespace test_volume_io {
 
 namespace {
 
-// Cell c's outward faces, each rotated to start at its smallest vertex, sorted.
-std::vector<std::vector<int>> outward_faces(const VolumeMesh& m, int c) {
-  std::vector<std::vector<int>> faces;
-  for (int h : m.cell(c)) {
-    const auto f = m.face(h / 2);
-    std::vector<int> p(f.begin(), f.end());
-    if (h & 1) std::reverse(p.begin() + 1, p.end());
-    std::rotate(p.begin(), std::min_element(p.begin(), p.end()), p.end());
-    faces.push_back(p);
-  }
-  std::sort(faces.begin(), faces.end());
-  return faces;
-}
+using test::outward_faces;
 
 // Same positions (bit-exact), the same cells in the same order with the same outward faces.
 void check_same(const VolumeMesh& a, const VolumeMesh& b) {
