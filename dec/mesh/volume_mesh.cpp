@@ -320,12 +320,21 @@ Mesh VolumeMesh::boundary_surface() const {
 
 double VolumeMesh::cell_volume(int c) const {
   const ScaledVolume v = signed_volume(positions_, topo_->face_offsets, topo_->face_indices, cell(c));
-  return std::ldexp(v.v, 3 * v.e);
+  const double r = std::ldexp(v.v, 3 * v.e);
+  // Overflow to inf, or underflow below the normal doubles (precision lost, or a true volume read as 0).
+  if (!std::isfinite(r) || (v.v != 0 && std::fabs(r) < std::numeric_limits<double>::min()))
+    throw InvalidMeshError("cell", c,
+                           fmt::format("cell {} has a volume of about 1e{:+.0f}, outside what double holds; rescale the mesh",
+                                       c, std::log10(std::fabs(v.v)) + 3 * v.e * std::log10(2.0)));
+  return r;
 }
 
 double VolumeMesh::volume() const {
   double v = 0.0;
   for (int c = 0; c < n_cells(); ++c) v += cell_volume(c);
+  if (!std::isfinite(v))
+    throw InvalidMeshError("mesh", -1, "the cells' volumes are each finite but their sum is beyond what double holds; "
+                                       "rescale the mesh");
   return v;
 }
 

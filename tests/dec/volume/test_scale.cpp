@@ -171,10 +171,14 @@ TEST_CASE("volume mesh measures hold at coordinates up to kMaxVolumeCoordinate",
     CHECK(m.bounding_box_diagonal() == Approx(base.bounding_box_diagonal() * s).epsilon(1e-14));
     CHECK(m.mean_edge_length() == Approx(base.mean_edge_length() * s).epsilon(1e-14));
     CHECK(m.rms_radius() == Approx(base.rms_radius() * s).epsilon(1e-14));
-    // Cell volumes s^3: representable at 2^300, not at 2^990 (inf, as the true value exceeds double).
+    // Cell volumes s^3: representable at 2^300; at 2^990 and 2^-480 refused with the cell and the
+    // size named, never inf or a false zero.
     if (3 * k < 1000 && 3 * k > -1000) {
       for (int c = 0; c < base.n_cells(); ++c)
         CHECK(std::ldexp(m.cell_volume(c), -3 * k) == Approx(base.cell_volume(c)).epsilon(1e-14));
+    } else {
+      CHECK_THROWS_WITH(m.cell_volume(0), Catch::Contains("cell 0") && Catch::Contains(k > 0 ? "1e+89" : "1e-43"));
+      CHECK_THROWS_AS(m.volume(), InvalidMeshError);
     }
   }
   // Orientation: cells listed inward at 2^900 (volumes beyond double) are still turned outward.
