@@ -60,6 +60,19 @@ struct GlobalOptions {
 };
 GlobalOptions& global_options();
 
+// The formats the commands read, for help texts: surfaces, and volumes (a .msh or .vtu file is a
+// volume when it holds 3-D cells).
+inline constexpr const char* kSurfaceFormats = ".obj, .off, .ply, .msh, .vtu";
+inline constexpr const char* kVolumeFormats = ".ovm, .vtk, .mesh, .meshb, .msh, .vtu";
+inline constexpr const char* kVolumeFlagHelp =
+    "read the file as a volume mesh (implied by .ovm, .vtk, .mesh, .meshb, and by .msh and .vtu files with 3-D "
+    "cells)";
+// "input mesh (SURFACES; volumes: VOLUMES)", or surfaces only.
+inline std::string mesh_input_help(bool volumes = true) {
+  return std::string("input mesh (") + kSurfaceFormats + (volumes ? std::string("; volumes: ") + kVolumeFormats : "") +
+         ")";
+}
+
 // Adds the `--repair` flag (see load_mesh) to a subcommand.
 void add_repair_flag(CLI::App& app, bool& flag);
 

@@ -3,8 +3,8 @@
 // N Catmull-Clark steps; with --unit-sphere every vertex is projected to the unit sphere after
 // each of these steps (so `--dual --subdivide 1 --unit-sphere` on unit-sphere.off builds the
 // paper's FINE SPHERE, `--dual --unit-sphere` its HEX SPHERE). Volume meshes (.ovm, .vtk, .mesh,
-// .meshb, a gmsh .msh with 3-D elements, or --volume) convert between the volume formats (written:
-// .ovm, .vtk, .mesh, .msh), or with --boundary to their boundary surface.
+// .meshb, a .msh or .vtu with 3-D cells, or --volume) convert between the volume formats (written:
+// .ovm, .vtk, .vtu, .mesh, .msh), or with --boundary to their boundary surface (any surface format).
 // --binary writes OUT in its binary form: VTK legacy BINARY (.vtk), PLY binary_little_endian
 // (.ply), OFF BINARY (.off, float32 positions).
 #include "polydec/apps/cli/command.h"
@@ -41,11 +41,12 @@ WriteOptions write_options(const Options& o) {
   return w;
 }
 
-// A gmsh .msh path: a surface or a volume (is_volume_mesh_path judges an existing file by its content).
-bool is_msh(const std::string& path) {
+// A .msh or .vtu path: either a surface or a volume (is_volume_mesh_path judges an existing file by
+// its content, a new one as a volume), so OUT's kind follows from --boundary.
+bool is_either_kind(const std::string& path) {
   std::string ext = path.size() >= 4 ? path.substr(path.size() - 4) : path;
   for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return ext == ".msh";
+  return ext == ".msh" || ext == ".vtu";
 }
 
 void run_volume(const Options& o) {
@@ -54,8 +55,8 @@ void run_volume(const Options& o) {
   const VolumeMesh m = load_volume_mesh(o.in);
   nlohmann::json j = {{"in", o.in}, {"out", o.out}};
   if (o.boundary) {
-    if (is_volume_mesh_path(o.out) && !is_msh(o.out))
-      throw UsageError("--boundary writes a surface mesh (.obj, .off, .ply, .msh)");
+    if (is_volume_mesh_path(o.out) && !is_either_kind(o.out))
+      throw UsageError(fmt::format("--boundary writes a surface mesh ({})", kSurfaceFormats));
     const Mesh b = m.boundary_surface();
     write_mesh(o.out, b, {}, write_options(o));
     j["vertices"] = b.n_vertices();
@@ -65,7 +66,7 @@ void run_volume(const Options& o) {
       fmt::print("wrote {}: boundary surface, {} vertices ({} interior ones unreferenced), {} faces\n", o.out,
                  b.n_vertices(), b.n_unreferenced_vertices(), b.n_faces());
   } else {
-    if (!is_volume_mesh_path(o.out) && !is_msh(o.out))
+    if (!is_volume_mesh_path(o.out) && !is_either_kind(o.out))
       throw UsageError(fmt::format(
           "{}: a volume mesh is written as .ovm, .vtk, .vtu, .mesh or .msh (or use --boundary)", o.out));
     write_volume_mesh(m, o.out, write_options(o));
@@ -84,7 +85,8 @@ void run(const Options& o) {
     run_volume(o);
     return;
   }
-  if (o.boundary) throw UsageError("--boundary applies to volume meshes (.ovm, .vtk, .mesh or --volume)");
+  if (o.boundary)
+    throw UsageError(fmt::format("--boundary applies to volume meshes ({}, or --volume)", kVolumeFormats));
   if (o.subdivide < 0) throw UsageError("--subdivide takes a non-negative count");
   Mesh mesh = load_mesh(o.in, o.repair);
   auto project = [&](Mesh m) { return o.unit_sphere ? project_to_unit_sphere(m) : m; };
@@ -102,13 +104,13 @@ void run(const Options& o) {
 const RegisterCommand reg("convert", "Convert between formats; optionally dual, Catmull-Clark, projection to the unit sphere; volume formats and their boundary",
                           [](CLI::App& app) {
                             auto o = std::make_shared<Options>();
-                            app.add_option("in", o->in, "input mesh (.obj, .off, .ply; volume: .ovm, .vtk, .mesh)")->required();
+                            app.add_option("in", o->in, mesh_input_help())->required();
                             app.add_option("out", o->out, "output mesh (same kinds)")->required();
                             app.add_flag("--dual", o->dual, "replace the mesh by its dual (dual vertex at the face centroid)");
                             app.add_option("--subdivide", o->subdivide, "number of Catmull-Clark steps");
                             app.add_flag("--unit-sphere", o->unit_sphere, "project to the unit sphere (after each step)");
-                            app.add_flag("--volume", o->volume, "read IN as a volume mesh (implied by .ovm, .vtk, .mesh)");
-                            app.add_flag("--boundary", o->boundary, "volume IN: write its boundary surface to OUT (.obj, .off, .ply)");
+                            app.add_flag("--volume", o->volume, kVolumeFlagHelp);
+                            app.add_flag("--boundary", o->boundary, "volume IN: write its boundary surface to OUT (" + std::string(kSurfaceFormats) + ")");
                             app.add_flag("--binary", o->binary,
                                          "write OUT in binary form: VTK legacy BINARY (.vtk), PLY binary (.ply), "
                                          "OFF BINARY (.off, float32)");

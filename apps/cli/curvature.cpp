@@ -67,7 +67,7 @@ const RegisterCommand reg(
     "curvature", "Mean curvature from the Laplacian of the coordinates (paper section 5.2)",
     [](CLI::App& app) {
       auto o = std::make_shared<Options>();
-      app.add_option("mesh", o->mesh, "input mesh (.obj, .off, .ply)")->required();
+      app.add_option("mesh", o->mesh, mesh_input_help(false))->required();
       app.add_flag("--unit-sphere", o->unit_sphere,
                    "project the vertices to the unit sphere first and report the RMSE against 1");
       app.add_option("--mass", o->mass, "lumped (default) or unlumped mass in L = M^-1 S");

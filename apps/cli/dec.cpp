@@ -350,7 +350,7 @@ const RegisterCommand reg("dec", "Write d0, d1, star0-2, P0-2 and the coarse cel
                           [](CLI::App& app) {
                             auto o = std::make_shared<Options>();
                             app.add_option("mesh", o->mesh,
-                                           "input mesh (.obj, .off, .ply; volumes: .ovm, .vtk, .mesh)")
+                                           mesh_input_help())
                                 ->required();
                             app.add_flag("--volume", o->volume, "read MESH as a volume mesh whatever its extension");
                             app.add_option("--cell-point", o->cell_rule,

@@ -326,7 +326,7 @@ std::vector<int> all_sources(const Options& o) {
 
 const RegisterCommand reg("geodesics", "Geodesic distances by the heat method (paper section 5.5)", [](CLI::App& app) {
   auto o = std::make_shared<Options>();
-  app.add_option("mesh", o->mesh, "input mesh (.obj, .off, .ply; volumes: .ovm, .vtk, .mesh)")->required();
+  app.add_option("mesh", o->mesh, mesh_input_help())->required();
   app.add_option("--source", o->sources, "source vertex (0-based; repeat for several)");
   app.add_option("--source-group", o->source_groups,
                  "every vertex of this named group of the file (gmsh physical group) is a source; repeatable, "
@@ -346,7 +346,7 @@ const RegisterCommand reg("geodesics", "Geodesic distances by the heat method (p
   app.add_option("--laplacian", o->laplacian,
                  "Laplacian: " + fmt::format("{}", fmt::join(laplacian_names(), ", ")) +
                      " (volumes: " + fmt::format("{}", fmt::join(volume_laplacian_names(), ", ")) + ")");
-  app.add_flag("--volume", o->volume, "read the file as a volume mesh (implied by .ovm, .vtk, .mesh)");
+  app.add_flag("--volume", o->volume, kVolumeFlagHelp);
   app.add_flag("--delta-source", o->delta_source,
                "heat step (M - t S) u = delta instead of M delta (as the paper authors' program; matters with --mass unlumped)");
   app.add_option("--time-step-edges", o->time_step_edges,

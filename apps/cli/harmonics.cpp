@@ -71,7 +71,7 @@ const RegisterCommand reg(
     "harmonics", "Spherical-harmonics reproduction error of the Laplacian (paper section 5.4, eq. 30)",
     [](CLI::App& app) {
       auto o = std::make_shared<Options>();
-      app.add_option("mesh", o->mesh, "input mesh of a sphere (.obj, .off, .ply)")->required();
+      app.add_option("mesh", o->mesh, "input mesh of a sphere (" + std::string(kSurfaceFormats) + ")")->required();
       app.add_option("--mass", o->mass, "lumped (default) or unlumped mass, in L = M^-1 S and in the norm");
       app.add_option("--laplacian", o->laplacian,
                      "Laplacian: " + fmt::format("{}", fmt::join(laplacian_names(), ", ")));

@@ -174,7 +174,7 @@ void run(const Options& o) {
 const RegisterCommand reg(
     "hodge", "Hodge decomposition of a 1-form into exact, co-exact and harmonic parts", [](CLI::App& app) {
       auto o = std::make_shared<Options>();
-      app.add_option("mesh", o->mesh, "input mesh (.obj, .off, .ply; volumes: .ovm, .vtk, .mesh)")->required();
+      app.add_option("mesh", o->mesh, mesh_input_help())->required();
       app.add_option("--out", o->out, "output text file: i j omega exact coexact harmonic");
       app.add_option("--form", o->form,
                      "1-form file, one value per coarse 1-cell in edges.txt order (default: "

@@ -238,8 +238,8 @@ void run(const Options& o) {
 const RegisterCommand reg("info", "Print counts, topology, planarity and convexity statistics of a surface or volume mesh",
                           [](CLI::App& app) {
                             auto o = std::make_shared<Options>();
-                            app.add_option("mesh", o->mesh, "input mesh (.obj, .off, .ply, .msh; volume: .ovm, .vtk, .mesh, .meshb, .msh)")->required();
-                            app.add_flag("--volume", o->volume, "read the file as a volume mesh (implied by .ovm, .vtk, .mesh)");
+                            app.add_option("mesh", o->mesh, mesh_input_help())->required();
+                            app.add_flag("--volume", o->volume, kVolumeFlagHelp);
                             app.add_flag("--json", o->json, "print one JSON object instead of text");
                             add_repair_flag(app, o->repair);
                             app.callback([o] { run(*o); });

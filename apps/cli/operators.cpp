@@ -257,7 +257,7 @@ void run(const Options& o) {
 
 const RegisterCommand reg("operators", "Assemble S, M, lumped M, G, D, P and write them in Matrix Market", [](CLI::App& app) {
   auto o = std::make_shared<Options>();
-  app.add_option("mesh", o->mesh, "input mesh (.obj, .off, .ply; volumes: .ovm, .vtk, .mesh)")->required();
+  app.add_option("mesh", o->mesh, mesh_input_help())->required();
   app.add_option("--out", o->out, "output directory (required unless --repeat)");
   app.add_flag("--volume", o->volume, "read MESH as a volume mesh whatever its extension");
   app.add_option("--cell-point", o->cell_rule, "volumes: cell-point weights, squared-volume (default) or polylaplace");

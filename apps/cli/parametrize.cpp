@@ -63,7 +63,7 @@ void run(const Options& o) {
 const RegisterCommand reg(
     "parametrize", "Spectral free-boundary conformal parametrization (paper section 5.3)", [](CLI::App& app) {
       auto o = std::make_shared<Options>();
-      app.add_option("mesh", o->mesh, "input mesh with boundary (.obj, .off, .ply)")->required();
+      app.add_option("mesh", o->mesh, "input mesh with boundary (" + std::string(kSurfaceFormats) + ")")->required();
       app.add_option("--out", o->out, "output OBJ with vt texture coordinates");
       app.add_option("--laplacian", o->laplacian,
                      "Laplacian: " + fmt::format("{}", fmt::join(laplacian_names(), ", ")));

@@ -136,9 +136,9 @@ void run(const Options& o) {
 const RegisterCommand reg(
     "render", "Picture of a mesh (PNG), optionally with a colour-mapped scalar field", [](CLI::App& app) {
       auto o = std::make_shared<Options>();
-      app.add_option("mesh", o->mesh, "input mesh (.obj, .off, .ply; volumes: .ovm, .vtk, .mesh)")
+      app.add_option("mesh", o->mesh, mesh_input_help())
           ->required();
-      app.add_flag("--volume", o->volume, "read the file as a volume mesh (implied by .ovm, .vtk, .mesh)");
+      app.add_flag("--volume", o->volume, kVolumeFlagHelp);
       app.add_option(
              "--cut-plane", o->cut_plane,
              "volumes: cut plane through PX PY PZ with normal NX NY NZ; the half the normal points into "

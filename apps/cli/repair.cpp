@@ -71,8 +71,8 @@ const RegisterCommand reg(
     "repair", "Merge duplicate vertices, drop invalid and duplicate faces and unreferenced vertices",
     [](CLI::App& app) {
       auto o = std::make_shared<Options>();
-      app.add_option("in", o->in, "input mesh (.obj, .off, .ply)")->required();
-      app.add_option("out", o->out, "output mesh (.obj, .off, .ply)")->required();
+      app.add_option("in", o->in, mesh_input_help(false))->required();
+      app.add_option("out", o->out, "output mesh (" + std::string(kSurfaceFormats) + ")")->required();
       app.add_option("--merge-tolerance", o->merge_tolerance,
                      "merge vertices closer than R x bounding-box diagonal (default 0: "
                      "coincident vertices only)");

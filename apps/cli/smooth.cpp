@@ -83,7 +83,7 @@ void run(const Options& o) {
 const RegisterCommand reg(
     "smooth", "Conformalized mean curvature flow (paper section 5.1, eq. 28)", [](CLI::App& app) {
       auto o = std::make_shared<Options>();
-      app.add_option("mesh", o->mesh, "input mesh (.obj, .off, .ply)")->required();
+      app.add_option("mesh", o->mesh, mesh_input_help(false))->required();
       app.add_option("--steps", o->steps, "number of implicit steps (default 10)");
       app.add_option("--dt", o->dt, "time step eps (units of area); default 1e-3 * surface area");
       app.add_option("--out", o->out, "output directory: step_001.obj, step_002.obj, ...");

@@ -143,7 +143,7 @@ const RegisterCommand reg(
     "Spectral shape tools: heat/wave kernel signatures, biharmonic/diffusion distance, low-pass filter",
     [](CLI::App& app) {
       auto o = std::make_shared<Options>();
-      app.add_option("mesh", o->mesh, "input mesh (.obj, .off, .ply)")->required();
+      app.add_option("mesh", o->mesh, mesh_input_help(false))->required();
       app.add_flag("--hks", o->hks,
                    "heat kernel signature at --samples log-spaced times (properties hks_000..)");
       app.add_flag("--wks", o->wks, "wave kernel signature at --samples log energies (properties wks_000..)");

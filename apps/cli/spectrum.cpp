@@ -333,9 +333,9 @@ const RegisterCommand reg(
     "spectrum", "Smallest eigenpairs of the Laplacian, -S x = lambda M x (Spectra shift-invert)",
     [](CLI::App& app) {
       auto o = std::make_shared<Options>();
-      app.add_option("mesh", o->mesh, "input mesh (.obj, .off, .ply; volumes: .ovm, .vtk, .mesh)")
+      app.add_option("mesh", o->mesh, mesh_input_help())
           ->required();
-      app.add_flag("--volume", o->volume, "read the file as a volume mesh (implied by .ovm, .vtk, .mesh)");
+      app.add_flag("--volume", o->volume, kVolumeFlagHelp);
       app.add_option("--k", o->k, "number of eigenpairs (default 10)");
       app.add_option(
           "--form", o->form,

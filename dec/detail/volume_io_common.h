@@ -157,6 +157,9 @@ PolyhedronRead read_medit(std::string_view bytes, const std::string& name);
 // VTK XML unstructured grid (.vtu): the volume cells (dec/io/vtu.cpp); surface cells beside them
 // are skipped and counted.
 PolyhedronRead read_vtu(std::string_view bytes, const std::string& name);
+// Whether a .vtu file holds volume cells (else it is a surface); true for bytes that do not parse,
+// so the volume reader reports why.
+bool vtu_holds_volume(std::string_view bytes, const std::string& name);
 
 // The dimension of a VTK cell type: 3 for the volume cells read (10 tetra, 11 voxel, 12 hexahedron,
 // 13 wedge, 14 pyramid, 42 polyhedron), 0 to 2 for vertex, poly-vertex, line, poly-line, triangle,

@@ -96,13 +96,14 @@ using namespace io_volume_detail;
 
 bool is_volume_mesh_path(const std::string& path) {
   const std::string ext = extension(path);
-  if (ext != "msh") return known(ext);
+  if (ext != "msh" && ext != "vtu") return known(ext);
   std::string bytes;
   try {
     bytes = slurp(path);
   } catch (const FileError&) {
-    return true;  // a .msh to be written, or an unreadable one (the volume reader says why)
+    return true;  // a file to be written, or an unreadable one (the volume reader says why)
   }
+  if (ext == "vtu") return vtu_holds_volume(bytes, path);
   return msh_holds_volume(bytes, path) || !looks_like_msh(bytes);
 }
 

@@ -13,8 +13,8 @@
 
 namespace polydec {
 
-// True when the path's extension (case-insensitive) is a volume format: .ovm, .vtk, .vtu, .mesh,
-// .meshb, or .msh unless the file exists and holds no 3-D elements (a gmsh surface).
+// True when the path's extension (case-insensitive) is a volume format: .ovm, .vtk, .mesh, .meshb,
+// or .msh / .vtu unless the file exists and holds no 3-D elements (a gmsh or VTK surface).
 bool is_volume_mesh_path(const std::string& path);
 
 // Reads the file's polyhedra without validation beyond what the format needs (indices in

@@ -12,6 +12,7 @@
 #include <expat.h>
 #include <zlib.h>
 
+#include <algorithm>
 #include <array>
 #include <climits>
 #include <cmath>
@@ -754,6 +755,16 @@ SoupRead read_vtu_surface(std::string_view bytes, const std::string& name) {
   if (r.soup.n_faces() == 0 && !g.types.empty())
     throw FileError(name, g.cells_line, -1, "no polygon cells (only vertex and line cells)");
   return r;
+}
+
+bool vtu_holds_volume(std::string_view bytes, const std::string& name) {
+  try {
+    const io_vtu_detail::Grid g = io_vtu_detail::read_grid(bytes, name);
+    return g.types.empty() ||
+           std::any_of(g.types.begin(), g.types.end(), [](int t) { return vtk_cell_dimension(t) == 3; });
+  } catch (const FileError&) {
+    return true;
+  }
 }
 
 }  // namespace io_detail

@@ -1,6 +1,7 @@
 // tests/apps/cli/test_cli_vtu.cpp — the command line with VTK XML files ([vtu-cli]): `info` on a .vtu
 // written by VTK (counts, volume, the skipped boundary cells), `geodesics` and `spectrum --vtu` on a
-// volume writing their fields as .vtu point data (equal to the JSON and the .mtx), `convert` to .vtu.
+// volume writing their fields as .vtu point data (equal to the JSON and the .mtx), `convert` to .vtu;
+// a surface .vtu taken as a surface by every command, and `convert --boundary` writing one.
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -8,6 +9,7 @@
 #include "polydec/dec/io/mesh_io.h"
 #include "polydec/dec/io/volume_io.h"
 #include "polydec/dec/io/vtu.h"
+#include "polydec/dec/mesh/generators.h"
 #include "polydec/dec/mesh/volume_generators.h"
 #include "tests/apps/cli/cli_run.h"
 #include "tests/support/support.h"
@@ -66,6 +68,53 @@ TEST_CASE("polydec info, geodesics, spectrum and convert with .vtu files", "[vtu
     INFO(r.err);
     REQUIRE(r.code == 0);
     CHECK(read_volume_mesh(scratch.path("b.vtu")).positions() == mesh.positions());
+  }
+}
+
+TEST_CASE("a surface .vtu is a surface for the commands, and convert --boundary writes one", "[vtu-cli]") {
+  const test::ScratchDir scratch("cli_vtu_surface");
+  const Mesh surface = hex_sphere(2);
+  const std::string file = scratch.path("s.vtu");
+  write_mesh(file, surface);
+  CHECK_FALSE(is_volume_mesh_path(file));
+  {
+    const auto r = test::run_cli_in(scratch.dir, "info '" + file + "' --json");
+    INFO(r.err);
+    REQUIRE(r.code == 0);
+    const auto j = nlohmann::json::parse(r.out);
+    CHECK(j["vertices"] == surface.n_vertices());
+    CHECK(j["faces"] == surface.n_faces());
+    CHECK_FALSE(j.contains("cells"));
+  }
+  {
+    // The same Laplacian as from the same mesh written as OFF.
+    write_mesh(scratch.path("s.off"), surface);
+    const auto a = test::run_cli_in(scratch.dir, "operators '" + file + "' --out '" + scratch.path("a") + "'");
+    const auto b =
+        test::run_cli_in(scratch.dir, "operators '" + scratch.path("s.off") + "' --out '" + scratch.path("b") + "'");
+    INFO(a.err << b.err);
+    REQUIRE(a.code == 0);
+    REQUIRE(b.code == 0);
+    const Eigen::SparseMatrix<double> Sa = read_matrix_market(scratch.path("a/S.mtx"));
+    const Eigen::SparseMatrix<double> Sb = read_matrix_market(scratch.path("b/S.mtx"));
+    CHECK((Sa - Sb).norm() <= 1e-12 * Sb.norm());
+  }
+  {
+    const VolumeMesh mesh = hex_grid_volume(2, 2, 3);
+    write_volume_mesh(mesh, scratch.path("v.vtk"));
+    const auto r = test::run_cli_in(scratch.dir, "convert '" + scratch.path("v.vtk") + "' '" +
+                                                     scratch.path("boundary.vtu") + "' --boundary");
+    INFO(r.err);
+    REQUIRE(r.code == 0);
+    const Mesh b = read_mesh(scratch.path("boundary.vtu"));
+    CHECK(b.n_faces() == mesh.boundary_surface().n_faces());
+    CHECK(b.positions() == mesh.positions());
+  }
+  {
+    // --help lists every format a command reads.
+    const auto r = test::run_cli_in(scratch.dir, "geodesics --help");
+    CHECK(r.out.find(".obj, .off, .ply, .msh, .vtu; volumes: .ovm, .vtk, .mesh, .meshb, .msh, .vtu") !=
+          std::string::npos);
   }
 }
 
