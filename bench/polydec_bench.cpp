@@ -307,6 +307,9 @@ void bench_cholesky(const std::string& name, const Laplacian& L, int reps) {
     add({"numeric Cholesky, CHOLMOD", name, "", "", 0, 0, 0, 2, "CHOLMOD not compiled in"});
     return;
   }
+  // One solve with the default supernodes (as the heat method factors) per ordering, interleaved
+  // with AMD's: every solve reads the whole factor, so fill is solve time.
+  std::vector<std::unique_ptr<SparseCholesky>> solvers;
   for (auto ord : {CholeskyOrdering::Amd, CholeskyOrdering::Metis, CholeskyOrdering::NestedDissection}) {
     std::unique_ptr<SparseCholesky> chol;
     const double first = time_ms([&] { chol = std::make_unique<SparseCholesky>(A, "M - 0.1 S", CholeskyOptions{CholeskyBackend::Cholmod, ord}); });
@@ -317,7 +320,19 @@ void bench_cholesky(const std::string& name, const Laplacian& L, int reps) {
     add({"numeric Cholesky, CHOLMOD " + chol->ordering(), name, "Eigen SimplicialLLT", "CHOLMOD supernodal refactor",
          best(t_llt), best(t), 0, ord == CholeskyOrdering::Amd ? 2.0 : 0.0,
          fmt::format("nnz(L) {:.2f}M; analysis + first factorization {:.0f} ms; thread CPU time", chol->factor_nonzeros() / 1e6, first)});
+    CholeskyOptions exact{CholeskyBackend::Cholmod, ord};
+    exact.relaxed_supernodes = false;
+    solvers.push_back(std::make_unique<SparseCholesky>(A, "M - 0.1 S", exact));
   }
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(A.rows(), -1.0, 1.0);
+  std::vector<std::vector<double>> t_solve(solvers.size());
+  for (int i = 0; i < 3 * reps; ++i)
+    for (size_t k = 0; k < solvers.size(); ++k) t_solve[k].push_back(time_ms([&] { (void)solvers[k]->solve(b); }));
+  for (size_t k = 1; k < solvers.size(); ++k)
+    add({"one solve, CHOLMOD " + solvers[k]->ordering(), name, "AMD", solvers[k]->ordering(), median(t_solve[0]),
+         median(t_solve[k]), 0, 0,
+         fmt::format("default supernodes; nnz(L) {:.2f}M against AMD's {:.2f}M; median of {}, interleaved; thread CPU time",
+                     solvers[k]->factor_nonzeros() / 1e6, solvers[0]->factor_nonzeros() / 1e6, 3 * reps)});
 }
 
 void bench_geodesics(const std::string& name, const Mesh& mesh, int n_sources) {
@@ -337,6 +352,28 @@ void bench_geodesics(const std::string& name, const Mesh& mesh, int n_sources) {
                     "set {:.0f} ms (measured separately) + two CHOLMOD factorizations and the rest; thread CPU time",
                     median(t), n_sources, ops_ms)};
   add(r);
+  // The face-wise gradient-normalization-divergence pass against the route through G and D, with
+  // the same factors (an operator set under another name keeps the matrices), interleaved.
+  {
+    OperatorSet named = build_operators(mesh, parse_laplacian("ours"));
+    named.name = "ours through G and D";
+    const HeatGeodesics by_matrices(std::move(named), mesh.mean_edge_length());
+    std::vector<double> tm, tf;
+    double diff = 0, dmax = 0;
+    for (int i = 0; i < n_sources; ++i) {
+      const int s = int((long(i) * 7919 * 104729) % mesh.n_vertices());
+      Eigen::VectorXd a, b;
+      tm.push_back(time_ms([&] { b = by_matrices.distance(s); }));
+      tf.push_back(time_ms([&] { a = heat->distance(s); }));
+      diff = std::max(diff, (a - b).cwiseAbs().maxCoeff());
+      dmax = std::max(dmax, b.maxCoeff());
+    }
+    add({"heat geodesics per source, face-wise pass", name, "through G and D", "face by face", median(tm), median(tf), 0,
+         0,
+         fmt::format("median of {}, interleaved, same factors; max |difference| {:.1e} (distances up to {:.3g}); "
+                     "thread CPU time",
+                     n_sources, diff, dmax)});
+  }
   // One field per source for 64 sources at once (blocks of right-hand sides), against the single
   // source median above, re-timed interleaved with it. Target: at most a quarter per source.
   std::vector<int> many;

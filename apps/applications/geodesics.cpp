@@ -8,6 +8,8 @@
 #include <numeric>
 
 #include "polydec/dec/detail/huge_pages.h"
+#include "polydec/dec/surface/refinement.h"
+#include "polydec/dec/surface/whitney.h"
 
 namespace polydec {
 
@@ -80,6 +82,90 @@ void normalize_block(double* x, int n, int stride) {
   for (int i = 0; i < n; ++i) x[i * stride] = -x[i * stride] / norm;
 }
 
+// b += -D g for g = -grad u / |grad u| on every fan triangle (eqs. 32-33; D = -G^T W), face by
+// face from the fan data of HeatGeodesics: m columns at once, vertex-major (vertex v's m values of
+// u at U + v m, of b at B + v m). The gradient on the fan triangle (x_i, x_j, x_f) is
+// (u_i - u_f) g_i + (u_j - u_f) g_j with u_f the weighted corner values; the virtual vertex's share
+// of the divergence goes to the corners by the weights. `scratch` holds 2 m values.
+void fan_gradient_divergence(const Mesh& mesh, const std::vector<double>& weights, const std::vector<double>& fan,
+                             const double* U, int m, double* B, std::vector<double>& scratch) {
+  scratch.assign(2 * size_t(m), 0.0);
+  double* uf = scratch.data();
+  double* acc = uf + m;
+  const int* fo = mesh.face_offsets().data();
+  const int* fi = mesh.face_indices().data();
+  for (int f = 0; f < mesh.n_faces(); ++f) {
+    const int b0 = fo[f], n = fo[f + 1] - b0;
+    std::fill(uf, uf + 2 * m, 0.0);
+    for (int k = 0; k < n; ++k) {
+      const double w = weights[size_t(b0 + k)];
+      const double* u = U + size_t(fi[b0 + k]) * m;
+      for (int c = 0; c < m; ++c) uf[c] += w * u[c];
+    }
+    for (int k = 0; k < n; ++k) {
+      const double* q = fan.data() + 7 * size_t(b0 + k);
+      const double a = q[6];
+      if (a == 0) continue;  // degenerate: no gradient, no divergence
+      const int i = fi[b0 + k], j = fi[b0 + (k + 1) % n];
+      const double* ui = U + size_t(i) * m;
+      const double* uj = U + size_t(j) * m;
+      double* bi = B + size_t(i) * m;
+      double* bj = B + size_t(j) * m;
+      for (int c = 0; c < m; ++c) {
+        const double di = ui[c] - uf[c], dj = uj[c] - uf[c];
+        double g[3] = {di * q[0] + dj * q[3], di * q[1] + dj * q[4], di * q[2] + dj * q[5]};
+        normalize_block(g, 3, 1);  // (32)
+        const double si = a * (g[0] * q[0] + g[1] * q[1] + g[2] * q[2]);
+        const double sj = a * (g[0] * q[3] + g[1] * q[4] + g[2] * q[5]);
+        bi[c] += si;
+        bj[c] += sj;
+        acc[c] -= si + sj;  // the virtual vertex's hat gradient is -(g_i + g_j)
+      }
+    }
+    for (int k = 0; k < n; ++k) {
+      const double w = weights[size_t(b0 + k)];
+      double* b = B + size_t(fi[b0 + k]) * m;
+      for (int c = 0; c < m; ++c) b[c] += w * acc[c];
+    }
+  }
+}
+
+// Whether the fan data reproduce G x and D y for fixed pseudo-random x and y to round-off: the
+// guard that lets the face-wise pass stand in for G and D (an operator set named "ours" built with
+// other refinement options, say, keeps the matrices).
+bool fan_data_match(const Mesh& mesh, const std::vector<double>& weights, const std::vector<double>& fan,
+                    const SparseMatrix& G, const SparseMatrix& D) {
+  const int nv = mesh.n_vertices(), nh = mesh.n_halfedges();
+  if (nh == 0 || G.rows() != 3 * nh || G.cols() != nv || D.rows() != nv || D.cols() != 3 * nh) return false;
+  Eigen::VectorXd x(nv), y(3 * nh);
+  for (int v = 0; v < nv; ++v) x[v] = std::sin(1.7 * v + 0.3);
+  for (int r = 0; r < 3 * nh; ++r) y[r] = std::cos(0.9 * r + 0.1);
+  const Eigen::VectorXd gx = G * x, dy = D * y;
+  Eigen::VectorXd g(3 * nh), d = Eigen::VectorXd::Zero(nv);
+  g.setZero();
+  const int* fo = mesh.face_offsets().data();
+  const int* fi = mesh.face_indices().data();
+  for (int f = 0; f < mesh.n_faces(); ++f) {
+    const int b0 = fo[f], n = fo[f + 1] - b0;
+    double xf = 0, acc = 0;
+    for (int k = 0; k < n; ++k) xf += weights[size_t(b0 + k)] * x[fi[b0 + k]];
+    for (int k = 0; k < n; ++k) {
+      const int h = b0 + k, i = fi[h], j = fi[b0 + (k + 1) % n];
+      const double* q = fan.data() + 7 * size_t(h);
+      if (q[6] == 0) continue;
+      for (int c = 0; c < 3; ++c) g[3 * h + c] = (x[i] - xf) * q[c] + (x[j] - xf) * q[3 + c];
+      const double si = -q[6] * (y[3 * h] * q[0] + y[3 * h + 1] * q[1] + y[3 * h + 2] * q[2]);
+      const double sj = -q[6] * (y[3 * h] * q[3] + y[3 * h + 1] * q[4] + y[3 * h + 2] * q[5]);
+      d[i] += si;
+      d[j] += sj;
+      acc -= si + sj;
+    }
+    for (int k = 0; k < n; ++k) d[fi[b0 + k]] += weights[size_t(b0 + k)] * acc;
+  }
+  const double eg = gx.size() ? gx.cwiseAbs().maxCoeff() : 0.0, ed = dy.size() ? dy.cwiseAbs().maxCoeff() : 0.0;
+  return (g - gx).cwiseAbs().maxCoeff() <= 1e-10 * eg && (d - dy).cwiseAbs().maxCoeff() <= 1e-10 * ed;
+}
+
 }  // namespace
 
 HeatGeodesics::HeatGeodesics(const Mesh& mesh, const HeatGeodesicsOptions& options)
@@ -114,10 +200,14 @@ HeatGeodesics::HeatGeodesics(OperatorSet operators, double mean_edge_length, con
   }
   // CHOLMOD's default supernodes: each source costs two solves, and a solve is ~30% faster than
   // with the relaxed amalgamation (FINE SPHERE: 10.1 vs 14.0 ms) for a somewhat slower
-  // factorization (docs/benchmarks.md).
+  // factorization. The ordering with the smaller factor of AMD and METIS: every solve reads the
+  // whole factor, and the one analysis serves both matrices (docs/benchmarks.md).
   CholeskyOptions copt;
   copt.relaxed_supernodes = false;
-  heat_ = std::make_unique<SparseCholesky>(pin_to_identity(heat, pinned_), "heat operator M - t S", copt);
+  copt.ordering = CholeskyOrdering::BestFill;
+  // Both matrices on the pattern of M - t S (pinned entries kept as zeros), so that the Poisson
+  // operator is factored with the heat operator's analysis.
+  heat_ = std::make_unique<SparseCholesky>(pin_to_identity(heat, pinned_, true), "heat operator M - t S", copt);
 
   // Poisson operator -S with one vertex pinned per component (S has constants per component in
   // its null space; the right-hand side D g sums to zero on each, so pinning loses nothing).
@@ -128,7 +218,33 @@ HeatGeodesics::HeatGeodesics(OperatorSet operators, double mean_edge_length, con
       seen[component_[v]] = 1;
       pinned_[v] = 1;
     }
-  poisson_ = std::make_unique<SparseCholesky>(pin_to_identity(-ops_.S, pinned_), "Poisson operator -S", copt);
+  const SparseMatrix poisson = 0.0 * heat - ops_.S;  // -S on the heat operator's pattern
+  poisson_ = std::make_unique<SparseCholesky>(
+      heat_->with_values(pin_to_identity(poisson, pinned_, true), "Poisson operator -S"));
+
+  // The paper's operator: its refinement again (the default one, as build_operators makes it) for
+  // the face-wise pass, used only when it reproduces G and D.
+  const Mesh& domain = ops_.domain;
+  if (ops_.name == "ours" && domain.n_vertices() == nv && ops_.G.rows() == 3 * domain.n_halfedges()) {
+    const Refinement r = refine(domain);
+    weights_ = r.weights;
+    fan_.assign(7 * size_t(domain.n_halfedges()), 0.0);
+    for (int f = 0; f < domain.n_faces(); ++f) {
+      const auto face = domain.face(f);
+      const int n = int(face.size()), h0 = domain.face_offsets()[f];
+      const Eigen::Vector3d xf = r.virtual_points.row(f).transpose();
+      for (int k = 0; k < n; ++k) {
+        const int h = h0 + k;
+        if (r.fan[h] == FanTriangle::Degenerate) continue;
+        const Eigen::Vector3d xi = domain.position(face[k]), xj = domain.position(face[(k + 1) % n]);
+        const Eigen::Matrix3d G = hat_gradients(xi, xj, xf);
+        double* q = fan_.data() + 7 * size_t(h);
+        for (int c = 0; c < 3; ++c) q[c] = G(c, 0), q[3 + c] = G(c, 1);
+        q[6] = 0.5 * (xi - xf).cross(xj - xf).norm();
+      }
+    }
+    if (!fan_data_match(domain, weights_, fan_, ops_.G, ops_.D)) fan_.clear(), weights_.clear();
+  }
 }
 
 // The reach follows the implicit heat step, not the continuous exp(-d / sqrt(t)): on a chain of
@@ -176,16 +292,22 @@ Eigen::VectorXd HeatGeodesics::distance(std::span<const int> sources, HeatDiagno
   const Eigen::VectorXd u = heat_->solve(rhs);
 
   // (32): g = -grad u / |grad u| per element (fan triangle; or the blocks the operator set names);
-  // zero where the gradient vanishes.
-  Eigen::VectorXd g = ops_.G * u;
-  const int n_blocks = ops_.G_blocks.empty() ? int(g.size() / 3) : int(ops_.G_blocks.size()) - 1;
-  for (int h = 0; h < n_blocks; ++h) {
-    const int b0 = ops_.G_blocks.empty() ? 3 * h : ops_.G_blocks[h];
-    const int b1 = ops_.G_blocks.empty() ? 3 * h + 3 : ops_.G_blocks[h + 1];
-    normalize_block(g.data() + b0, b1 - b0, 1);
+  // zero where the gradient vanishes. (33): S d = D g, solved as (-S) d = -D g with pinned vertices.
+  Eigen::VectorXd b;
+  if (!fan_.empty()) {
+    b = Eigen::VectorXd::Zero(nv);
+    std::vector<double> scratch;
+    fan_gradient_divergence(ops_.domain, weights_, fan_, u.data(), 1, b.data(), scratch);
+  } else {
+    Eigen::VectorXd g = ops_.G * u;
+    const int n_blocks = ops_.G_blocks.empty() ? int(g.size() / 3) : int(ops_.G_blocks.size()) - 1;
+    for (int h = 0; h < n_blocks; ++h) {
+      const int b0 = ops_.G_blocks.empty() ? 3 * h : ops_.G_blocks[h];
+      const int b1 = ops_.G_blocks.empty() ? 3 * h + 3 : ops_.G_blocks[h + 1];
+      normalize_block(g.data() + b0, b1 - b0, 1);
+    }
+    b = -(ops_.D * g);
   }
-  // (33): S d = D g, solved as (-S) d = -D g with pinned vertices.
-  Eigen::VectorXd b = -(ops_.D * g);
   for (int v = 0; v < nv; ++v)
     if (pinned_[v]) b[v] = 0;
   Eigen::VectorXd d = poisson_->solve(b).head(n_out);
@@ -221,8 +343,10 @@ Eigen::MatrixXd HeatGeodesics::distances(std::span<const int> sources, int block
   check_sources(sources);
   // G row by row (a gather per gradient entry) and D column by column (a scatter into the small
   // right-hand side): one pass over both for all columns of a block.
-  const Eigen::SparseMatrix<double, Eigen::RowMajor> Gr = ops_.G;
-  const int n_blocks = ops_.G_blocks.empty() ? int(Gr.rows() / 3) : int(ops_.G_blocks.size()) - 1;
+  // (Not needed by the face-wise pass of the paper's operator.)
+  Eigen::SparseMatrix<double, Eigen::RowMajor> Gr;
+  if (fan_.empty()) Gr = ops_.G;
+  const int n_blocks = ops_.G_blocks.empty() ? int(ops_.G.rows() / 3) : int(ops_.G_blocks.size()) - 1;
   int widest = 3;
   for (int h = 0; h < n_blocks && !ops_.G_blocks.empty(); ++h)
     widest = std::max(widest, ops_.G_blocks[h + 1] - ops_.G_blocks[h]);
@@ -247,7 +371,8 @@ Eigen::MatrixXd HeatGeodesics::distances(std::span<const int> sources, int block
     const double* U = Ut.data();  // vertex v's m values at U + v m
     double* Bv = Bt.data();
     std::vector<double> g(size_t(widest) * size_t(m));  // block row i's m values at g + i m
-    for (int h = 0; h < n_blocks; ++h) {
+    if (!fan_.empty()) fan_gradient_divergence(ops_.domain, weights_, fan_, U, m, Bv, g);
+    for (int h = 0; h < n_blocks && fan_.empty(); ++h) {
       const int b0 = ops_.G_blocks.empty() ? 3 * h : ops_.G_blocks[h];
       const int b1 = ops_.G_blocks.empty() ? 3 * h + 3 : ops_.G_blocks[h + 1];
       for (int r = b0; r < b1; ++r) {

@@ -84,6 +84,11 @@ class HeatGeodesics {
   std::vector<int> component_;        // component id per vertex, -1 for unreferenced
   std::vector<unsigned char> pinned_;  // vertices fixed to 0 in the Poisson solve
   std::unique_ptr<SparseCholesky> heat_, poisson_;
+  // For the paper's operator ("ours", as build_operators makes it): per fan triangle of
+  // ops_.domain the hat gradients of its two polygon corners and its area (7 values, zero when
+  // degenerate), and the corner weights, so that eqs. (32)-(33)'s gradient, normalization and
+  // divergence run face by face without reading G and D. Empty for other operator sets.
+  std::vector<double> fan_, weights_;
 };
 
 // Root-mean-square of (a - b).

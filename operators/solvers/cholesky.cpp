@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <mutex>
 #include <stdexcept>
@@ -36,6 +37,23 @@ void check_eigen(const Eigen::SimplicialLDLT<SpMat>& s, const std::string& name)
     throw SolverError("Cholesky factorization of " + name + " failed: matrix is singular or not positive definite");
 }
 
+// FNV-1a over the rows and column starts of A's lower triangle: matrices with the same
+// fingerprint have the same pattern for the factorization (up to a 2^-64 chance).
+std::uint64_t lower_pattern_hash(const SpMat& A) {
+  std::uint64_t h = 1469598103934665603ull;
+  auto mix = [&](std::uint64_t x) {
+    h ^= x;
+    h *= 1099511628211ull;
+  };
+  mix(std::uint64_t(A.rows()));
+  for (int j = 0; j < int(A.cols()); ++j) {
+    mix(std::uint64_t(j) << 32);
+    for (SpMat::InnerIterator it(A, j); it; ++it)
+      if (it.row() >= j) mix(std::uint64_t(it.row()));
+  }
+  return h;
+}
+
 #ifdef POLYDEC_HAVE_CHOLMOD
 // A read-only CHOLMOD view of a compressed column-major matrix; stype -1: only the lower
 // triangle is used.
@@ -62,6 +80,8 @@ cholmod_sparse view_lower(const SpMat& A) {
 struct SparseCholesky::Impl {
   bool use_cholmod = false;
   std::string ordering = "amd";
+  double lnz = 0;              // non-zeros of L from the analysis
+  std::uint64_t pattern = 0;   // lower_pattern_hash of the analysed matrix
   Eigen::SimplicialLDLT<SpMat> ldlt;
 #ifdef POLYDEC_HAVE_CHOLMOD
   mutable cholmod_common c{};
@@ -94,6 +114,7 @@ SparseCholesky::SparseCholesky(const Eigen::SparseMatrix<double>& A_in, std::str
   if (options.backend == CholeskyBackend::Cholmod && !cholmod_available())
     throw SolverError("Cholesky of " + name_ + ": the CHOLMOD backend is not compiled in");
   if (!want_cholmod) {
+    impl_->pattern = lower_pattern_hash(A_in);
     impl_->ldlt.analyzePattern(A_in);
     impl_->ldlt.factorize(A_in);
     check_eigen(impl_->ldlt, name_);
@@ -130,6 +151,11 @@ SparseCholesky::SparseCholesky(const Eigen::SparseMatrix<double>& A_in, std::str
       c.method[0].ordering = CHOLMOD_NESDIS;
       impl_->ordering = "nesdis";
       break;
+    case CholeskyOrdering::BestFill:
+      c.nmethods = 2;
+      c.method[0].ordering = CHOLMOD_AMD;
+      c.method[1].ordering = CHOLMOD_METIS;
+      break;
   }
   const SpMat A = A_in.isCompressed() ? SpMat() : SpMat(A_in);
   const SpMat& Ac = A_in.isCompressed() ? A_in : A;
@@ -137,6 +163,10 @@ SparseCholesky::SparseCholesky(const Eigen::SparseMatrix<double>& A_in, std::str
   impl_->L = cholmod_analyze(&s, &c);
   if (!impl_->L || c.status < CHOLMOD_OK)
     throw SolverError("Cholesky analysis of " + name_ + " failed (CHOLMOD status " + std::to_string(c.status) + ")");
+  if (options.ordering == CholeskyOrdering::BestFill)
+    impl_->ordering = c.method[c.selected].ordering == CHOLMOD_METIS ? "metis" : "amd";
+  impl_->lnz = c.lnz;
+  impl_->pattern = lower_pattern_hash(Ac);
   refactor(Ac);
 #endif
 }
@@ -148,6 +178,8 @@ SparseCholesky& SparseCholesky::operator=(SparseCholesky&&) noexcept = default;
 void SparseCholesky::refactor(const Eigen::SparseMatrix<double>& A_in) {
   if (A_in.rows() != rows_ || A_in.cols() != rows_)
     throw SolverError("Cholesky refactorization of " + name_ + ": matrix size changed");
+  if (lower_pattern_hash(A_in) != impl_->pattern)
+    throw SolverError("Cholesky refactorization of " + name_ + ": the matrix's pattern differs from the analysed one");
   if (!impl_->use_cholmod) {
     impl_->ldlt.factorize(A_in);
     check_eigen(impl_->ldlt, name_);
@@ -170,6 +202,44 @@ void SparseCholesky::refactor(const Eigen::SparseMatrix<double>& A_in) {
   if (!(rc > kSingularPivot) || !std::isfinite(rc))
     throw SolverError("Cholesky factorization of " + name_ + " failed: matrix is singular or not finite");
 #endif
+}
+
+SparseCholesky::SparseCholesky(std::string name, int rows)
+    : impl_(std::make_unique<Impl>()), name_(std::move(name)), rows_(rows) {}
+
+SparseCholesky SparseCholesky::with_values(const Eigen::SparseMatrix<double>& A_in, std::string name) const {
+  if (A_in.rows() != rows_ || A_in.cols() != rows_)
+    throw SolverError("Cholesky of " + name + ": its size differs from that of " + name_ + ", whose analysis it reuses");
+  const SpMat A = A_in.isCompressed() ? SpMat() : SpMat(A_in);
+  const SpMat& Ac = A_in.isCompressed() ? A_in : A;
+  SparseCholesky out(std::move(name), rows_);
+  out.impl_->ordering = impl_->ordering;
+  out.impl_->lnz = impl_->lnz;
+  out.impl_->pattern = lower_pattern_hash(Ac);
+  if (!impl_->use_cholmod) {
+    out.impl_->ldlt.analyzePattern(Ac);
+    out.impl_->ldlt.factorize(Ac);
+    check_eigen(out.impl_->ldlt, out.name_);
+    return out;
+  }
+#ifdef POLYDEC_HAVE_CHOLMOD
+  if (out.impl_->pattern != impl_->pattern)
+    throw SolverError("Cholesky of " + out.name_ + ": its pattern differs from that of " + name_ +
+                      ", whose analysis it reuses");
+  out.impl_->use_cholmod = true;
+  cholmod_common& c = out.impl_->c;
+  cholmod_start(&c);
+  out.impl_->started = true;
+  c.print = 0;
+  c.supernodal = CHOLMOD_SUPERNODAL;
+  // The copy carries the symbolic analysis (and the old values, overwritten by the factorization).
+  out.impl_->L = cholmod_copy_factor(impl_->L, &c);
+  if (!out.impl_->L || c.status < CHOLMOD_OK)
+    throw SolverError("Cholesky of " + out.name_ + ": copying the analysis failed (CHOLMOD status " +
+                      std::to_string(c.status) + ")");
+  out.refactor(Ac);
+#endif
+  return out;
 }
 
 Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd& b) const {
@@ -215,7 +285,7 @@ std::string SparseCholesky::backend() const {
 
 double SparseCholesky::factor_nonzeros() const {
 #ifdef POLYDEC_HAVE_CHOLMOD
-  if (impl_->use_cholmod) return impl_->c.lnz;
+  if (impl_->use_cholmod) return impl_->lnz;
 #endif
   return double(impl_->ldlt.matrixL().nestedExpression().nonZeros());
 }
@@ -305,14 +375,22 @@ bool SparseCholesky::cholmod_available() {
 #endif
 }
 
-Eigen::SparseMatrix<double> pin_to_identity(const Eigen::SparseMatrix<double>& A, const std::vector<unsigned char>& pinned) {
+Eigen::SparseMatrix<double> pin_to_identity(const Eigen::SparseMatrix<double>& A, const std::vector<unsigned char>& pinned,
+                                            bool keep_pattern) {
   using SparseMatrix = Eigen::SparseMatrix<double>;
   const int n = int(A.cols());
+  auto has_diagonal = [&](int j) {
+    for (SparseMatrix::InnerIterator it(A, j); it; ++it)
+      if (it.row() == j) return true;
+    return false;
+  };
   SparseMatrix B(A.rows(), A.cols());
   int* outer = B.outerIndexPtr();
   for (int j = 0; j < n; ++j) {
     int count = 1;
-    if (!pinned[j]) {
+    if (keep_pattern) {
+      count = int(A.outerIndexPtr()[j + 1] - A.outerIndexPtr()[j]) + (has_diagonal(j) ? 0 : 1);
+    } else if (!pinned[j]) {
       count = 0;
       for (SparseMatrix::InnerIterator it(A, j); it; ++it) count += !pinned[it.row()];
     }
@@ -325,6 +403,24 @@ Eigen::SparseMatrix<double> pin_to_identity(const Eigen::SparseMatrix<double>& A
   double* value = B.valuePtr();
   for (int j = 0; j < n; ++j) {
     int at = outer[j];
+    if (keep_pattern) {
+      // A's entries in order, the diagonal inserted where it is missing; pinned rows and
+      // columns zero off the diagonal, one on it.
+      bool diagonal_done = false;
+      auto put = [&](int row, double v) {
+        inner[at] = row;
+        value[at++] = (pinned[j] || pinned[row]) ? (row == j ? 1.0 : 0.0) : v;
+      };
+      for (SparseMatrix::InnerIterator it(A, j); it; ++it) {
+        if (!diagonal_done && it.row() >= j) {
+          if (it.row() > j) put(j, 0.0);
+          diagonal_done = true;
+        }
+        put(int(it.row()), it.value());
+      }
+      if (!diagonal_done) put(j, 0.0);
+      continue;
+    }
     if (pinned[j]) {
       inner[at] = j;
       value[at] = 1.0;
@@ -338,7 +434,6 @@ Eigen::SparseMatrix<double> pin_to_identity(const Eigen::SparseMatrix<double>& A
   }
   return B;
 }
-
 
 Eigen::SparseMatrix<double> principal_submatrix(const Eigen::SparseMatrix<double>& A, const std::vector<int>& index) {
   using SparseMatrix = Eigen::SparseMatrix<double>;

@@ -28,8 +28,11 @@ enum class CholeskyBackend {
 // chosen by measurement on FINE SPHERE's M - 0.1 S (docs/benchmarks.md): nested dissection
 // (NESDIS) cuts the flops from 1.2 to 0.65 GFLOP and the numeric factorization by ~20%, but its
 // analysis costs ~0.5 s more, so AMD is faster whenever a matrix is factored fewer than a
-// handful of times; pass NestedDissection for many refactorizations of one pattern.
-enum class CholeskyOrdering { Automatic, Amd, Metis, NestedDissection };
+// handful of times; pass NestedDissection for many refactorizations of one pattern. BestFill
+// orders by AMD and by METIS and keeps the one whose factor has fewer non-zeros (CHOLMOD's own
+// comparison of the two analyses): worth its ~0.5 s when a factor serves many solves, or its
+// analysis several matrices (SparseCholesky::with_values).
+enum class CholeskyOrdering { Automatic, Amd, Metis, NestedDissection, BestFill };
 
 struct CholeskyOptions {
   CholeskyBackend backend = CholeskyBackend::Automatic;
@@ -42,8 +45,11 @@ struct CholeskyOptions {
 
 // The matrices the solvers are given, written column by column into compressed storage (no
 // triplet lists: on the 1.5M-quad mesh those took seconds).
-// A with the rows and columns of the pinned vertices replaced by the identity.
-Eigen::SparseMatrix<double> pin_to_identity(const Eigen::SparseMatrix<double>& A, const std::vector<unsigned char>& pinned);
+// A with the rows and columns of the pinned vertices replaced by the identity; with
+// `keep_pattern` their off-diagonal entries stay as explicit zeros (and a missing diagonal entry
+// is added), so that matrices pinned at different vertices share one pattern.
+Eigen::SparseMatrix<double> pin_to_identity(const Eigen::SparseMatrix<double>& A, const std::vector<unsigned char>& pinned,
+                                            bool keep_pattern = false);
 // The principal submatrix of A on the vertices v with index[v] >= 0, vertex v becoming row and
 // column index[v]; index must increase with v on those vertices.
 Eigen::SparseMatrix<double> principal_submatrix(const Eigen::SparseMatrix<double>& A, const std::vector<int>& index);
@@ -84,7 +90,12 @@ class SparseCholesky {
   SparseCholesky& operator=(SparseCholesky&&) noexcept;
 
   // New values, same pattern: numeric factorization only (the symbolic analysis is reused).
+  // SolverError when A's pattern differs from the analysed one.
   void refactor(const Eigen::SparseMatrix<double>& A);
+  // A second factorization, of A with the same pattern as this one's matrix (explicit zeros
+  // count as entries), reusing this analysis (ordering, supernodes) instead of its own; this one
+  // is unchanged. SolverError when the patterns differ.
+  SparseCholesky with_values(const Eigen::SparseMatrix<double>& A, std::string name) const;
 
   // Solves A x = b. Not safe to call concurrently on one object (CHOLMOD keeps workspace).
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
@@ -104,6 +115,7 @@ class SparseCholesky {
   static bool cholmod_available();
 
  private:
+  SparseCholesky(std::string name, int rows);
   struct Impl;
   std::unique_ptr<Impl> impl_;
   std::string name_;

@@ -186,4 +186,56 @@ TEST_CASE("failed factorizations raise SolverError naming the operator", "[robus
   CHECK_THROWS_WITH(chol.refactor(SparseMatrix(-S)), Catch::Contains("shifted -S"));
 }
 
+TEST_CASE("Cholesky: the better of AMD and METIS by fill, one analysis for two matrices of a pattern",
+          "[robust][numerics][cholesky]") {
+  const Mesh mesh = add_noise(hex_sphere(3), 0.1, 11);
+  const Refinement r = refine(mesh);
+  const SparseMatrix S = stiffness(mesh, r), M = mass(mesh, r);
+  const SparseMatrix A = M - 0.01 * S, B = 2.0 * M - 0.5 * S;
+  const int n = int(A.rows());
+  CholeskyOptions amd, metis, best;
+  amd.ordering = CholeskyOrdering::Amd;
+  metis.ordering = CholeskyOrdering::Metis;
+  best.ordering = CholeskyOrdering::BestFill;
+  const SparseCholesky a(A, "A (AMD)", amd), m(A, "A (METIS)", metis), chol(A, "A", best);
+  if (chol.backend() == "cholmod-supernodal") {
+    CHECK(chol.factor_nonzeros() == std::min(a.factor_nonzeros(), m.factor_nonzeros()));
+    CHECK(chol.ordering() == (m.factor_nonzeros() < a.factor_nonzeros() ? "metis" : "amd"));
+  }
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, -1.0, 2.0);
+  const Eigen::VectorXd xa = chol.solve(b);
+  CHECK((A * xa - b).norm() <= 1e-12 * b.norm() * (1 + A.norm()));
+  // B factored with A's analysis: the solution of a fresh factorization, and A's factor unchanged.
+  const SparseCholesky shared = chol.with_values(B, "B");
+  const Eigen::VectorXd xb = shared.solve(b), xb_fresh = SparseCholesky(B, "B").solve(b);
+  CHECK((xb - xb_fresh).norm() <= 1e-12 * xb_fresh.norm());
+  CHECK(chol.solve(b) == xa);
+  CHECK(shared.factor_nonzeros() == chol.factor_nonzeros());
+  // Another pattern is refused, by with_values and by refactor.
+  SparseMatrix C = A;
+  C.coeffRef(n - 1, 0) += 1e-9;
+  C.coeffRef(0, n - 1) += 1e-9;
+  if (A.coeff(n - 1, 0) == 0 && C.nonZeros() > A.nonZeros()) {
+    CHECK_THROWS_WITH(chol.with_values(C, "C"), Catch::Contains("pattern"));
+    SparseCholesky copy = chol.with_values(B, "B again");
+    CHECK_THROWS_AS(copy.refactor(C), SolverError);
+  }
+  // Pinning that keeps the pattern: the same solutions as pinning that drops the entries, and
+  // matrices pinned at different vertices share one analysis.
+  std::vector<unsigned char> pin1(n, 0), pin2(n, 0);
+  pin1[3] = 1;
+  pin2[3] = pin2[n / 2] = pin2[n - 1] = 1;
+  const SparseMatrix P1 = pin_to_identity(A, pin1, true), P2 = pin_to_identity(-S, pin2, true);
+  CHECK(P1.nonZeros() == A.nonZeros());
+  CHECK(P1.coeff(3, 3) == 1.0);
+  CHECK(P1.coeff(3, 4) == 0.0);
+  const SparseCholesky c1(P1, "P1", best);
+  const SparseCholesky c2 = c1.with_values(SparseMatrix(0.0 * A + P2), "P2");
+  const Eigen::VectorXd x1 = c1.solve(b), x1_dropped = SparseCholesky(pin_to_identity(A, pin1), "P1'").solve(b);
+  const Eigen::VectorXd x2 = c2.solve(b), x2_dropped = SparseCholesky(pin_to_identity(-S, pin2), "P2'").solve(b);
+  CHECK((x1 - x1_dropped).norm() <= 1e-12 * x1_dropped.norm());
+  CHECK((x2 - x2_dropped).norm() <= 1e-10 * x2_dropped.norm());
+  CHECK(x2[3] == Approx(b[3]).epsilon(1e-13));
+}
+
 }  // namespace test_numerics
