@@ -412,23 +412,25 @@ long long count(const Node& n, const char* attribute, const std::string& name) {
   return x;
 }
 
-// The grid of a .vtu file: points, and cells as point ids with offsets (from 0), types, and the
-// face streams of polyhedra.
+// The grid of a .vtu file, its pieces concatenated: points, and cells as point ids (offset by the
+// points of the pieces before) with offsets (from 0), types, and the face streams of polyhedra; per
+// vertex and per cell the line of its piece's Points or Cells element.
 struct Grid {
   Eigen::MatrixX3d points;
   CoordinatePrecision precision;
   std::vector<int> connectivity, types, faces;
   std::vector<long long> offsets{0};
   std::vector<long long> face_begin, face_end;  // per cell its face stream (empty but for polyhedra)
-  long points_line = 0, cells_line = 0;
+  std::vector<long> vertex_line, cell_line;
+  long cells_line = 0;  // the first piece's Cells (or Piece) line, for messages about the whole file
 };
 
 // Integer values in [lo, INT_MAX] of DataArray a.
 std::vector<int> integers(const Arrays& arrays, const Node& a, size_t n, const std::string& what,
                           long long lo) {
   const std::vector<double> v = arrays.values(a, n, what, true);
-  std::vector<int> out(n);
-  for (size_t k = 0; k < n; ++k) {
+  std::vector<int> out(v.size());
+  for (size_t k = 0; k < v.size(); ++k) {
     if (!(v[k] >= double(lo) && v[k] <= double(INT_MAX)))
       arrays.fail(a, fmt::format("{} value {} (entry {}) out of range [{}, {}]", what, v[k], k, lo, INT_MAX));
     out[k] = int(v[k]);
@@ -436,9 +438,9 @@ std::vector<int> integers(const Arrays& arrays, const Node& a, size_t n, const s
   return out;
 }
 
-// The file's only Piece, after checking the root (VTKFile of type UnstructuredGrid) and reading its
-// encoding into e.
-const Node& only_piece(const Document& doc, Encoding& e, const std::string& name) {
+// The file's Piece elements (at least one), after checking the root (VTKFile of type
+// UnstructuredGrid) and reading its encoding into e.
+std::vector<const Node*> pieces(const Document& doc, Encoding& e, const std::string& name) {
   const Node& root = doc.nodes[0];
   auto fail = [&](const Node& n, const std::string& reason) { throw FileError(name, n.line, -1, reason); };
   const std::string* type = root.attribute("type");
@@ -460,75 +462,118 @@ const Node& only_piece(const Document& doc, Encoding& e, const std::string& name
   e.zlib = compressor && !compressor->empty();
   const Node* grid = child(doc, root, "UnstructuredGrid");
   if (!grid) fail(root, "no UnstructuredGrid element");
-  int pieces = 0;
-  for (int c : grid->children) pieces += doc.nodes[size_t(c)].name == "Piece";
-  if (pieces != 1) fail(*grid, fmt::format("{} Piece elements (one is read)", pieces));
-  return *child(doc, *grid, "Piece");
+  std::vector<const Node*> out;
+  for (int c : grid->children)
+    if (doc.nodes[size_t(c)].name == "Piece") out.push_back(&doc.nodes[size_t(c)]);
+  if (out.empty()) fail(*grid, "no Piece element");
+  return out;
 }
 
-Grid read_grid(std::string_view bytes, const std::string& name) {
-  const std::string_view text = strip_bom(bytes);
-  const Document doc = parse_xml(text, name);
+// Appends one piece to g: its points (coordinates to xyz, their digits to `digits`, `float32` set
+// for Float32 points) and its cells, point ids offset by the points before it.
+void read_piece(const Document& doc, const Node& piece, const Arrays& arrays, const std::string& name, Grid& g,
+                std::vector<double>& xyz, DigitCounter& digits, bool& float32) {
   auto fail = [&](const Node& n, const std::string& reason) { throw FileError(name, n.line, -1, reason); };
-  Encoding e;
-  const Node& piece = only_piece(doc, e, name);
   const long long nv = count(piece, "NumberOfPoints", name), nc = count(piece, "NumberOfCells", name);
-  const Arrays arrays(text, doc, e, name);
-
-  Grid g;
+  const long long base = (long long)(xyz.size() / 3), first = (long long)g.types.size();
+  if (base + nv > INT_MAX / 2 || first + nc > INT_MAX / 2)
+    fail(piece, fmt::format("the pieces hold more than {} points or cells", INT_MAX / 2));
   const Node* points = child(doc, piece, "Points");
-  const Node* xyz = points ? child(doc, *points, "DataArray") : nullptr;
-  if (nv > 0 && !xyz) fail(piece, "no Points DataArray");
-  if (xyz) {
-    g.points_line = xyz->line;
-    const std::string* comps = xyz->attribute("NumberOfComponents");
-    if (!comps || *comps != "3") fail(*xyz, "the Points DataArray needs NumberOfComponents=\"3\"");
-    DigitCounter digits;
-    bool float32 = false;
-    const std::vector<double> x = arrays.values(*xyz, size_t(nv) * 3, "the points", false, &digits, &float32);
-    g.points.resize(nv, 3);  // after the values: their count is bounded by the file
-    for (long long k = 0; k < nv * 3; ++k) {
-      if (!std::isfinite(x[size_t(k)]))
-        fail(*xyz, fmt::format("point {} has a non-finite coordinate ({})", k / 3, x[size_t(k)]));
-      g.points(k / 3, k % 3) = x[size_t(k)];
-    }
-    g.precision = float32 ? float_precision(g.points) : digits.precision(g.points);
+  const Node* x = points ? child(doc, *points, "DataArray") : nullptr;
+  if (nv > 0 && !x) fail(piece, "no Points DataArray");
+  if (x) {
+    const std::string* comps = x->attribute("NumberOfComponents");
+    if (!comps || *comps != "3") fail(*x, "the Points DataArray needs NumberOfComponents=\"3\"");
+    bool f32 = false;
+    const std::vector<double> v = arrays.values(*x, size_t(nv) * 3, "the points", false, &digits, &f32);
+    float32 = float32 || f32;
+    for (size_t k = 0; k < v.size(); ++k)
+      if (!std::isfinite(v[k]))
+        fail(*x, fmt::format("point {} has a non-finite coordinate ({})", base + (long long)k / 3, v[k]));
+    xyz.insert(xyz.end(), v.begin(), v.end());
+    g.vertex_line.resize(size_t(base + nv), x->line);
   }
 
   const Node* cells = child(doc, piece, "Cells");
-  if (nc == 0) return g;
+  if (g.cells_line == 0) g.cells_line = cells ? cells->line : piece.line;
+  if (nc == 0) return;
   if (!cells) fail(piece, "no Cells element");
-  g.cells_line = cells->line;
+  const long line = cells->line;
   const Node* connectivity = child(doc, *cells, "DataArray", "connectivity");
   const Node* offsets = child(doc, *cells, "DataArray", "offsets");
   const Node* types = child(doc, *cells, "DataArray", "types");
   if (!connectivity || !offsets || !types)
     fail(*cells, "Cells needs the DataArrays connectivity, offsets and types");
   const std::vector<int> ends = integers(arrays, *offsets, size_t(nc), "offsets", 0);
-  for (long long c = 0; c < nc; ++c) {
-    if (ends[size_t(c)] < g.offsets.back())
-      fail(*offsets, fmt::format("offset {} of cell {} is below the previous one", ends[size_t(c)], c));
-    g.offsets.push_back(ends[size_t(c)]);
+  for (long long c = 1; c < nc; ++c)
+    if (ends[size_t(c)] < ends[size_t(c - 1)])
+      fail(*offsets, fmt::format("offset {} of cell {} is below the previous one", ends[size_t(c)], first + c));
+  const std::vector<int> ids = integers(arrays, *connectivity, size_t(ends.back()), "connectivity", 0);
+  const std::vector<int> kinds = integers(arrays, *types, size_t(nc), "types", 0);
+  const long long conn_base = (long long)g.connectivity.size();
+  for (long long c = 0, k = 0; c < nc; ++c) {
+    for (; k < ends[size_t(c)]; ++k) {
+      if (ids[size_t(k)] >= nv)
+        throw FileError(name, line, -1,
+                        fmt::format("cell {}: point index {} out of range [0, {})", first + c, ids[size_t(k)], nv));
+      g.connectivity.push_back(ids[size_t(k)] + int(base));
+    }
+    g.offsets.push_back(conn_base + ends[size_t(c)]);
   }
-  g.connectivity = integers(arrays, *connectivity, size_t(g.offsets.back()), "connectivity", 0);
-  g.types = integers(arrays, *types, size_t(nc), "types", 0);
-  g.face_begin.assign(size_t(nc), 0);
-  g.face_end.assign(size_t(nc), 0);
-  if (std::find(g.types.begin(), g.types.end(), int(kVtkPolyhedron)) == g.types.end()) return g;
+  g.types.insert(g.types.end(), kinds.begin(), kinds.end());
+  g.cell_line.resize(g.types.size(), line);
+  g.face_begin.resize(g.types.size(), 0);
+  g.face_end.resize(g.types.size(), 0);
+  if (std::find(kinds.begin(), kinds.end(), int(kVtkPolyhedron)) == kinds.end()) return;
   const Node* faces = child(doc, *cells, "DataArray", "faces");
   const Node* faceoffsets = child(doc, *cells, "DataArray", "faceoffsets");
   if (!faces || !faceoffsets) fail(*cells, "polyhedron cells need the DataArrays faces and faceoffsets");
   const std::vector<int> face_ends = integers(arrays, *faceoffsets, size_t(nc), "faceoffsets", -1);
+  const long long stream_base = (long long)g.faces.size();
   long long last = 0;
   for (long long c = 0; c < nc; ++c) {
     const int end = face_ends[size_t(c)];
     if (end < 0) continue;
     if (end < last)
-      fail(*faceoffsets, fmt::format("faceoffset {} of cell {} is below the previous one", end, c));
-    g.face_begin[size_t(c)] = last, g.face_end[size_t(c)] = end;
+      fail(*faceoffsets, fmt::format("faceoffset {} of cell {} is below the previous one", end, first + c));
+    g.face_begin[size_t(first + c)] = stream_base + last, g.face_end[size_t(first + c)] = stream_base + end;
     last = end;
   }
-  g.faces = integers(arrays, *faces, size_t(last), "faces", 0);
+  std::vector<int> stream = integers(arrays, *faces, size_t(last), "faces", 0);
+  // The point ids of each polyhedron's stream "n_faces, k_1, ids_1, ..." offset by the piece's first
+  // point; a stream that overruns its cell is left as it is for add_vtk_volume_cell to report.
+  for (long long c = 0; c < nc; ++c) {
+    if (kinds[size_t(c)] != kVtkPolyhedron) continue;
+    const long long b = g.face_begin[size_t(first + c)] - stream_base, e = g.face_end[size_t(first + c)] - stream_base;
+    long long p = b + 1;
+    for (int f = 0; b < e && f < stream[size_t(b)] && p < e; ++f) {
+      const long long k = stream[size_t(p++)];
+      for (long long i = 0; i < k && p < e; ++i, ++p) {
+        if (stream[size_t(p)] >= nv)
+          throw FileError(name, line, -1,
+                          fmt::format("polyhedron cell {}: point index {} out of range [0, {})", first + c,
+                                      stream[size_t(p)], nv));
+        stream[size_t(p)] += int(base);
+      }
+    }
+  }
+  g.faces.insert(g.faces.end(), stream.begin(), stream.end());
+}
+
+Grid read_grid(std::string_view bytes, const std::string& name) {
+  const std::string_view text = strip_bom(bytes);
+  const Document doc = parse_xml(text, name);
+  Encoding e;
+  const std::vector<const Node*> parts = pieces(doc, e, name);
+  const Arrays arrays(text, doc, e, name);
+  Grid g;
+  std::vector<double> xyz;
+  DigitCounter digits;
+  bool float32 = false;
+  for (const Node* piece : parts) read_piece(doc, *piece, arrays, name, g, xyz, digits, float32);
+  g.points.resize(Eigen::Index(xyz.size() / 3), 3);
+  for (size_t k = 0; k < xyz.size(); ++k) g.points(Eigen::Index(k / 3), Eigen::Index(k % 3)) = xyz[k];
+  g.precision = float32 ? float_precision(g.points) : digits.precision(g.points);
   return g;
 }
 
@@ -539,21 +584,12 @@ std::span<const int> cell_ids(const Grid& g, size_t c) {
   return {g.connectivity.data() + g.offsets[c], size_t(g.offsets[c + 1] - g.offsets[c])};
 }
 
-// Checks cell c's point ids (not a face stream) against the nv points.
-void check_ids(const Grid& g, size_t c, long nv, const std::string& name) {
-  for (long long k = g.offsets[c]; k < g.offsets[c + 1]; ++k)
-    if (g.connectivity[size_t(k)] >= nv)
-      throw FileError(
-          name, g.cells_line, -1,
-          fmt::format("cell {}: point index {} out of range [0, {})", c, g.connectivity[size_t(k)], nv));
-}
-
 // Cell c's type when it is one polydec knows, else a FileError.
 int known_type(const Grid& g, size_t c, const std::string& name) {
   const int t = g.types[c];
   if (vtk_cell_dimension(t) < 0)
     throw FileError(
-        name, g.cells_line, -1,
+        name, g.cell_line[c], -1,
         fmt::format("unsupported cell type {} of cell {} (10 tetra, 11 voxel, 12 hexahedron, 13 "
                     "wedge, 14 pyramid, 42 polyhedron; without them 5 triangle, 7 polygon, 8 pixel, "
                     "9 quad; vertex, line and poly-line cells are skipped)",
@@ -697,21 +733,20 @@ PolyhedronRead read_vtu(std::string_view bytes, const std::string& name) {
   Grid g = read_grid(bytes, name);
   PolyhedronRead r;
   const long nv = long(g.points.rows());
-  r.vertex_where.assign(size_t(nv), g.points_line);
+  r.vertex_where = std::move(g.vertex_line);
   PolyhedronSoupBuilder builder(std::move(g.points));
   for (size_t c = 0; c < g.types.size(); ++c) {
     const int type = known_type(g, c, name);
-    check_ids(g, c, nv, name);
     const bool skip = vtk_cell_dimension(type) < 3;
     const std::string problem = skip ? vtk_lower_cell_problem(type, cell_ids(g, c), nv, (long long)c)
                                      : add_vtk_volume_cell(builder, type, cell_ids(g, c), nv, (long long)c);
-    if (!problem.empty()) throw FileError(name, g.cells_line, -1, problem);
+    if (!problem.empty()) throw FileError(name, g.cell_line[c], -1, problem);
     if (skip) {
       ++r.skipped[vtk_cell_name(type)];
       continue;
     }
-    r.face_where.resize(size_t(builder.n_faces()), g.cells_line);
-    r.cell_where.push_back(g.cells_line);
+    r.face_where.resize(size_t(builder.n_faces()), g.cell_line[c]);
+    r.cell_where.push_back(g.cell_line[c]);
   }
   if (r.cell_where.empty())
     throw FileError(
@@ -729,27 +764,27 @@ SoupRead read_vtu_surface(std::string_view bytes, const std::string& name) {
   SoupRead r;
   r.soup.positions = std::move(g.points);
   r.soup.precision = g.precision;
-  r.vertex_where.assign(size_t(r.soup.n_vertices()), g.points_line);
+  r.vertex_where = std::move(g.vertex_line);
   std::array<int, 4> pixel{};
   for (size_t c = 0; c < g.types.size(); ++c) {
     const int type = known_type(g, c, name);
     const std::span<const int> ids = cell_ids(g, c);
     if (vtk_cell_dimension(type) == 3)
-      throw FileError(name, g.cells_line, -1,
+      throw FileError(name, g.cell_line[c], -1,
                       fmt::format("cell {} is a {}: the file holds a volume mesh (read it as one)", c,
                                   vtk_cell_name(type)));
     const std::string problem = vtk_lower_cell_problem(type, ids, r.soup.n_vertices(), (long long)c);
-    if (!problem.empty()) throw FileError(name, g.cells_line, -1, problem);
+    if (!problem.empty()) throw FileError(name, g.cell_line[c], -1, problem);
     if (vtk_cell_dimension(type) < 2) continue;
     if (type == 6)
-      throw FileError(name, g.cells_line, -1, fmt::format("cell {} is a triangle strip (not read)", c));
+      throw FileError(name, g.cell_line[c], -1, fmt::format("cell {} is a triangle strip (not read)", c));
     if (type == 8) {  // a pixel's points run x fastest, then y: 0 1 3 2 around
       pixel = {ids[0], ids[1], ids[3], ids[2]};
       r.soup.add_face(pixel);
     } else {
       r.soup.add_face(ids);
     }
-    r.face_where.push_back(g.cells_line);
+    r.face_where.push_back(g.cell_line[c]);
   }
   if (r.soup.n_faces() == 0 && !g.types.empty())
     throw FileError(name, g.cells_line, -1, "no polygon cells (only vertex and line cells)");
@@ -813,32 +848,56 @@ VtuFields read_vtu_fields_from_memory(std::string_view bytes, const std::string&
   const std::string_view text = strip_bom(bytes);
   const Document doc = parse_xml(text, name);
   Encoding e;
-  const Node& piece = only_piece(doc, e, name);
+  const std::vector<const Node*> parts = pieces(doc, e, name);
   const Arrays arrays(text, doc, e, name);
-  VtuFields fields;
-  for (const char* section : {"PointData", "CellData"}) {
-    const bool point = section[0] == 'P';
-    const long long n = count(piece, point ? "NumberOfPoints" : "NumberOfCells", name);
-    const Node* data = child(doc, piece, section);
-    if (!data) continue;
-    for (int c : data->children) {
-      const Node& a = doc.nodes[size_t(c)];
-      const std::string* array_name = a.attribute("Name");
-      const std::string* comps = a.attribute("NumberOfComponents");
-      const int k = !comps ? 1 : *comps == "1" ? 1 : *comps == "3" ? 3 : 0;
-      if (a.name != "DataArray" || !array_name || k == 0) continue;
-      const std::vector<double> v =
-          arrays.values(a, size_t(n) * size_t(k), "array " + quote(*array_name), false);
-      if (k == 3) {
-        Eigen::MatrixX3d m(n, 3);
-        for (long long i = 0; i < n * 3; ++i) m(i / 3, i % 3) = v[size_t(i)];
-        if (point) fields.point_vectors[*array_name] = m;
-      } else {
-        const Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(v.data(), Eigen::Index(n));
-        (point ? fields.point_scalars : fields.cell_scalars)[*array_name] = x;
+  // Per section and array name: its components and its values, piece after piece, and in how many
+  // pieces it was found (an array missing from a piece is dropped).
+  struct Field {
+    int components = 0, found = 0, piece = -1;
+    std::vector<double> values;
+  };
+  std::map<std::string, Field> point_fields, cell_fields;
+  for (int p = 0; p < int(parts.size()); ++p) {
+    const Node* piece = parts[size_t(p)];
+    for (const char* section : {"PointData", "CellData"}) {
+      const bool point = section[0] == 'P';
+      auto& out = point ? point_fields : cell_fields;
+      const long long n = count(*piece, point ? "NumberOfPoints" : "NumberOfCells", name);
+      const Node* data = child(doc, *piece, section);
+      if (!data) continue;
+      for (int c : data->children) {
+        const Node& a = doc.nodes[size_t(c)];
+        const std::string* array_name = a.attribute("Name");
+        const std::string* comps = a.attribute("NumberOfComponents");
+        const int k = !comps ? 1 : *comps == "1" ? 1 : *comps == "3" ? 3 : 0;
+        if (a.name != "DataArray" || !array_name || k == 0 || (!point && k == 3)) continue;
+        Field& f = out[*array_name];
+        if (f.found > 0 && f.components != k)
+          arrays.fail(a, fmt::format("array {} has {} components here and {} in an earlier piece", quote(*array_name),
+                                     k, f.components));
+        if (f.piece == p) continue;  // a second array of that name in the piece: the first is read
+        f.piece = p, f.components = k, ++f.found;
+        const std::vector<double> v = arrays.values(a, size_t(n) * size_t(k), "array " + quote(*array_name), false);
+        f.values.insert(f.values.end(), v.begin(), v.end());
       }
     }
   }
+  VtuFields fields;
+  for (auto& [array_name, f] : point_fields) {
+    if (f.found != int(parts.size())) continue;
+    const Eigen::Index n = Eigen::Index(f.values.size()) / f.components;
+    if (f.components == 3) {
+      Eigen::MatrixX3d m(n, 3);
+      for (Eigen::Index i = 0; i < n * 3; ++i) m(i / 3, i % 3) = f.values[size_t(i)];
+      fields.point_vectors[array_name] = m;
+    } else {
+      fields.point_scalars[array_name] = Eigen::Map<const Eigen::VectorXd>(f.values.data(), n);
+    }
+  }
+  for (auto& [array_name, f] : cell_fields)
+    if (f.found == int(parts.size()))
+      fields.cell_scalars[array_name] =
+          Eigen::Map<const Eigen::VectorXd>(f.values.data(), Eigen::Index(f.values.size()));
   return fields;
 }
 

@@ -163,6 +163,65 @@ TEST_CASE("VTU: surfaces (triangles, quads, polygons) when the file has no volum
   CHECK_THROWS_WITH(read_mesh(fixture("vtk_ascii.vtu")), Catch::Contains("holds a volume mesh"));
 }
 
+TEST_CASE("VTU: the pieces of a partitioned file are concatenated, points, cells and data", "[vtu][io]") {
+  const VolumeMesh reference = read_volume_mesh(fixture("vtk_ascii.vtu"));
+  for (const char* name : {"vtk_pieces_ascii.vtu", "vtk_pieces_binary_zlib.vtu"}) {
+    INFO(name);
+    VolumeReadNotes notes;
+    const VolumeMesh m = read_volume_mesh(fixture(name), &notes);
+    // Piece 1 holds points 0-24 and the row of cubes, piece 2 points 25-32 and the tetrahedra: the
+    // second piece's point ids are offset by 25, so the mesh is the one-piece file's.
+    check_same(reference, m);
+    CHECK(std::abs(m.volume() - 0.75) <= 1e-15);
+    CHECK(notes.skipped_cells ==
+          std::map<std::string, long>{
+              {"vertex", 1}, {"line", 1}, {"triangle", 2}, {"quad", 1}, {"polygon", 1}});
+    const VtuFields fields = read_vtu_fields(fixture(name));
+    const Eigen::MatrixX3d& X = m.positions();
+    CHECK(fields.point_scalars.at("f") == X.col(0) + 2 * X.col(1) + 3 * X.col(2));
+    CHECK(fields.point_vectors.at("v").col(0) == X.col(2));
+    // Each piece numbers its own cells: 15 in the first, 8 in the second.
+    Eigen::VectorXd ids(23);
+    ids << Eigen::VectorXd::LinSpaced(15, 0, 14), Eigen::VectorXd::LinSpaced(8, 0, 7);
+    CHECK(fields.cell_scalars.at("cell_id") == ids);
+  }
+  // Surfaces: the square and a copy moved by 3 in x, 8 points each.
+  const Mesh one = read_mesh(fixture("vtk_surface_ascii.vtu"));
+  const Mesh two = read_mesh(fixture("vtk_surface_pieces_binary.vtu"));
+  REQUIRE(two.n_vertices() == 16);
+  CHECK(two.n_faces() == 8);
+  CHECK(two.positions().topRows(8) == one.positions());
+  CHECK(two.positions().bottomRows(8).col(0) == (one.positions().col(0).array() + 3.0).matrix());
+  CHECK(std::abs(area(two) - 2.0) <= 1e-15);
+  CHECK(read_vtu_fields(fixture("vtk_surface_pieces_binary.vtu")).point_scalars.at("f").size() == 16);
+
+  const std::string ascii = io_detail::slurp(fixture("vtk_pieces_ascii.vtu"));
+  // An array missing from one piece is dropped; the mesh reads.
+  {
+    const size_t second = ascii.find("<Piece", ascii.find("</Piece>"));
+    const std::string bad = replace(ascii.substr(0, second), "Name=\"f\"", "Name=\"g\"") + ascii.substr(second);
+    const VtuFields fields = read_vtu_fields_from_memory(bad, "p.vtu");
+    CHECK(fields.point_scalars.count("f") == 0);
+    CHECK(fields.point_scalars.count("g") == 0);
+    CHECK(fields.point_vectors.count("v") == 1);
+  }
+  // A cell of the second piece naming a point beyond its own 8 (ids are per piece).
+  {
+    const size_t second = ascii.find("<Piece", ascii.find("</Piece>"));
+    const size_t c = ascii.find("Name=\"connectivity\"", second);
+    const size_t v = ascii.find_first_of("0123456789", ascii.find('>', c));
+    std::string bad = ascii;
+    bad.replace(v, 1, "8");
+    expect_error(bad, "cell 15: point index 8 out of range [0, 8)");
+  }
+  expect_error(replace(ascii, "NumberOfPoints=\"8\"", "NumberOfPoints=\"9\""), "");
+  {
+    std::string none = ascii;
+    none.erase(none.find("    <Piece"), none.rfind("</Piece>") + 9 - none.find("    <Piece"));
+    expect_error(none, "no Piece element");
+  }
+}
+
 TEST_CASE("VTU: written volumes and surfaces read back bit-exactly with their fields", "[vtu][io]") {
   const VolumeMesh hex = hex_grid_volume(3, 2, 2, {0.2, 4});
   const VolumeMesh tro = truncated_octahedra_volume(2);  // polyhedra: type 42
