@@ -1,8 +1,9 @@
 // dec/io/vtu.cpp — VTK XML unstructured grids (.vtu). The XML is parsed by expat up to an
 // <AppendedData> element (whose raw bytes are not XML); data arrays are ASCII, inline base64
 // ("binary") or appended (raw or base64) at their offset, each behind a UInt32 or UInt64 header
-// (byte_order LittleEndian or BigEndian), optionally zlib-compressed in vtkZLibDataCompressor's
-// blocks (header: block count, block size, last block size, compressed sizes), inflated by zlib.
+// (byte_order LittleEndian or BigEndian), optionally compressed in blocks (header: block count, block
+// size, last block size, compressed sizes) by vtkZLibDataCompressor, vtkLZ4DataCompressor (LZ4 block
+// format) or vtkLZMADataCompressor (xz streams), inflated by zlib, liblz4 and liblzma.
 // Cells: connectivity, offsets, types, and for polyhedra (42) the faces / faceoffsets face
 // streams of VTK 9.1; volume cells (10, 11, 12, 13, 14, 42) with lower-dimensional cells skipped
 // and counted, or, with no volume cell, a surface of triangles 5, pixels 8, quads 9 and polygons 7.
@@ -10,6 +11,8 @@
 #include "polydec/dec/io/vtu.h"
 
 #include <expat.h>
+#include <lz4.h>
+#include <lzma.h>
 #include <zlib.h>
 
 #include <array>
@@ -137,12 +140,68 @@ Document parse_xml(std::string_view bytes, const std::string& name) {
   return doc;
 }
 
+// The compressors of VTK's XML writers.
+enum class Compressor { none, zlib, lz4, lzma };
+
 // The file-wide encoding: header word size, byte order, compression.
 struct Encoding {
   bool big_endian = false;
   size_t header = 4;
-  bool zlib = false;
+  Compressor compressor = Compressor::none;
 };
+
+// The name of a compressor in messages.
+const char* compressor_name(Compressor c) {
+  return c == Compressor::zlib ? "zlib" : c == Compressor::lz4 ? "LZ4" : "LZMA";
+}
+
+// An upper bound on what a compressed block of `size` bytes inflates to: zlib expands at most about
+// 1032 to 1, LZ4 about 255 to 1 and xz (LZMA2) about 7000 to 1.
+std::uint64_t max_inflated(Compressor c, std::uint64_t size) {
+  const std::uint64_t ratio = c == Compressor::zlib ? 1100 : c == Compressor::lz4 ? 256 : 8000;
+  return size > (UINT64_MAX - 64) / 8000 ? UINT64_MAX : ratio * size + 64;
+}
+
+// The memory liblzma may use to inflate a block (its dictionary): enough for VTK's presets up to 9
+// (64 MiB dictionaries), not more, whatever a block's header claims.
+constexpr std::uint64_t kLzmaMemoryLimit = std::uint64_t(128) << 20;
+
+// Inflates `packed` into exactly `want` bytes at `out`: the problem, empty when there is none.
+std::string inflate(Compressor c, const std::string& packed, char* out, size_t want) {
+  if (c == Compressor::zlib) {
+    uLongf got = uLongf(want);
+    const int rc = uncompress(reinterpret_cast<Bytef*>(out), &got, reinterpret_cast<const Bytef*>(packed.data()),
+                              uLong(packed.size()));
+    if (rc != Z_OK) return zError(rc);
+    return got == want ? std::string() : fmt::format("{} bytes", got);
+  }
+  if (c == Compressor::lz4) {
+    if (packed.size() > size_t(INT_MAX) || want > size_t(INT_MAX)) return "a block beyond LZ4's 2 GB";
+    const int got = LZ4_decompress_safe(packed.data(), out, int(packed.size()), int(want));
+    if (got < 0) return "corrupt LZ4 data";
+    return size_t(got) == want ? std::string() : fmt::format("{} bytes", got);
+  }
+  std::uint64_t memory = kLzmaMemoryLimit;
+  size_t in = 0, got = 0;
+  const lzma_ret rc = lzma_stream_buffer_decode(&memory, 0, nullptr, reinterpret_cast<const std::uint8_t*>(packed.data()),
+                                                &in, packed.size(), reinterpret_cast<std::uint8_t*>(out), &got, want);
+  switch (rc) {
+    case LZMA_OK:
+      return got == want ? std::string() : fmt::format("{} bytes", got);
+    case LZMA_FORMAT_ERROR:
+      return "not an xz stream";
+    case LZMA_OPTIONS_ERROR:
+      return "unsupported xz options";
+    case LZMA_DATA_ERROR:
+      return "corrupt xz data";
+    case LZMA_BUF_ERROR:
+      return "more bytes than the block holds, or a truncated stream";
+    case LZMA_MEMLIMIT_ERROR:
+      return fmt::format("its dictionary needs more than {} MiB", kLzmaMemoryLimit >> 20);
+    default:
+      return fmt::format("liblzma error {}", int(rc));
+  }
+}
 
 // The bytes of one binary array: raw (`base64` false) or base64 characters decoded on demand, group
 // by group, so that a header encoded apart from its data (padded) and one encoded with it both
@@ -335,7 +394,7 @@ class Arrays {
   // The decoded bytes (exactly `expected` of them) of one binary array behind its header.
   void payload(Bytes& b, size_t expected, std::string& raw, const std::string& what) const {
     const char* w = what.c_str();
-    if (!e_.zlib) {
+    if (e_.compressor == Compressor::none) {
       const std::uint64_t size = b.header(e_, w);
       if (size != expected)
         b.fail(fmt::format("{}: the header announces {} bytes, the array needs {}", what, size, expected));
@@ -357,14 +416,14 @@ class Arrays {
       b.fail(
           fmt::format("{}: the compressed blocks hold {} bytes, the array needs {}", what, total, expected));
     // Each block's size, checked before anything is allocated: the compressed bytes must be there,
-    // and zlib expands at most about 1032 to 1, so a larger block is not a zlib stream of that size.
+    // and no larger than its compressor's ratio allows (max_inflated).
     std::vector<std::uint64_t> sizes(blocks);
     std::uint64_t compressed = 0;
     for (std::uint64_t k = 0; k < blocks; ++k) {
       sizes[k] = b.header(e_, w);
       const std::uint64_t want = k + 1 == blocks && last ? last : block_size;
       compressed += std::min<std::uint64_t>(sizes[k], b.capacity() + 1);
-      if (compressed > b.capacity() || want > 1100 * sizes[k] + 64)
+      if (compressed > b.capacity() || want > max_inflated(e_.compressor, sizes[k]))
         b.fail(fmt::format("{}: compressed block {} of {} bytes cannot hold {} bytes (or the data ends)",
                            what, k, sizes[k], want));
     }
@@ -375,12 +434,10 @@ class Arrays {
       const size_t want = k + 1 == blocks && last ? size_t(last) : size_t(block_size);
       packed.clear();
       b.read(size_t(sizes[k]), packed, w);
-      uLongf got = uLongf(want);
-      const int rc = uncompress(reinterpret_cast<Bytef*>(raw.data() + at), &got,
-                                reinterpret_cast<const Bytef*>(packed.data()), uLong(packed.size()));
-      if (rc != Z_OK || got != want)
-        b.fail(fmt::format("{}: compressed block {} is not a zlib stream of {} bytes ({})", what, k, want,
-                           rc == Z_OK ? fmt::format("{} bytes", got) : std::string(zError(rc))));
+      const std::string problem = inflate(e_.compressor, packed, raw.data() + at, want);
+      if (!problem.empty())
+        b.fail(fmt::format("{}: compressed block {} is not a {} stream of {} bytes ({})", what, k,
+                           compressor_name(e_.compressor), want, problem));
       at += want;
     }
   }
@@ -425,7 +482,7 @@ struct Grid {
   long cells_line = 0;  // the first piece's Cells (or Piece) line, for messages about the whole file
 };
 
-// Integer values in [lo, INT_MAX] of DataArray a.
+// Integer values in [lo, INT_MAX] of DataArray a (n of them; kAnyCount: as many as it holds).
 std::vector<int> integers(const Arrays& arrays, const Node& a, size_t n, const std::string& what,
                           long long lo) {
   const std::vector<double> v = arrays.values(a, n, what, true);
@@ -457,9 +514,16 @@ std::vector<const Node*> pieces(const Document& doc, Encoding& e, const std::str
     fail(root, fmt::format("header_type {} is neither UInt32 nor UInt64", quote(*header)));
   e.header = header && *header == "UInt64" ? 8 : 4;
   const std::string* compressor = root.attribute("compressor");
-  if (compressor && !compressor->empty() && *compressor != "vtkZLibDataCompressor")
-    fail(root, fmt::format("compressor {} is not supported (vtkZLibDataCompressor)", quote(*compressor)));
-  e.zlib = compressor && !compressor->empty();
+  const std::string c = compressor ? *compressor : "";
+  e.compressor = c.empty()                        ? Compressor::none
+                 : c == "vtkZLibDataCompressor" ? Compressor::zlib
+                 : c == "vtkLZ4DataCompressor"  ? Compressor::lz4
+                 : c == "vtkLZMADataCompressor" ? Compressor::lzma
+                                                : Compressor::none;
+  if (!c.empty() && e.compressor == Compressor::none)
+    fail(root, fmt::format("compressor {} is not supported (vtkZLibDataCompressor, vtkLZ4DataCompressor, "
+                           "vtkLZMADataCompressor)",
+                           quote(c)));
   const Node* grid = child(doc, root, "UnstructuredGrid");
   if (!grid) fail(root, "no UnstructuredGrid element");
   std::vector<const Node*> out;

@@ -1,6 +1,7 @@
 // tests/dec/io/test_vtu.cpp — VTK XML unstructured grids: the fixtures of tests/data/vtu (written by
 // VTK 9.1 and meshio in every encoding: ASCII, inline base64 with UInt32 and UInt64 headers,
-// appended raw and base64, zlib blocks, big-endian, Float32 points, Int32 and Int64 ids) read to the
+// appended raw and base64, zlib, LZ4 and LZMA blocks, big-endian, Float32 points, Int32 and Int64 ids,
+// several pieces) read to the
 // same mesh with exact counts, the analytic volume and their point and cell data; bit-exact write ->
 // read round trips of volumes (polyhedra included) and surfaces with fields; hostile variants
 // refused with FileError; the legacy VTK reader's boundary cells, voxels, byte order and point type.
@@ -36,7 +37,11 @@ const std::vector<std::string> kVtkVolumes = {"vtk_ascii.vtu",
                                               "vtk_zlib_binary_u64.vtu",
                                               "vtk_bigendian_binary.vtu",
                                               "vtk_bigendian_zlib_appended.vtu",
-                                              "vtk_float32_appended_base64.vtu"};
+                                              "vtk_float32_appended_base64.vtu",
+                                              "vtk_lz4_appended_raw.vtu",
+                                              "vtk_lz4_bigendian_binary.vtu",
+                                              "vtk_lzma_binary_u64.vtu",
+                                              "vtk_lzma_appended_base64.vtu"};
 const std::vector<std::string> kMeshioVolumes = {"meshio_ascii.vtu", "meshio_binary.vtu", "meshio_zlib.vtu"};
 
 std::string replace(std::string s, const std::string& from, const std::string& to) {
@@ -138,7 +143,7 @@ TEST_CASE("VTU: meshio's ASCII, binary and zlib files read the same mesh", "[vtu
 }
 
 TEST_CASE("VTU: surfaces (triangles, quads, polygons) when the file has no volume cells", "[vtu][io]") {
-  for (const char* name : {"vtk_surface_ascii.vtu", "vtk_surface_zlib_binary.vtu"}) {
+  for (const char* name : {"vtk_surface_ascii.vtu", "vtk_surface_zlib_binary.vtu", "vtk_surface_lzma_appended_raw.vtu"}) {
     INFO(name);
     const Mesh m = read_mesh(fixture(name));
     CHECK(m.n_vertices() == 8);
@@ -328,9 +333,8 @@ TEST_CASE("VTU: hostile files are refused with FileError", "[vtu][io]") {
   expect_error(replace(ascii, "NumberOfCells=\"23\"", "NumberOfCells=\"24\""), "");
   expect_error(replace(ascii, "type=\"UnstructuredGrid\"", "type=\"PolyData\""), "'PolyData' is not read");
   expect_error(replace(ascii, "byte_order=\"LittleEndian\"", "byte_order=\"Middle\""), "byte_order");
-  expect_error(
-      replace(raw, "header_type=\"UInt32\"", "header_type=\"UInt64\" compressor=\"vtkLZ4DataCompressor\""),
-      "compressor 'vtkLZ4DataCompressor' is not supported");
+  expect_error(replace(raw, "header_type=\"UInt32\"", "header_type=\"UInt32\" compressor=\"vtkBZ2DataCompressor\""),
+               "compressor 'vtkBZ2DataCompressor' is not supported");
   expect_error(replace(ascii, "<VTKFile", "<!DOCTYPE x [<!ENTITY a \"aaaa\">]>\n<VTKFile"), "DOCTYPE");
   // A connectivity entry beyond the points.
   {
@@ -339,6 +343,27 @@ TEST_CASE("VTU: hostile files are refused with FileError", "[vtu][io]") {
     std::string bad = ascii;
     bad.replace(v, 1, "99");
     expect_error(bad, "out of range");
+  }
+}
+
+TEST_CASE("VTU: LZ4 and LZMA blocks, corrupted or lying, are refused with FileError", "[vtu][io]") {
+  for (const char* name : {"vtk_lz4_appended_raw.vtu", "vtk_lzma_appended_base64.vtu"}) {
+    INFO(name);
+    const std::string good = io_detail::slurp(fixture(name));
+    const bool lz4 = std::string(name).find("lz4") != std::string::npos;
+    // The points' compressed blocks, damaged after their header (base64: whole groups of 4).
+    std::string bad = good;
+    const size_t offset = bad.find("offset=\"", bad.find("Name=\"Points\"")) + 8;
+    const size_t at = bad.find('_', bad.find("<AppendedData")) + 1 + std::stoul(bad.substr(offset, 12));
+    for (size_t k = 120; k < 160; ++k) bad[at + k] = lz4 ? char(bad[at + k] ^ 0x5a) : "QUJD"[k % 4];
+    expect_error(bad, lz4 ? "is not a LZ4 stream" : "is not a LZMA stream");
+    // A compressor other than the one that wrote the blocks.
+    expect_error(replace(good, lz4 ? "vtkLZ4DataCompressor" : "vtkLZMADataCompressor",
+                         lz4 ? "vtkLZMADataCompressor" : "vtkLZ4DataCompressor"),
+                 "compressed block 0");
+    // Truncated, and a count the blocks cannot hold.
+    expect_error(good.substr(0, good.size() - 200), "");
+    expect_error(replace(good, "NumberOfPoints=\"33\"", "NumberOfPoints=\"1000000000\""), "");
   }
 }
 
