@@ -5,7 +5,8 @@
 // size, last block size, compressed sizes) by vtkZLibDataCompressor, vtkLZ4DataCompressor (LZ4 block
 // format) or vtkLZMADataCompressor (xz streams), inflated by zlib, liblz4 and liblzma.
 // Cells: connectivity, offsets, types, and for polyhedra (42) the faces / faceoffsets face
-// streams of VTK 9.1; volume cells (10, 11, 12, 13, 14, 42) with lower-dimensional cells skipped
+// streams of VTK 9.1 or VTK 9.4's face_connectivity, face_offsets, polyhedron_to_faces and
+// polyhedron_offsets; several pieces are concatenated; volume cells (10, 11, 12, 13, 14, 42) with lower-dimensional cells skipped
 // and counted, or, with no volume cell, a surface of triangles 5, pixels 8, quads 9 and polygons 7.
 // The writer emits one piece, inline base64 or ASCII.
 #include "polydec/dec/io/vtu.h"
@@ -321,6 +322,9 @@ double value(BinaryCursor& cur, const DataType& t, const char* what) {
   }
 }
 
+// The count of an array read whole: as many values as its data holds.
+constexpr size_t kAnyCount = SIZE_MAX;
+
 // Reads the data arrays of a parsed document.
 class Arrays {
  public:
@@ -331,8 +335,9 @@ class Arrays {
     throw FileError(name_, n.line, -1, reason);
   }
 
-  // The n values of DataArray `a` as doubles (`integers`: its type must be an integer type), with the
-  // digits of ASCII values counted in `digits` and `float32` set for a Float32 array.
+  // The n values (kAnyCount: as many as it holds) of DataArray `a` as doubles (`integers`: its type
+  // must be an integer type), with the digits of ASCII values counted in `digits` and `float32` set
+  // for a Float32 array.
   std::vector<double> values(const Node& a, size_t n, const std::string& what, bool integers,
                              DigitCounter* digits = nullptr, bool* float32 = nullptr) const {
     const std::string* type = a.attribute("type");
@@ -346,9 +351,9 @@ class Arrays {
     const std::string f = format ? *format : "ascii";
     std::vector<double> out;
     if (f == "ascii") {
-      if (n > a.text.size() / 2 + 1)
+      if (n != kAnyCount && n > a.text.size() / 2 + 1)
         fail(a, fmt::format("{} needs {} values but holds only {} characters", what, n, a.text.size()));
-      out.reserve(n);
+      if (n != kAnyCount) out.reserve(n);
       std::vector<std::string_view> tokens;
       LineReader lines(a.text);
       std::string_view line;
@@ -365,13 +370,14 @@ class Arrays {
           out.push_back(x);
         }
       }
-      if (out.size() != n) fail(a, fmt::format("{} holds {} values, {} expected", what, out.size(), n));
+      if (n != kAnyCount && out.size() != n)
+        fail(a, fmt::format("{} holds {} values, {} expected", what, out.size(), n));
       return out;
     }
     std::string raw;
     if (f == "binary") {
       Bytes b(a.text, true, name_, a.line, -1);
-      payload(b, n * size_t(t.width), raw, what);
+      payload(b, n, size_t(t.width), raw, what);
     } else if (f == "appended") {
       if (!doc_.appended) fail(a, fmt::format("{} is appended but the file has no AppendedData", what));
       long long offset = 0;
@@ -380,24 +386,31 @@ class Arrays {
         fail(a, fmt::format("{} has a missing or out-of-range appended offset {}", what, quote(o ? *o : "")));
       const size_t start = doc_.appended_start + size_t(offset);
       Bytes b(bytes_.substr(start), doc_.appended_base64, name_, 0, long(start));
-      payload(b, n * size_t(t.width), raw, what);
+      payload(b, n, size_t(t.width), raw, what);
     } else {
       fail(a, fmt::format("{} has the unsupported format {} (ascii, binary, appended)", what, quote(f)));
     }
-    out.resize(n);
+    out.resize(raw.size() / size_t(t.width));
     BinaryCursor cur(raw, 0, e_.big_endian, name_);
-    for (size_t k = 0; k < n; ++k) out[k] = value(cur, t, what.c_str());
+    for (double& x : out) x = value(cur, t, what.c_str());
     return out;
   }
 
  private:
-  // The decoded bytes (exactly `expected` of them) of one binary array behind its header.
-  void payload(Bytes& b, size_t expected, std::string& raw, const std::string& what) const {
+  // The decoded bytes of one binary array of n values of `width` bytes behind its header: exactly n
+  // values, or with kAnyCount a whole number of them.
+  void payload(Bytes& b, size_t n, size_t width, std::string& raw, const std::string& what) const {
     const char* w = what.c_str();
+    const bool any = n == kAnyCount;
+    const size_t expected = any ? 0 : n * width;
+    auto wrong_size = [&](std::uint64_t size) { return any ? size % width != 0 : size != expected; };
+    auto needs = [&] {
+      return any ? fmt::format("a whole number of {}-byte values", width) : fmt::format("{}", expected);
+    };
     if (e_.compressor == Compressor::none) {
       const std::uint64_t size = b.header(e_, w);
-      if (size != expected)
-        b.fail(fmt::format("{}: the header announces {} bytes, the array needs {}", what, size, expected));
+      if (wrong_size(size))
+        b.fail(fmt::format("{}: the header announces {} bytes, the array needs {}", what, size, needs()));
       b.read(size_t(size), raw, w);
       return;
     }
@@ -408,13 +421,12 @@ class Arrays {
     if (blocks > 0 && (block_size == 0 || last > block_size))
       b.fail(
           fmt::format("{}: block size {} and last block size {} are inconsistent", what, block_size, last));
-    if (blocks > 1 && block_size > expected / (blocks - 1))
-      b.fail(fmt::format("{}: {} blocks of {} bytes exceed the array's {} bytes", what, blocks, block_size,
-                         expected));
+    const std::uint64_t limit = any ? max_inflated(e_.compressor, b.capacity()) : expected;
+    if (blocks > 1 && block_size > limit / (blocks - 1))
+      b.fail(fmt::format("{}: {} blocks of {} bytes exceed the array's {} bytes", what, blocks, block_size, limit));
     const std::uint64_t total = blocks == 0 ? 0 : (blocks - 1) * block_size + (last ? last : block_size);
-    if (total != expected)
-      b.fail(
-          fmt::format("{}: the compressed blocks hold {} bytes, the array needs {}", what, total, expected));
+    if (wrong_size(total))
+      b.fail(fmt::format("{}: the compressed blocks hold {} bytes, the array needs {}", what, total, needs()));
     // Each block's size, checked before anything is allocated: the compressed bytes must be there,
     // and no larger than its compressor's ratio allows (max_inflated).
     std::vector<std::uint64_t> sizes(blocks);
@@ -427,7 +439,7 @@ class Arrays {
         b.fail(fmt::format("{}: compressed block {} of {} bytes cannot hold {} bytes (or the data ends)",
                            what, k, sizes[k], want));
     }
-    raw.resize(expected);
+    raw.resize(size_t(total));
     std::string packed;
     size_t at = 0;
     for (std::uint64_t k = 0; k < blocks; ++k) {
@@ -589,11 +601,60 @@ void read_piece(const Document& doc, const Node& piece, const Arrays& arrays, co
   g.face_begin.resize(g.types.size(), 0);
   g.face_end.resize(g.types.size(), 0);
   if (std::find(kinds.begin(), kinds.end(), int(kVtkPolyhedron)) == kinds.end()) return;
+  const long long stream_base = (long long)g.faces.size();
+  std::vector<int> stream;
+  if (const Node* cell_offsets = child(doc, *cells, "DataArray", "polyhedron_offsets")) {
+    // VTK 9.4: each cell's faces (its part of polyhedron_to_faces, which polyhedron_offsets ends) are
+    // numbers of the faces face_offsets ends in face_connectivity; a face bounds at most two cells.
+    const Node* to_faces = child(doc, *cells, "DataArray", "polyhedron_to_faces");
+    const Node* face_offsets = child(doc, *cells, "DataArray", "face_offsets");
+    const Node* face_points = child(doc, *cells, "DataArray", "face_connectivity");
+    if (!to_faces || !face_offsets || !face_points)
+      fail(*cells, "polyhedron cells need the DataArrays face_connectivity, face_offsets, polyhedron_to_faces "
+                   "and polyhedron_offsets (or faces and faceoffsets)");
+    const std::vector<int> cell_ends = integers(arrays, *cell_offsets, size_t(nc), "polyhedron_offsets", 0);
+    for (long long c = 1; c < nc; ++c)
+      if (cell_ends[size_t(c)] < cell_ends[size_t(c - 1)])
+        fail(*cell_offsets, fmt::format("polyhedron_offset {} of cell {} is below the previous one",
+                                        cell_ends[size_t(c)], first + c));
+    const std::vector<int> cell_faces =
+        integers(arrays, *to_faces, size_t(cell_ends.back()), "polyhedron_to_faces", 0);
+    const std::vector<int> face_ends = integers(arrays, *face_offsets, kAnyCount, "face_offsets", 0);
+    for (size_t f = 1; f < face_ends.size(); ++f)
+      if (face_ends[f] < face_ends[f - 1])
+        fail(*face_offsets, fmt::format("face_offset {} of face {} is below the previous one", face_ends[f], f));
+    const std::vector<int> points =
+        integers(arrays, *face_points, face_ends.empty() ? 0 : size_t(face_ends.back()), "face_connectivity", 0);
+    std::vector<unsigned char> uses(face_ends.size(), 0);
+    for (long long c = 0, begin = 0; c < nc; begin = cell_ends[size_t(c++)]) {
+      if (kinds[size_t(c)] != kVtkPolyhedron) continue;
+      g.face_begin[size_t(first + c)] = stream_base + (long long)stream.size();
+      stream.push_back(int(cell_ends[size_t(c)] - begin));
+      for (long long i = begin; i < cell_ends[size_t(c)]; ++i) {
+        const int f = cell_faces[size_t(i)];
+        if (size_t(f) >= face_ends.size())
+          fail(*to_faces, fmt::format("polyhedron cell {}: face {} out of range [0, {})", first + c, f,
+                                      face_ends.size()));
+        if (++uses[size_t(f)] > 2) fail(*to_faces, fmt::format("face {} bounds more than two polyhedra", f));
+        const int from = f == 0 ? 0 : face_ends[size_t(f - 1)];
+        stream.push_back(face_ends[size_t(f)] - from);
+        for (int k = from; k < face_ends[size_t(f)]; ++k) {
+          if (points[size_t(k)] >= nv)
+            throw FileError(name, line, -1,
+                            fmt::format("polyhedron cell {}: point index {} out of range [0, {})", first + c,
+                                        points[size_t(k)], nv));
+          stream.push_back(points[size_t(k)] + int(base));
+        }
+      }
+      g.face_end[size_t(first + c)] = stream_base + (long long)stream.size();
+    }
+    g.faces.insert(g.faces.end(), stream.begin(), stream.end());
+    return;
+  }
   const Node* faces = child(doc, *cells, "DataArray", "faces");
   const Node* faceoffsets = child(doc, *cells, "DataArray", "faceoffsets");
-  if (!faces || !faceoffsets) fail(*cells, "polyhedron cells need the DataArrays faces and faceoffsets");
+  if (!faces || !faceoffsets) fail(*cells, "polyhedron cells need the DataArrays faces and faceoffsets (or VTK 9.4's polyhedron_offsets...)");
   const std::vector<int> face_ends = integers(arrays, *faceoffsets, size_t(nc), "faceoffsets", -1);
-  const long long stream_base = (long long)g.faces.size();
   long long last = 0;
   for (long long c = 0; c < nc; ++c) {
     const int end = face_ends[size_t(c)];
@@ -603,7 +664,7 @@ void read_piece(const Document& doc, const Node& piece, const Arrays& arrays, co
     g.face_begin[size_t(first + c)] = stream_base + last, g.face_end[size_t(first + c)] = stream_base + end;
     last = end;
   }
-  std::vector<int> stream = integers(arrays, *faces, size_t(last), "faces", 0);
+  stream = integers(arrays, *faces, size_t(last), "faces", 0);
   // The point ids of each polyhedron's stream "n_faces, k_1, ids_1, ..." offset by the piece's first
   // point; a stream that overruns its cell is left as it is for add_vtk_volume_cell to report.
   for (long long c = 0; c < nc; ++c) {

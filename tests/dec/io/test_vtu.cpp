@@ -227,6 +227,35 @@ TEST_CASE("VTU: the pieces of a partitioned file are concatenated, points, cells
   }
 }
 
+TEST_CASE("VTU: VTK 9.4's polyhedron arrays read the same polyhedron", "[vtu][io]") {
+  const VolumeMesh reference = read_volume_mesh(fixture("vtk_ascii.vtu"));
+  for (const char* name : {"vtk94_polyhedra_ascii.vtu", "vtk94_polyhedra_binary.vtu"}) {
+    INFO(name);
+    const VolumeMesh m = read_volume_mesh(fixture(name));
+    check_same(reference, m);
+    CHECK(cell_shape(m, 4) == CellShape::other);  // the 7-faced polyhedron
+    CHECK(m.cell_size(4) == 7);
+  }
+  const std::string ascii = io_detail::slurp(fixture("vtk94_polyhedra_ascii.vtu"));
+  // Its seven faces end at 4 7 10 14 18 22 26 in face_connectivity; the cell lists faces 0-6.
+  expect_error(replace(ascii, "0 1 2 3 4 5 6", "0 1 2 3 4 5 7"), "polyhedron cell 4: face 7 out of range [0, 7)");
+  expect_error(replace(ascii, "4 7 10 14 18 22 26", "4 7 10 9 18 22 26"), "face_offset 9 of face 3 is below");
+  expect_error(replace(ascii, "4 7 10 14 18 22 26", "4 7 10 14 18 22 27"), "face_connectivity holds 26 values, 27");
+  expect_error(replace(ascii, "3 9 10 4 15", "3 9 10 4 99"), "polyhedron cell 4: point index 99 out of range [0, 33)");
+  expect_error(replace(ascii, "0 0 0 0 7 7 7", "0 0 0 0 7 6 7"), "polyhedron_offset 6 of cell 5 is below");
+  expect_error(replace(ascii, "Name=\"face_offsets\"", "Name=\"face_offset\""), "face_connectivity, face_offsets");
+  // Faces shared by more than two polyhedra cannot bound a volume mesh.
+  {
+    std::string three = replace(ascii, "0 0 0 0 7 7 7 7 7 7 7 7 7 7 7 7 7 7 7 7 7 7 7",
+                                "0 0 0 0 7 14 21 21 21 21 21 21 21 21 21 21 21 21 21 21 21 21 21");
+    three = replace(three, ">\n          0 1 2 3 4 5 6\n", ">\n          0 1 2 3 4 5 6 0 1 2 3 4 5 6 0 1 2 3 4 5 6\n");
+    three = replace(three, "<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\" RangeMin=\"1\" RangeMax=\"42\">\n          12 11 13 13 42 14",
+                    "<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\" RangeMin=\"1\" RangeMax=\"42\">\n          12 11 13 13 42 42");
+    three = replace(three, "14 14 14 14 14 10", "42 14 14 14 14 10");
+    expect_error(three, "face 0 bounds more than two polyhedra");
+  }
+}
+
 TEST_CASE("VTU: written volumes and surfaces read back bit-exactly with their fields", "[vtu][io]") {
   const VolumeMesh hex = hex_grid_volume(3, 2, 2, {0.2, 4});
   const VolumeMesh tro = truncated_octahedra_volume(2);  // polyhedra: type 42
