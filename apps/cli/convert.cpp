@@ -4,7 +4,7 @@
 // each of these steps (so `--dual --subdivide 1 --unit-sphere` on unit-sphere.off builds the
 // paper's FINE SPHERE, `--dual --unit-sphere` its HEX SPHERE). Volume meshes (.ovm, .vtk, .mesh,
 // .meshb, a gmsh .msh with 3-D elements, or --volume) convert between the volume formats (written:
-// .ovm, .vtk, .mesh, .msh), or with --boundary to their boundary surface.
+// .ovm, .vtk, .vtu, .mesh, .meshb, .msh), or with --boundary to their boundary surface.
 // --binary writes OUT in its binary form: VTK legacy BINARY (.vtk), PLY binary_little_endian
 // (.ply), OFF BINARY (.off, float32 positions).
 #include "polydec/apps/cli/command.h"
@@ -67,7 +67,7 @@ void run_volume(const Options& o) {
   } else {
     if (!is_volume_mesh_path(o.out) && !is_msh(o.out))
       throw UsageError(fmt::format(
-          "{}: a volume mesh is written as .ovm, .vtk, .vtu, .mesh or .msh (or use --boundary)", o.out));
+          "{}: a volume mesh is written as .ovm, .vtk, .vtu, .mesh, .meshb or .msh (or use --boundary)", o.out));
     write_volume_mesh(m, o.out, write_options(o));
     j["vertices"] = m.n_vertices();
     j["faces"] = m.n_faces();
