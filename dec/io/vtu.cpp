@@ -8,7 +8,7 @@
 // streams of VTK 9.1 or VTK 9.4's face_connectivity, face_offsets, polyhedron_to_faces and
 // polyhedron_offsets; several pieces are concatenated; volume cells (10, 11, 12, 13, 14, 42) with lower-dimensional cells skipped
 // and counted, or, with no volume cell, a surface of triangles 5, pixels 8, quads 9 and polygons 7.
-// The writer emits one piece, inline base64 or ASCII.
+// The writer emits one piece, inline base64, ASCII, or appended raw data compressed by zlib.
 #include "polydec/dec/io/vtu.h"
 
 #include <expat.h>
@@ -759,13 +759,48 @@ std::string escape(std::string_view s) {
   return out;
 }
 
+// The block size of compressed arrays (VTK's default).
+constexpr size_t kZlibBlock = 32768;
+
+// Appends raw in vtkZLibDataCompressor's layout: UInt64 block count, block size, the last block's
+// size (0 when it is full) and each block's compressed size, then the zlib streams of the blocks.
+void zlib_blocks(std::string_view raw, std::string& out) {
+  const size_t n = (raw.size() + kZlibBlock - 1) / kZlibBlock;
+  std::string header, blocks;
+  put_le(header, std::uint64_t(n));
+  put_le(header, std::uint64_t(kZlibBlock));
+  put_le(header, std::uint64_t(raw.size() % kZlibBlock));
+  std::string packed;
+  for (size_t k = 0; k < n; ++k) {
+    const std::string_view block = raw.substr(k * kZlibBlock, kZlibBlock);
+    uLongf size = compressBound(uLong(block.size()));
+    packed.resize(size);
+    const int rc = compress2(reinterpret_cast<Bytef*>(packed.data()), &size,
+                             reinterpret_cast<const Bytef*>(block.data()), uLong(block.size()), Z_DEFAULT_COMPRESSION);
+    if (rc != Z_OK) throw std::runtime_error(fmt::format("zlib compress2 failed ({})", zError(rc)));
+    put_le(header, std::uint64_t(size));
+    blocks.append(packed.data(), size);
+  }
+  out += header;
+  out += blocks;
+}
+
 // Appends a DataArray of `values` of VTK type `type` (Float64, Int64 or UInt8) with `components`
-// per tuple: inline base64 of a UInt64 byte count and the little-endian values, or ASCII.
+// per tuple: inline base64 of a UInt64 byte count and the little-endian values, or ASCII; with
+// `appended`, an appended array at its end, written there in zlib blocks.
 template <class T>
 void data_array(std::string& out, std::string_view type, std::string_view array_name, int components,
-                const std::vector<T>& values, bool binary) {
+                const std::vector<T>& values, bool binary, std::string* appended) {
   out += fmt::format("        <DataArray type=\"{}\" Name=\"{}\"", type, escape(array_name));
   if (components != 1) out += fmt::format(" NumberOfComponents=\"{}\"", components);
+  if (appended) {
+    out += fmt::format(" format=\"appended\" offset=\"{}\"/>\n", appended->size());
+    std::string raw;
+    raw.reserve(values.size() * sizeof(T));
+    for (T v : values) put_le(raw, v);
+    zlib_blocks(raw, *appended);
+    return;
+  }
   out += fmt::format(" format=\"{}\">\n          ", binary ? "binary" : "ascii");
   if (binary) {
     std::string raw;
@@ -801,8 +836,9 @@ void check_field(std::string_view kind, const std::string& field, long size, lon
         fmt::format("{} field '{}' has {} rows for {} elements", kind, field, size, expected));
 }
 
-// The .vtu text of points X, the cells and the fields.
-std::string vtu_text(const Eigen::MatrixX3d& X, const Cells& cells, const VtuFields& fields, bool binary) {
+// The .vtu text of points X, the cells and the fields (`compressed`: appended raw zlib blocks).
+std::string vtu_text(const Eigen::MatrixX3d& X, const Cells& cells, const VtuFields& fields, bool binary,
+                     bool compressed) {
   const long nv = long(X.rows()), nc = long(cells.types.size());
   for (const auto& [n, v] : fields.point_scalars) check_field("point", n, long(v.size()), nv);
   for (const auto& [n, v] : fields.point_vectors) check_field("point", n, long(v.rows()), nv);
@@ -810,9 +846,11 @@ std::string vtu_text(const Eigen::MatrixX3d& X, const Cells& cells, const VtuFie
   std::string out = fmt::format(
       "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" "
       "byte_order=\"LittleEndian\" "
-      "header_type=\"UInt64\">\n  <UnstructuredGrid>\n    <Piece NumberOfPoints=\"{}\" "
+      "header_type=\"UInt64\"{}>\n  <UnstructuredGrid>\n    <Piece NumberOfPoints=\"{}\" "
       "NumberOfCells=\"{}\">\n",
-      nv, nc);
+      compressed ? " compressor=\"vtkZLibDataCompressor\"" : "", nv, nc);
+  std::string appended;
+  std::string* to = compressed ? &appended : nullptr;
   auto column = [](const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); };
   auto rows = [](const Eigen::MatrixX3d& m) {
     std::vector<double> v;
@@ -822,21 +860,27 @@ std::string vtu_text(const Eigen::MatrixX3d& X, const Cells& cells, const VtuFie
     return v;
   };
   out += "      <PointData>\n";
-  for (const auto& [n, v] : fields.point_scalars) data_array(out, "Float64", n, 1, column(v), binary);
-  for (const auto& [n, v] : fields.point_vectors) data_array(out, "Float64", n, 3, rows(v), binary);
+  for (const auto& [n, v] : fields.point_scalars) data_array(out, "Float64", n, 1, column(v), binary, to);
+  for (const auto& [n, v] : fields.point_vectors) data_array(out, "Float64", n, 3, rows(v), binary, to);
   out += "      </PointData>\n      <CellData>\n";
-  for (const auto& [n, v] : fields.cell_scalars) data_array(out, "Float64", n, 1, column(v), binary);
+  for (const auto& [n, v] : fields.cell_scalars) data_array(out, "Float64", n, 1, column(v), binary, to);
   out += "      </CellData>\n      <Points>\n";
-  data_array(out, "Float64", "Points", 3, rows(X), binary);
+  data_array(out, "Float64", "Points", 3, rows(X), binary, to);
   out += "      </Points>\n      <Cells>\n";
-  data_array(out, "Int64", "connectivity", 1, cells.connectivity, binary);
-  data_array(out, "Int64", "offsets", 1, cells.offsets, binary);
-  data_array(out, "UInt8", "types", 1, cells.types, binary);
+  data_array(out, "Int64", "connectivity", 1, cells.connectivity, binary, to);
+  data_array(out, "Int64", "offsets", 1, cells.offsets, binary, to);
+  data_array(out, "UInt8", "types", 1, cells.types, binary, to);
   if (!cells.faces.empty()) {
-    data_array(out, "Int64", "faces", 1, cells.faces, binary);
-    data_array(out, "Int64", "faceoffsets", 1, cells.faceoffsets, binary);
+    data_array(out, "Int64", "faces", 1, cells.faces, binary, to);
+    data_array(out, "Int64", "faceoffsets", 1, cells.faceoffsets, binary, to);
   }
-  out += "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
+  out += "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n";
+  if (compressed) {
+    out += "  <AppendedData encoding=\"raw\">\n   _";
+    out += appended;
+    out += "\n  </AppendedData>\n";
+  }
+  out += "</VTKFile>\n";
   return out;
 }
 
@@ -920,7 +964,7 @@ SoupRead read_vtu_surface(std::string_view bytes, const std::string& name) {
 
 using namespace io_vtu_detail;
 
-std::string write_vtu_to_string(const VolumeMesh& mesh, const VtuFields& fields, bool binary) {
+std::string write_vtu_to_string(const VolumeMesh& mesh, const VtuFields& fields, bool binary, bool compressed) {
   std::vector<int> entries, types;
   io_detail::vtk_cells(mesh, "(vtu)", entries, types);
   Cells cells;
@@ -947,10 +991,10 @@ std::string write_vtu_to_string(const VolumeMesh& mesh, const VtuFields& fields,
     cells.offsets.push_back(std::int64_t(cells.connectivity.size()));
   }
   if (cells.faces.empty()) cells.faceoffsets.clear();
-  return vtu_text(mesh.positions(), cells, fields, binary);
+  return vtu_text(mesh.positions(), cells, fields, binary, compressed);
 }
 
-std::string write_vtu_to_string(const Mesh& mesh, const VtuFields& fields, bool binary) {
+std::string write_vtu_to_string(const Mesh& mesh, const VtuFields& fields, bool binary, bool compressed) {
   Cells cells;
   for (int f = 0; f < mesh.n_faces(); ++f) {
     const auto face = mesh.face(f);
@@ -958,15 +1002,16 @@ std::string write_vtu_to_string(const Mesh& mesh, const VtuFields& fields, bool 
     cells.offsets.push_back(std::int64_t(cells.connectivity.size()));
     cells.types.push_back(face.size() == 3 ? 5 : face.size() == 4 ? 9 : 7);
   }
-  return vtu_text(mesh.positions(), cells, fields, binary);
+  return vtu_text(mesh.positions(), cells, fields, binary, compressed);
 }
 
-void write_vtu(const std::string& path, const VolumeMesh& mesh, const VtuFields& fields, bool binary) {
-  write_file(path, write_vtu_to_string(mesh, fields, binary));
+void write_vtu(const std::string& path, const VolumeMesh& mesh, const VtuFields& fields, bool binary,
+               bool compressed) {
+  write_file(path, write_vtu_to_string(mesh, fields, binary, compressed));
 }
 
-void write_vtu(const std::string& path, const Mesh& mesh, const VtuFields& fields, bool binary) {
-  write_file(path, write_vtu_to_string(mesh, fields, binary));
+void write_vtu(const std::string& path, const Mesh& mesh, const VtuFields& fields, bool binary, bool compressed) {
+  write_file(path, write_vtu_to_string(mesh, fields, binary, compressed));
 }
 
 VtuFields read_vtu_fields_from_memory(std::string_view bytes, const std::string& name) {

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -298,6 +299,49 @@ TEST_CASE("VTU: written volumes and surfaces read back bit-exactly with their fi
   VtuFields wrong;
   wrong.point_scalars["w"] = Eigen::VectorXd::Zero(3);
   CHECK_THROWS_AS(write_vtu_to_string(quads, wrong), std::invalid_argument);
+}
+
+TEST_CASE("VTU: the compressed writer (appended zlib blocks) round-trips bit-exactly", "[vtu][io]") {
+  // 13 x 11 x 11 points: 37752 bytes of coordinates, two blocks of 32 KiB.
+  const VolumeMesh hex = hex_grid_volume(12, 10, 10, {0.2, 4});
+  const VolumeMesh tro = truncated_octahedra_volume(2);
+  for (const VolumeMesh* m : {&hex, &tro}) {
+    VtuFields fields;
+    fields.point_scalars["u"] = m->positions().col(1).array().cos().matrix();
+    fields.point_vectors["x"] = m->positions() * (1.0 / 3.0);
+    fields.cell_scalars["c"] = Eigen::VectorXd::LinSpaced(m->n_cells(), -1.0, 1.0 / 7.0);
+    const std::string bytes = write_vtu_to_string(*m, fields, false, true);
+    CHECK(bytes.find("compressor=\"vtkZLibDataCompressor\"") != std::string::npos);
+    CHECK(bytes.find("<AppendedData encoding=\"raw\">") != std::string::npos);
+    CHECK(bytes.find("format=\"binary\"") == std::string::npos);
+    CHECK(bytes.find("format=\"ascii\"") == std::string::npos);
+    CHECK(bytes.size() < write_vtu_to_string(*m, fields, true).size());
+    check_same(*m, read_volume_mesh_from_memory(bytes, "vtu", "z.vtu"));
+    const VtuFields back = read_vtu_fields_from_memory(bytes, "z.vtu");
+    CHECK(back.point_scalars.at("u") == fields.point_scalars.at("u"));
+    CHECK(back.point_vectors.at("x") == fields.point_vectors.at("x"));
+    CHECK(back.cell_scalars.at("c") == fields.cell_scalars.at("c"));
+  }
+  // The points' header: 2 blocks of 32768 bytes, the last one 37752 - 32768 = 4984 bytes.
+  {
+    const std::string bytes = write_vtu_to_string(hex, {}, true, true);
+    const size_t data = bytes.find('_', bytes.find("<AppendedData")) + 1;
+    const size_t offset = std::stoul(bytes.substr(bytes.find("offset=\"", bytes.find("Name=\"Points\"")) + 8, 12));
+    std::uint64_t header[3];
+    std::memcpy(header, bytes.data() + data + offset, sizeof header);
+    CHECK(header[0] == 2);
+    CHECK(header[1] == 32768);
+    CHECK(header[2] == 4984);
+  }
+  const Mesh quads = quad_grid(30, 20);
+  test::ScratchDir dir("vtu_zlib");
+  VtuFields fields;
+  fields.point_scalars["h"] = quads.positions().col(0) * 0.7;
+  write_vtu(dir.path("s.vtu"), quads, fields, true, true);
+  const Mesh back = read_mesh(dir.path("s.vtu"));
+  CHECK(back.positions() == quads.positions());
+  CHECK(back.n_faces() == quads.n_faces());
+  CHECK(read_vtu_fields(dir.path("s.vtu")).point_scalars.at("h") == fields.point_scalars.at("h"));
 }
 
 TEST_CASE("OBJ and OFF refuse vertex scalars instead of dropping them", "[vtu][io]") {
