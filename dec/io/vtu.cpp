@@ -167,42 +167,62 @@ std::uint64_t max_inflated(Compressor c, std::uint64_t size) {
 // (64 MiB dictionaries), not more, whatever a block's header claims.
 constexpr std::uint64_t kLzmaMemoryLimit = std::uint64_t(128) << 20;
 
-// Inflates `packed` into exactly `want` bytes at `out`: the problem, empty when there is none.
-std::string inflate(Compressor c, const std::string& packed, char* out, size_t want) {
-  if (c == Compressor::zlib) {
-    uLongf got = uLongf(want);
-    const int rc = uncompress(reinterpret_cast<Bytef*>(out), &got, reinterpret_cast<const Bytef*>(packed.data()),
-                              uLong(packed.size()));
-    if (rc != Z_OK) return zError(rc);
-    return got == want ? std::string() : fmt::format("{} bytes", got);
-  }
-  if (c == Compressor::lz4) {
-    if (packed.size() > size_t(INT_MAX) || want > size_t(INT_MAX)) return "a block beyond LZ4's 2 GB";
-    const int got = LZ4_decompress_safe(packed.data(), out, int(packed.size()), int(want));
-    if (got < 0) return "corrupt LZ4 data";
-    return size_t(got) == want ? std::string() : fmt::format("{} bytes", got);
-  }
-  std::uint64_t memory = kLzmaMemoryLimit;
-  size_t in = 0, got = 0;
-  const lzma_ret rc = lzma_stream_buffer_decode(&memory, 0, nullptr, reinterpret_cast<const std::uint8_t*>(packed.data()),
-                                                &in, packed.size(), reinterpret_cast<std::uint8_t*>(out), &got, want);
-  switch (rc) {
-    case LZMA_OK:
+// Inflates the blocks of one array: each `packed` into exactly `want` bytes at `out`, returning the
+// problem (empty when there is none). liblzma's decoder, its dictionary included, is set up once
+// and reused from block to block.
+class Inflater {
+ public:
+  explicit Inflater(Compressor c) : c_(c) {}
+  Inflater(const Inflater&) = delete;
+  Inflater& operator=(const Inflater&) = delete;
+  ~Inflater() { lzma_end(&lzma_); }
+
+  std::string operator()(const std::string& packed, char* out, size_t want) {
+    if (c_ == Compressor::zlib) {
+      uLongf got = uLongf(want);
+      const int rc = uncompress(reinterpret_cast<Bytef*>(out), &got, reinterpret_cast<const Bytef*>(packed.data()),
+                                uLong(packed.size()));
+      if (rc != Z_OK) return zError(rc);
       return got == want ? std::string() : fmt::format("{} bytes", got);
-    case LZMA_FORMAT_ERROR:
-      return "not an xz stream";
-    case LZMA_OPTIONS_ERROR:
-      return "unsupported xz options";
-    case LZMA_DATA_ERROR:
-      return "corrupt xz data";
-    case LZMA_BUF_ERROR:
-      return "more bytes than the block holds, or a truncated stream";
-    case LZMA_MEMLIMIT_ERROR:
-      return fmt::format("its dictionary needs more than {} MiB", kLzmaMemoryLimit >> 20);
-    default:
-      return fmt::format("liblzma error {}", int(rc));
+    }
+    if (c_ == Compressor::lz4) {
+      if (packed.size() > size_t(INT_MAX) || want > size_t(INT_MAX)) return "a block beyond LZ4's 2 GB";
+      const int got = LZ4_decompress_safe(packed.data(), out, int(packed.size()), int(want));
+      if (got < 0) return "corrupt LZ4 data";
+      return size_t(got) == want ? std::string() : fmt::format("{} bytes", got);
+    }
+    lzma_ret rc = lzma_stream_decoder(&lzma_, kLzmaMemoryLimit, 0);
+    if (rc == LZMA_OK) {
+      lzma_.next_in = reinterpret_cast<const std::uint8_t*>(packed.data());
+      lzma_.avail_in = packed.size();
+      lzma_.next_out = reinterpret_cast<std::uint8_t*>(out);
+      lzma_.avail_out = want;
+      rc = lzma_code(&lzma_, LZMA_FINISH);
+    }
+    switch (rc) {
+      case LZMA_STREAM_END:
+        return lzma_.avail_out == 0 ? std::string() : fmt::format("{} bytes", want - lzma_.avail_out);
+      case LZMA_OK:  // stopped before the stream's end: the block is full, or its bytes ran out
+        return lzma_.avail_out == 0 ? "more bytes than the block holds" : "a truncated stream";
+      case LZMA_FORMAT_ERROR:
+        return "not an xz stream";
+      case LZMA_OPTIONS_ERROR:
+        return "unsupported xz options";
+      case LZMA_DATA_ERROR:
+        return "corrupt xz data";
+      case LZMA_BUF_ERROR:
+        return "a truncated stream";
+      case LZMA_MEMLIMIT_ERROR:
+        return fmt::format("its dictionary needs more than {} MiB", kLzmaMemoryLimit >> 20);
+      default:
+        return fmt::format("liblzma error {}", int(rc));
+    }
   }
-}
+
+ private:
+  Compressor c_;
+  lzma_stream lzma_ = LZMA_STREAM_INIT;
+};
 
 // The bytes of one binary array: raw (`base64` false) or base64 characters decoded on demand, group
 // by group, so that a header encoded apart from its data (padded) and one encoded with it both
@@ -441,12 +461,13 @@ class Arrays {
     }
     raw.resize(size_t(total));
     std::string packed;
+    Inflater inflate(e_.compressor);
     size_t at = 0;
     for (std::uint64_t k = 0; k < blocks; ++k) {
       const size_t want = k + 1 == blocks && last ? size_t(last) : size_t(block_size);
       packed.clear();
       b.read(size_t(sizes[k]), packed, w);
-      const std::string problem = inflate(e_.compressor, packed, raw.data() + at, want);
+      const std::string problem = inflate(packed, raw.data() + at, want);
       if (!problem.empty())
         b.fail(fmt::format("{}: compressed block {} is not a {} stream of {} bytes ({})", what, k,
                            compressor_name(e_.compressor), want, problem));
