@@ -167,9 +167,9 @@ std::uint64_t max_inflated(Compressor c, std::uint64_t size) {
 // (64 MiB dictionaries), not more, whatever a block's header claims.
 constexpr std::uint64_t kLzmaMemoryLimit = std::uint64_t(128) << 20;
 
-// Inflates the blocks of one array: each `packed` into exactly `want` bytes at `out`, returning the
-// problem (empty when there is none). liblzma's decoder, its dictionary included, is set up once
-// and reused from block to block.
+// Inflates the blocks of a file's arrays: each `packed` into exactly `want` bytes at `out`, returning
+// the problem (empty when there is none). liblzma's decoder, its dictionary included, is set up
+// once and reused from block to block and array to array.
 class Inflater {
  public:
   explicit Inflater(Compressor c) : c_(c) {}
@@ -349,7 +349,7 @@ constexpr size_t kAnyCount = SIZE_MAX;
 class Arrays {
  public:
   Arrays(std::string_view bytes, const Document& doc, const Encoding& e, const std::string& name)
-      : bytes_(bytes), doc_(doc), e_(e), name_(name) {}
+      : bytes_(bytes), doc_(doc), e_(e), name_(name), inflate_(e.compressor) {}
 
   [[noreturn]] void fail(const Node& n, const std::string& reason) const {
     throw FileError(name_, n.line, -1, reason);
@@ -461,13 +461,12 @@ class Arrays {
     }
     raw.resize(size_t(total));
     std::string packed;
-    Inflater inflate(e_.compressor);
     size_t at = 0;
     for (std::uint64_t k = 0; k < blocks; ++k) {
       const size_t want = k + 1 == blocks && last ? size_t(last) : size_t(block_size);
       packed.clear();
       b.read(size_t(sizes[k]), packed, w);
-      const std::string problem = inflate(packed, raw.data() + at, want);
+      const std::string problem = inflate_(packed, raw.data() + at, want);
       if (!problem.empty())
         b.fail(fmt::format("{}: compressed block {} is not a {} stream of {} bytes ({})", what, k,
                            compressor_name(e_.compressor), want, problem));
@@ -479,6 +478,7 @@ class Arrays {
   const Document& doc_;
   Encoding e_;
   const std::string& name_;
+  mutable Inflater inflate_;
 };
 
 // The first child of n named `name` (for DataArray: with Name="array"), or null.
