@@ -20,7 +20,8 @@ esac
 
 # The program and library: what the demo needs.
 packages=(build-essential cmake ninja-build pkg-config libeigen3-dev libspectra-dev libfmt-dev
-          libcli11-dev nlohmann-json3-dev libstb-dev libsuitesparse-dev libopenblas-dev zlib1g-dev libexpat1-dev)
+          libcli11-dev nlohmann-json3-dev libstb-dev libsuitesparse-dev libopenblas-dev zlib1g-dev libexpat1-dev
+          liblz4-dev liblzma-dev)
 if [ "$what" != demo ]; then
   # Tests, the Python module and the PETSc/SLEPc backend with OpenMPI.
   packages+=(catch2 pybind11-dev python3-dev python3-numpy python3-scipy python3-pytest python3-venv

@@ -1,8 +1,9 @@
 // fuzz/fuzz_meshb.cpp — libFuzzer target: arbitrary bytes through the binary MEDIT .meshb reader,
-// validation and the OVM/VTK round trips (fuzz/fuzz_volume.h).
+// validation and the OVM/VTK/MEDIT round trips, and its references as groups (fuzz/fuzz_volume.h).
 #include "fuzz/fuzz_volume.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   polydec::fuzz_volume::check_volume_reader(data, size, "meshb");
+  polydec::fuzz_volume::check_medit_groups(data, size, true);
   return 0;
 }

@@ -2,9 +2,11 @@
 // FileError (naming the file, with a reason and a sane line) or returns a soup with consistent
 // offsets and indices in range; VolumeMesh then throws only InvalidMeshError or yields a mesh
 // whose volume is finite (or refused as beyond double) and which survives OVM, VTK ASCII and VTK BINARY round trips (same
-// cells, same volume).
+// cells, same volume) and, when its cells are MEDIT's kinds, a binary MEDIT round trip (same cells and
+// positions); the MEDIT readers' references make groups of sorted indices in range.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -12,6 +14,7 @@
 #include <limits>
 #include <string_view>
 
+#include "polydec/dec/detail/msh_io.h"
 #include "polydec/dec/io/volume_io.h"
 
 namespace polydec::fuzz_volume {
@@ -67,6 +70,17 @@ inline void check_volume_reader(const uint8_t* data, size_t size, const char* fo
   // A mesh without cells is a VolumeMesh (Python builds them) but no volume file: reading one
   // back is refused, so there is no round trip to check.
   if (m.n_cells() == 0) return;
+  std::string meshb;
+  try {
+    meshb = write_volume_mesh_to_string(m, "meshb");
+  } catch (const FileError&) {
+    // A general polyhedron: MEDIT has no element for it.
+  }
+  if (!meshb.empty()) {
+    const VolumeMesh r = read_volume_mesh_from_memory(meshb, "meshb", "round trip");
+    require(r.n_cells() == m.n_cells() && r.n_faces() == m.n_faces(), "MEDIT round trip keeps cells and faces");
+    require(r.positions() == m.positions(), "MEDIT round trip keeps positions");
+  }
   for (int k = 0; k < 3; ++k) {
     const char* f = k == 0 ? "ovm" : "vtk";
     WriteOptions options;
@@ -89,6 +103,24 @@ inline void check_volume_reader(const uint8_t* data, size_t size, const char* fo
     if (std::isfinite(v) && std::isfinite(scale))
       require(std::abs(r.volume() - v) <= 1e-12 * scale + 1e-300, "round trip keeps the volume");
   }
+}
+
+// The groups of a MEDIT file (`binary`: .meshb): sorted, distinct vertex indices and cells in range.
+inline void check_medit_groups(const uint8_t* data, size_t size, bool binary) {
+  const std::string_view bytes(reinterpret_cast<const char*>(data), size);
+  MeshGroups g;
+  io_detail::PolyhedronRead r;
+  try {
+    r = binary ? io_detail::read_meshb(bytes, "fuzz", &g) : io_detail::read_medit(bytes, "fuzz", &g);
+  } catch (const FileError&) {
+    return;
+  }
+  auto ok = [](const std::vector<int>& v, int n) {
+    return std::adjacent_find(v.begin(), v.end(), [](int a, int b) { return a >= b; }) == v.end() &&
+           (v.empty() || (v.front() >= 0 && v.back() < n));
+  };
+  for (const auto& [name, v] : g.vertices) require(ok(v, r.soup.n_vertices()), "group vertices sorted and in range");
+  for (const auto& [name, c] : g.elements) require(ok(c, r.soup.n_cells()), "group cells sorted and in range");
 }
 
 }  // namespace polydec::fuzz_volume

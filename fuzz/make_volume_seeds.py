@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
-# fuzz/make_volume_seeds.py — writes the seed corpora fuzz/corpus/{ovm,vtk,medit}/: small
+# fuzz/make_volume_seeds.py — writes the seed corpora fuzz/corpus/{ovm,vtk,medit,meshb}/: small
 # generated volume meshes (a tetrahedron, a Kuhn-split cube, two hexahedra, two wedges, a
 # pyramid on a hexahedron, a polyhedron cell) in each format, and VTK BINARY variants (classic
 # int32 cells with float or double points, the 5.1 int64 layout, polyhedra, a METADATA block),
-# and ParaView-style dataset FIELD data before POINTS (ASCII and BINARY).
+# and ParaView-style dataset FIELD data before POINTS (ASCII and BINARY); MEDIT files with vertex,
+# cell and triangle references, ASCII (medit/) and binary GMF version 2 (meshb/).
 # Rerun only to change them.
 import os
 import struct
@@ -168,6 +169,39 @@ def medit(points, cells):
     return s + "End\n"
 
 
+def medit_refs(points, cells, binary=False):
+    """MEDIT with references: vertex v carries v % 3, cell c the reference c % 2 + 1, and each
+    cell's first three vertices make a triangle (skipped) with reference 7; ASCII or binary GMF
+    version 2 (32-bit integers and positions, float64 coordinates)."""
+    keys = {10: ("Tetrahedra", 8), 12: ("Hexahedra", 10)}
+    triangles = [v[:3] for _, v in cells]
+    if not binary:
+        s = "MeshVersionFormatted 2\nDimension 3\nVertices\n%d\n" % len(points)
+        s += "".join("%r %r %r %d\n" % (*p, i % 3) for i, p in enumerate(points))
+        s += "Triangles\n%d\n" % len(triangles) + "".join("%d %d %d 7\n" % tuple(i + 1 for i in t) for t in triangles)
+        for t, (key, _) in keys.items():
+            sel = [(c, v) for c, (tt, v) in enumerate(cells) if tt == t]
+            if sel:
+                s += "%s\n%d\n" % (key, len(sel)) + "".join(
+                    " ".join(str(i + 1) for i in v) + " %d\n" % (c % 2 + 1) for c, v in sel)
+        return s + "End\n"
+    out = bytearray(struct.pack("<2i", 1, 2))
+
+    def keyword(code, payload):
+        out.extend(struct.pack("<2i", code, len(out) + 8 + len(payload)) + payload)
+
+    keyword(3, struct.pack("<i", 3))
+    keyword(4, struct.pack("<i", len(points)) + b"".join(struct.pack("<3di", *p, i % 3) for i, p in enumerate(points)))
+    keyword(6, struct.pack("<i", len(triangles)) + b"".join(struct.pack("<4i", *(i + 1 for i in t), 7) for t in triangles))
+    for t, (_, code) in keys.items():
+        sel = [(c, v) for c, (tt, v) in enumerate(cells) if tt == t]
+        if sel:
+            keyword(code, struct.pack("<i", len(sel)) + b"".join(
+                struct.pack("<%di" % (len(v) + 1), *(i + 1 for i in v), c % 2 + 1) for c, v in sel))
+    out.extend(struct.pack("<2i", 54, 0))
+    return bytes(out)
+
+
 def put(target, name, text):
     d = os.path.join(HERE, "corpus", target)
     os.makedirs(d, exist_ok=True)
@@ -190,3 +224,6 @@ put("vtk", "two_hexes_polyhedra_binary.vtk", vtk_binary(*MESHES["two_hexes"], po
 put("vtk", "two_hexes_polyhedra_v5_binary.vtk", vtk_binary(*MESHES["two_hexes"], version="5.1", polyhedron=True))
 put("vtk", "kuhn_v5_field.vtk", vtk(*MESHES["kuhn"], version="5.1", field=True))
 put("vtk", "pyramid_hex_field_binary.vtk", vtk_binary(*MESHES["pyramid_hex"], version="5.1", field=True))
+put("medit", "kuhn_refs.mesh", medit_refs(*MESHES["kuhn"]))
+put("meshb", "kuhn_refs_v2.meshb", medit_refs(*MESHES["kuhn"], binary=True))
+put("meshb", "two_hexes_refs_v2.meshb", medit_refs(*MESHES["two_hexes"], binary=True))

@@ -49,7 +49,7 @@ for t in "${TARGETS[@]}"; do
   src="$ROOT/fuzz/fuzz_$t.cpp"
   if [[ ! -f $bin || $src -nt $bin || $ROOT/fuzz/fuzz_common.h -nt $bin || $ROOT/fuzz/fuzz_volume.h -nt $bin ||
         $OUT/libpolydec_fuzz.a -nt $bin ]]; then
-    "$CXX" "${CFLAGS[@]}" -fsanitize=fuzzer "$src" "$OUT/libpolydec_fuzz.a" -lfmt -lexpat -lz -o "$bin"
+    "$CXX" "${CFLAGS[@]}" -fsanitize=fuzzer "$src" "$OUT/libpolydec_fuzz.a" -lfmt -lexpat -lz -llz4 -llzma -o "$bin"
   fi
 done
 echo "fuzz/run.sh: build took $(( $(date +%s) - t0 )) s"

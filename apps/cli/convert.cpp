@@ -4,13 +4,16 @@
 // each of these steps (so `--dual --subdivide 1 --unit-sphere` on unit-sphere.off builds the
 // paper's FINE SPHERE, `--dual --unit-sphere` its HEX SPHERE). Volume meshes (.ovm, .vtk, .mesh,
 // .meshb, a .msh or .vtu with 3-D cells, or --volume) convert between the volume formats (written:
-// .ovm, .vtk, .vtu, .mesh, .msh), or with --boundary to their boundary surface (any surface format).
+// .ovm, .vtk, .vtu, .mesh, .meshb, .msh), or with --boundary to their boundary surface (any surface
+// format).
 // --binary writes OUT in its binary form: VTK legacy BINARY (.vtk), PLY binary_little_endian
-// (.ply), OFF BINARY (.off, float32 positions).
+// (.ply), OFF BINARY (.off, float32 positions), inline base64 (.vtu); --compress a .vtu as appended
+// raw data in zlib blocks (ParaView's default).
 #include "polydec/apps/cli/command.h"
 #include "polydec/dec/mesh/generators.h"
 #include "polydec/dec/io/mesh_io.h"
 #include "polydec/dec/io/volume_io.h"
+#include "polydec/dec/io/vtu.h"
 
 #include <fmt/format.h>
 
@@ -26,6 +29,7 @@ struct Options {
   int subdivide = 0;
   bool volume = false, boundary = false;  // --volume, --boundary
   bool binary = false;                    // --binary
+  bool compress = false;                  // --compress
 };
 
 // The write options of OUT; --binary for a format without a binary form is a usage error.
@@ -38,7 +42,20 @@ WriteOptions write_options(const Options& o) {
   if (o.binary && ext != ".vtk" && ext != ".vtu" && ext != ".ply" && ext != ".off")
     throw UsageError(
         fmt::format("--binary: {} has no binary form here (.vtk, .vtu, .ply, .off have)", o.out));
+  if (o.compress && ext != ".vtu") throw UsageError(fmt::format("--compress: {} is not a .vtu file", o.out));
   return w;
+}
+
+// Writes a surface or volume mesh to OUT: by its extension, or a compressed .vtu with --compress.
+template <class M>
+void write_out(const Options& o, const M& mesh) {
+  const WriteOptions w = write_options(o);
+  if (o.compress)
+    write_vtu(o.out, mesh, {}, true, true);
+  else if constexpr (std::is_same_v<M, Mesh>)
+    write_mesh(o.out, mesh, {}, w);
+  else
+    write_volume_mesh(mesh, o.out, w);
 }
 
 // A .msh or .vtu path: either a surface or a volume (is_volume_mesh_path judges an existing file by
@@ -58,7 +75,7 @@ void run_volume(const Options& o) {
     if (is_volume_mesh_path(o.out) && !is_either_kind(o.out))
       throw UsageError(fmt::format("--boundary writes a surface mesh ({})", kSurfaceFormats));
     const Mesh b = m.boundary_surface();
-    write_mesh(o.out, b, {}, write_options(o));
+    write_out(o, b);
     j["vertices"] = b.n_vertices();
     j["faces"] = b.n_faces();
     j["boundary"] = true;
@@ -68,8 +85,8 @@ void run_volume(const Options& o) {
   } else {
     if (!is_volume_mesh_path(o.out) && !is_either_kind(o.out))
       throw UsageError(fmt::format(
-          "{}: a volume mesh is written as .ovm, .vtk, .vtu, .mesh or .msh (or use --boundary)", o.out));
-    write_volume_mesh(m, o.out, write_options(o));
+          "{}: a volume mesh is written as .ovm, .vtk, .vtu, .mesh, .meshb or .msh (or use --boundary)", o.out));
+    write_out(o, m);
     j["vertices"] = m.n_vertices();
     j["faces"] = m.n_faces();
     j["cells"] = m.n_cells();
@@ -93,7 +110,7 @@ void run(const Options& o) {
   if (o.dual) mesh = project(dual(mesh));
   for (int k = 0; k < o.subdivide; ++k) mesh = project(catmull_clark(mesh));
   if (!o.dual && o.subdivide == 0) mesh = project(mesh);
-  write_mesh(o.out, mesh, {}, write_options(o));
+  write_out(o, mesh);
   const nlohmann::json j = {{"in", o.in}, {"out", o.out}, {"vertices", mesh.n_vertices()}, {"faces", mesh.n_faces()}};
   if (o.json)
     print_json(j);
@@ -113,7 +130,10 @@ const RegisterCommand reg("convert", "Convert between formats; optionally dual, 
                             app.add_flag("--boundary", o->boundary, "volume IN: write its boundary surface to OUT (" + std::string(kSurfaceFormats) + ")");
                             app.add_flag("--binary", o->binary,
                                          "write OUT in binary form: VTK legacy BINARY (.vtk), PLY binary (.ply), "
-                                         "OFF BINARY (.off, float32)");
+                                         "OFF BINARY (.off, float32), inline base64 (.vtu)");
+                            app.add_flag("--compress", o->compress,
+                                         "write OUT (.vtu) as appended raw data in zlib-compressed blocks, as "
+                                         "ParaView does by default");
                             app.add_flag("--json", o->json, "print one JSON object instead of text");
                             add_repair_flag(app, o->repair);
                             app.callback([o] { run(*o); });

@@ -2,8 +2,12 @@
 // binary MEDIT .meshb entry points the surface and volume dispatch (mesh_io.cpp, volume_io.cpp) call.
 #pragma once
 
+#include <algorithm>
+#include <map>
+#include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "polydec/dec/detail/io_common.h"
 #include "polydec/dec/detail/volume_io_common.h"
@@ -44,9 +48,54 @@ struct MeditCells {
 PolyhedronRead build_medit_cells(PolyhedronRead r, const std::vector<MeditCells>& blocks, const std::string& name,
                                  bool byte_offsets);
 
+// MEDIT references as MeshGroups (mesh_groups.h): an element's reference r (r != 0) puts its
+// vertices in the vertex set "ref r" and, when it is one of the mesh's cells, the cell in the
+// element set "ref r"; a vertex's own reference r (r != 0) puts it in the vertex set "vertex ref r".
+class MeditGroups {
+ public:
+  void vertex(int v, long long ref) {
+    if (ref != 0) vertex_refs_[ref].push_back(v);
+  }
+  // An element's vertices (0-based) and reference; `cell` is its cell number, -1 for the elements
+  // the readers skip (edges, triangles, quadrilaterals).
+  void element(std::span<const int> vertices, long long ref, int cell) {
+    if (ref == 0) return;
+    auto& v = element_vertices_[ref];
+    v.insert(v.end(), vertices.begin(), vertices.end());
+    if (cell >= 0) cells_[ref].push_back(cell);
+  }
+  // The groups (sorted, distinct indices) and the counts of the skipped elements.
+  MeshGroups take(std::map<std::string, long> skipped) {
+    MeshGroups g;
+    auto put = [](std::map<std::string, std::vector<int>>& out, const std::string& prefix,
+                  std::map<long long, std::vector<int>>& sets) {
+      for (auto& [ref, v] : sets) {
+        std::sort(v.begin(), v.end());
+        v.erase(std::unique(v.begin(), v.end()), v.end());
+        out[prefix + std::to_string(ref)] = std::move(v);
+      }
+    };
+    put(g.vertices, "ref ", element_vertices_);
+    put(g.vertices, "vertex ref ", vertex_refs_);
+    put(g.elements, "ref ", cells_);
+    g.skipped = std::move(skipped);
+    return g;
+  }
+
+ private:
+  std::map<long long, std::vector<int>> vertex_refs_, element_vertices_, cells_;
+};
+
 // True when the bytes start with a binary MEDIT code word 1 (either byte order) and a version 1-4.
 bool looks_like_meshb(std::string_view bytes);
-// Binary MEDIT .meshb (GMF versions 1-4): the element kinds read_medit reads.
+// MEDIT ASCII .mesh and binary .meshb (GMF versions 1-4); `groups` (if given) receives the
+// references as groups (MeditGroups) and the counts of the skipped edges, triangles and
+// quadrilaterals.
+PolyhedronRead read_medit(std::string_view bytes, const std::string& name, MeshGroups* groups);
 PolyhedronRead read_meshb(std::string_view bytes, const std::string& name, MeshGroups* groups = nullptr);
+// GMF version 2 (32-bit integers and positions, float64 coordinates, little-endian): tetrahedra,
+// prisms, hexahedra and pyramids (cell_shape), references 0; another cell, or a file beyond 2^31
+// bytes, throws FileError naming `name`.
+std::string write_meshb(const VolumeMesh& mesh, const std::string& name);
 
 }  // namespace polydec::io_detail

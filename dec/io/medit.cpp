@@ -1,9 +1,10 @@
 // dec/io/medit.cpp — MEDIT ASCII .mesh (INRIA): MeshVersionFormatted, Dimension 3, then sections
 // in any order: Vertices (x y z ref), Tetrahedra (4 indices + ref), Hexahedra (8 indices + ref;
 // both in VTK's vertex order), Prisms (6 + ref; the first triangle's normal points to the second,
-// as gmsh's) and Pyramids (5 + ref; VTK's order), 1-based; reference numbers ignored. The surface sections
-// (Edges, Triangles, Quadrilaterals, Corners, Ridges, Required*, Normals, Tangents ...) are
-// skipped; "End" or the end of the file ends it; '#' starts a comment.
+// as gmsh's) and Pyramids (5 + ref; VTK's order), 1-based; the references become groups on request
+// (MeditGroups). Edges, Triangles and Quadrilaterals (after Vertices) are read for their references
+// and counted as skipped; Corners, Ridges, Required*, Normals, Tangents ... are skipped; "End" or
+// the end of the file ends it; '#' starts a comment.
 #include <array>
 #include <climits>
 
@@ -19,11 +20,8 @@ namespace {
 
 using namespace io_detail;
 
-// Numbers per record of the sections that are skipped (lower-case keyword).
+// Numbers per record of the sections that are skipped unread (lower-case keyword).
 int skipped_record_size(const std::string& k) {
-  if (k == "edges") return 3;
-  if (k == "triangles") return 4;
-  if (k == "quadrilaterals") return 5;
   if (k == "corners" || k == "ridges" || k == "requiredvertices" || k == "requirededges" ||
       k == "requiredtriangles" || k == "requiredquadrilaterals")
     return 1;
@@ -37,7 +35,9 @@ int skipped_record_size(const std::string& k) {
 
 namespace io_detail {
 
-PolyhedronRead read_medit(std::string_view bytes, const std::string& name) {
+PolyhedronRead read_medit(std::string_view bytes, const std::string& name) { return read_medit(bytes, name, nullptr); }
+
+PolyhedronRead read_medit(std::string_view bytes, const std::string& name, MeshGroups* groups) {
   VolumeTokens in(strip_bom(bytes), name, true);
   std::string_view t;
   if (!in.next(t)) in.fail(0, "empty file (no MeshVersionFormatted)");
@@ -49,7 +49,10 @@ PolyhedronRead read_medit(std::string_view bytes, const std::string& name) {
   PolyhedronRead r;
   bool have_vertices = false, have_dimension = false;
   long long nv = 0;
+  int n_cells = 0;
   std::vector<MeditCells> blocks;
+  MeditGroups refs;
+  std::map<std::string, long> skipped;
   while (in.next(t)) {
     const std::string k = lower(t);
     const long kline = in.line();
@@ -74,7 +77,7 @@ PolyhedronRead read_medit(std::string_view bytes, const std::string& name) {
             in.fail(in.line(), "bad vertex coordinate " + quote(x));
           digits.see(x, r.soup.positions(v, c));
         }
-        in.integer("vertex reference");
+        refs.vertex(int(v), in.integer("vertex reference"));
       }
       r.soup.precision = digits.precision(r.soup.positions);
     } else if (k == "tetrahedra" || k == "hexahedra" || k == "prisms" || k == "pyramids") {
@@ -98,9 +101,27 @@ PolyhedronRead read_medit(std::string_view bytes, const std::string& name) {
                     fmt::format("vertex index {} out of range [1, {}] (MEDIT counts from 1)", x, nv));
           b.vertices.push_back(int(x - 1));
         }
-        in.integer("element reference");
+        refs.element({b.vertices.data() + b.vertices.size() - n, size_t(n)}, in.integer("element reference"),
+                     n_cells++);
       }
       blocks.push_back(std::move(b));
+    } else if (k == "edges" || k == "triangles" || k == "quadrilaterals") {
+      if (!have_vertices) in.fail(kline, fmt::format("{} before Vertices", t));
+      const int n = k == "edges" ? 2 : k == "triangles" ? 3 : 4;
+      const std::string section(t);
+      const long long count = in.count(section + " count", 2LL * (n + 1));
+      int element[4];
+      for (long long c = 0; c < count; ++c) {
+        for (int i = 0; i < n; ++i) {
+          const long long x = in.integer("vertex index");
+          if (x < 1 || x > nv)
+            in.fail(in.line(),
+                    fmt::format("vertex index {} out of range [1, {}] (MEDIT counts from 1)", x, nv));
+          element[i] = int(x - 1);
+        }
+        refs.element({element, size_t(n)}, in.integer("element reference"), -1);
+      }
+      skipped[k == "edges" ? "lines" : k == "triangles" ? "triangles" : "quadrangles"] += long(count);
     } else if (const int m = io_medit_detail::skipped_record_size(k); m > 0) {
       const long long count = in.count(std::string(t) + " count", 2LL * m);
       for (long long i = 0; i < count * m; ++i) in.expect("a number");
@@ -109,7 +130,7 @@ PolyhedronRead read_medit(std::string_view bytes, const std::string& name) {
     }
   }
   if (!have_vertices) in.fail(0, "no Vertices section");
-
+  if (groups) *groups = refs.take(std::move(skipped));
   return build_medit_cells(std::move(r), blocks, name, false);
 }
 

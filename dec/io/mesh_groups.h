@@ -1,6 +1,6 @@
 // dec/io/mesh_groups.h — what a mesh file carries beside the mesh polydec reads: named element
-// sets (gmsh physical groups) and the counts of the lower-dimensional elements a reader skipped.
-// Formats without such sets (OBJ, OFF, PLY, OVM, VTK) give empty groups.
+// sets (gmsh physical groups, MEDIT references) and the counts of the lower-dimensional elements a
+// reader skipped. Formats without such sets (OBJ, OFF, PLY, OVM, VTK, VTU) give empty groups.
 #pragma once
 
 #include <map>
@@ -15,10 +15,13 @@ namespace polydec {
 struct MeshGroups {
   // Group name -> the sorted, distinct vertex indices of its elements (of any dimension). A gmsh
   // physical group is named by its $PhysicalNames entry, else by its number ("7"); groups of
-  // different dimensions with the same name are merged.
+  // different dimensions with the same name are merged. A MEDIT (.mesh, .meshb) element reference r
+  // gives the group "ref r" (the vertices of every element with that reference: cells, and the
+  // edges, triangles and quadrilaterals beside them), a vertex's own reference r the group
+  // "vertex ref r" (the vertices carrying it); reference 0 means "none" and makes no group.
   std::map<std::string, std::vector<int>> vertices;
   // Group name -> the sorted faces (surface) or cells (volume) among the mesh's own elements;
-  // only groups holding such elements appear.
+  // only groups holding such elements appear (MEDIT: "ref r", the cells with reference r).
   std::map<std::string, std::vector<int>> elements;
   // Element kind ("points", "lines", "triangles", "quadrangles") -> how many elements of a lower
   // dimension than the mesh's the reader skipped (boundary triangles beside tetrahedra, ...).
@@ -30,8 +33,8 @@ struct MeshGroups {
 Mesh read_mesh_with_groups(const std::string& path, MeshGroups& groups);
 VolumeMesh read_volume_mesh_with_groups(const std::string& path, MeshGroups& groups);
 
-// The groups of a surface or volume mesh file (a gmsh .msh file's physical groups), without
-// building or validating its mesh; empty for the other formats. Throws FileError.
+// The groups of a surface or volume mesh file (a gmsh .msh file's physical groups, a MEDIT file's
+// references), without validating its mesh; empty for the other formats. Throws FileError.
 MeshGroups read_mesh_groups(const std::string& path);
 
 }  // namespace polydec

@@ -4,14 +4,18 @@
 // the position of the next keyword: Dimension (a 32-bit word, 3), Vertices (x y z ref),
 // Tetrahedra, Prisms, Pyramids, Hexahedra (vertices + ref, 1-based, MEDIT's orders as the ASCII
 // reader's) until End (required: a file without it is taken as truncated). Edges, Triangles and
-// Quadrilaterals are skipped and counted; other keywords are skipped by their next-keyword
-// position. Also the MEDIT cell blocks shared with the ASCII reader (dec/io/medit.cpp).
+// Quadrilaterals (after Vertices) are read for their references and counted as skipped; other
+// keywords are skipped by their next-keyword position. The references become groups on request
+// (MeditGroups). Also the MEDIT cell blocks shared with the ASCII reader (dec/io/medit.cpp) and the
+// writer (GMF version 2).
+#include <array>
 #include <bit>
 #include <climits>
 #include <cstdint>
 
 #include "polydec/dec/detail/msh_io.h"
 #include "polydec/dec/mesh/polyhedron_builder.h"
+#include "polydec/dec/mesh/volume_cells.h"
 
 namespace polydec {
 namespace io_meshb_detail {
@@ -108,7 +112,9 @@ PolyhedronRead read_meshb(std::string_view bytes, const std::string& name, MeshG
   };
 
   PolyhedronRead r;
-  MeshGroups counted;
+  MeditGroups refs;
+  std::map<std::string, long> skipped;
+  int n_cells = 0;
   std::vector<MeditCells> blocks;
   bool have_dimension = false, have_vertices = false, ended = false;
   long long nv = 0;
@@ -142,7 +148,7 @@ PolyhedronRead read_meshb(std::string_view bytes, const std::string& name, MeshG
         r.vertex_where[v] = long(cur.position());
         for (int c = 0; c < 3; ++c)
           r.soup.positions(v, c) = real_size == 4 ? double(cur.read<float>("a coordinate")) : cur.read<double>("a coordinate");
-        integer("vertex reference");
+        refs.vertex(int(v), integer("vertex reference"));
       }
       if (real_size == 4) r.soup.precision = float_precision(r.soup.positions);
     } else if (keyword == kTetrahedra || keyword == kPrisms || keyword == kPyramids || keyword == kHexahedra) {
@@ -161,14 +167,25 @@ PolyhedronRead read_meshb(std::string_view bytes, const std::string& name, MeshG
             fail(here, fmt::format("vertex index {} out of range [1, {}] (MEDIT counts from 1)", x, nv));
           b.vertices.push_back(int(x - 1));
         }
-        integer("element reference");
+        refs.element({b.vertices.data() + b.vertices.size() - n, size_t(n)}, integer("element reference"), n_cells++);
       }
       blocks.push_back(std::move(b));
     } else if (keyword == kEdges || keyword == kTriangles || keyword == kQuadrilaterals) {
+      if (!have_vertices) fail(at, "elements before Vertices");
       const int n = keyword == kEdges ? 2 : keyword == kTriangles ? 3 : 4;
       const long long m = count("element count", (n + 1) * int_size);
-      counted.skipped[keyword == kEdges ? "lines" : keyword == kTriangles ? "triangles" : "quadrangles"] += m;
-      cur.skip(size_t(m) * (n + 1) * int_size, "elements");
+      skipped[keyword == kEdges ? "lines" : keyword == kTriangles ? "triangles" : "quadrangles"] += long(m);
+      int element[4];
+      for (long long e = 0; e < m; ++e) {
+        for (int k = 0; k < n; ++k) {
+          const size_t here = cur.position();
+          const long long x = integer("vertex index");
+          if (x < 1 || x > nv)
+            fail(here, fmt::format("vertex index {} out of range [1, {}] (MEDIT counts from 1)", x, nv));
+          element[k] = int(x - 1);
+        }
+        refs.element({element, size_t(n)}, integer("element reference"), -1);
+      }
     } else {
       if (next <= (long long)cur.position() || next > (long long)bytes.size())
         fail(at, fmt::format("keyword {} (not read) has the bad next-keyword position {}", keyword, next));
@@ -177,8 +194,81 @@ PolyhedronRead read_meshb(std::string_view bytes, const std::string& name, MeshG
   }
   if (!have_vertices) throw FileError(name, 0, -1, "no Vertices keyword");
   if (!ended) throw FileError(name, 0, long(bytes.size()), "the file ends without the End keyword (truncated?)");
-  if (groups) *groups = std::move(counted);
+  if (groups) *groups = refs.take(std::move(skipped));
   return build_medit_cells(std::move(r), blocks, name, true);
+}
+
+std::string write_meshb(const VolumeMesh& mesh, const std::string& name) {
+  // The cells by GMF keyword, in MEDIT's vertex order (a prism's: VTK's wedge reversed).
+  constexpr std::array<int, 4> kKeywords{kTetrahedra, kPrisms, kHexahedra, kPyramids};
+  std::array<std::vector<int>, 4> cells;
+  for (int c = 0; c < mesh.n_cells(); ++c) {
+    std::array<int, 8> o;
+    const CellShape s = cell_shape(mesh, c, &o);
+    const int kind = s == CellShape::tetrahedron ? 0
+                     : s == CellShape::wedge     ? 1
+                     : s == CellShape::hexahedron ? 2
+                     : s == CellShape::pyramid   ? 3
+                                                 : -1;
+    if (kind < 0)
+      throw FileError(name, 0, -1,
+                      fmt::format("cell {} is a general polyhedron with {} faces: MEDIT holds tetrahedra, prisms, "
+                                  "hexahedra and pyramids only (use .vtk, .vtu or .ovm)",
+                                  c, mesh.cell_size(c)));
+    const int n = vtk_cell_size(vtk_type_of(kKeywords[size_t(kind)]));
+    for (int k = 0; k < n; ++k) cells[size_t(kind)].push_back(kind == 1 ? o[size_t(kPrismToVtk[k])] : o[size_t(k)]);
+  }
+  // Code word, version, Dimension, Vertices, the cell keywords, End: 32-bit positions must hold the size.
+  std::uint64_t size = 8 + 12 + 12 + std::uint64_t(mesh.n_vertices()) * 28 + 8;
+  for (size_t k = 0; k < 4; ++k)
+    if (!cells[k].empty()) size += 12 + cells[k].size() * 4 + cells[k].size() / vtk_cell_size(vtk_type_of(kKeywords[k])) * 4;
+  if (size > std::uint64_t(INT32_MAX))
+    throw FileError(name, 0, -1,
+                    fmt::format("the file would take {} bytes, beyond the 32-bit positions of GMF version 2 (at "
+                                "most {})",
+                                size, INT32_MAX));
+  std::string s;
+  s.reserve(size_t(size));
+  auto i32 = [&](long long x) { put_le(s, std::int32_t(x)); };
+  // A keyword's code and, once its data is written, the position of the next keyword.
+  size_t next = 0;
+  auto keyword = [&](int code) {
+    i32(code);
+    next = s.size();
+    i32(0);
+  };
+  auto close = [&] {
+    std::string at;
+    put_le(at, std::int32_t(s.size()));
+    s.replace(next, 4, at);
+  };
+  i32(1);
+  i32(2);
+  keyword(kDimension);
+  i32(3);
+  close();
+  keyword(kVertices);
+  i32(mesh.n_vertices());
+  const auto& X = mesh.positions();
+  for (int v = 0; v < mesh.n_vertices(); ++v) {
+    for (int c = 0; c < 3; ++c) put_le(s, X(v, c));
+    i32(0);
+  }
+  close();
+  for (size_t k = 0; k < 4; ++k) {
+    if (cells[k].empty()) continue;
+    const int n = vtk_cell_size(vtk_type_of(kKeywords[k]));
+    keyword(kKeywords[k]);
+    i32((long long)cells[k].size() / n);
+    for (size_t i = 0; i < cells[k].size(); ++i) {
+      i32(cells[k][i] + 1);
+      if ((i + 1) % size_t(n) == 0) i32(0);
+    }
+    close();
+  }
+  i32(kEnd);
+  i32(0);
+  return s;
 }
 
 }  // namespace io_detail

@@ -1,6 +1,6 @@
 // dec/io/volume_io.cpp — volume format dispatch by extension, read_volume_mesh (validation errors
-// mapped back to file lines) and write_volume_mesh. The formats live in ovm.cpp, vtk.cpp
-// and medit.cpp.
+// mapped back to file lines), the groups of gmsh and MEDIT files, and write_volume_mesh. The formats
+// live in ovm.cpp, vtk.cpp, vtu.cpp, medit.cpp, meshb.cpp and msh.cpp.
 #include "polydec/dec/io/volume_io.h"
 
 #include <fmt/format.h>
@@ -34,6 +34,13 @@ void write_bytes(const std::string& path, const std::string& data) {
   if (!out) throw FileError(path, 0, -1, "write failed");
 }
 
+// True when the bytes start (after a BOM and white space) with MEDIT's "MeshVersionFormatted".
+bool looks_like_medit(std::string_view bytes) {
+  std::string_view t = strip_bom(bytes);
+  while (!t.empty() && (is_space(t.front()) || t.front() == '\n')) t.remove_prefix(1);
+  return lower(t.substr(0, 20)) == "meshversionformatted";
+}
+
 // The format by extension; for another extension, by the file's first word ("OVM", "# vtk",
 // "MeshVersionFormatted"), so that `--volume` can read a file of any name.
 std::string checked_format(const std::string& path, std::string_view bytes) {
@@ -44,7 +51,7 @@ std::string checked_format(const std::string& path, std::string_view bytes) {
   const std::string head = lower(t.substr(0, 20));
   if (head.rfind("ovm", 0) == 0) return "ovm";
   if (head.rfind("# vtk", 0) == 0 || head.rfind("#vtk", 0) == 0) return "vtk";
-  if (head.rfind("meshversionformatted", 0) == 0) return "mesh";
+  if (looks_like_medit(bytes)) return "mesh";
   if (looks_like_msh(bytes)) return "msh";
   if (looks_like_meshb(bytes)) return "meshb";
   if (head.rfind("<?xml", 0) == 0 || head.rfind("<vtkfile", 0) == 0) return "vtu";
@@ -128,18 +135,22 @@ VolumeMesh read_volume_mesh_with_groups(const std::string& path, MeshGroups& gro
   groups = {};
   if (format == "msh") return validate(read_msh_volume(bytes, path, &groups), path);
   if (format == "meshb") return validate(read_meshb(bytes, path, &groups), path);
+  if (format == "mesh") return validate(read_medit(bytes, path, &groups), path);
   return validate(read_any(bytes, format, path), path);
 }
 
 MeshGroups read_mesh_groups(const std::string& path) {
   const std::string ext = extension(path);
-  if (ext != "msh" && ext != "meshb" && (known(ext) || ext == "obj" || ext == "off" || ext == "ply")) return {};
+  if (ext != "msh" && ext != "meshb" && ext != "mesh" && (known(ext) || ext == "obj" || ext == "off" || ext == "ply"))
+    return {};
   const std::string bytes = slurp(path);
   MeshGroups groups;
   if (looks_like_msh(bytes))
     groups = read_msh_groups(bytes, path);
   else if (ext == "meshb" || looks_like_meshb(bytes))
     read_meshb(bytes, path, &groups);
+  else if (ext == "mesh" || looks_like_medit(bytes))
+    read_medit(bytes, path, &groups);
   return groups;
 }
 
@@ -154,6 +165,7 @@ std::string write_volume_mesh_to_string(const VolumeMesh& mesh, std::string_view
   if (f == "ovm") return io_detail::write_ovm(mesh);
   if (f == "vtk") return io_detail::write_vtk(mesh, "(memory)", options.binary);
   if (f == "mesh") return io_detail::write_medit(mesh, "(memory)");
+  if (f == "meshb") return io_detail::write_meshb(mesh, "(memory)");
   if (f == "msh") return io_detail::write_msh(mesh, "(memory)");
   if (f == "vtu") return write_vtu_to_string(mesh, {}, options.binary);
   throw FileError("(memory)", 0, -1, fmt::format("unknown volume mesh format '{}' ({})", f, kFormats));
@@ -163,8 +175,8 @@ void write_volume_mesh(const VolumeMesh& mesh, const std::string& path, const Wr
   const std::string f = extension(path);
   if (!known(f))
     throw FileError(path, 0, -1, fmt::format("unknown volume mesh format '.{}' ({})", f, kFormats));
-  if (f == "meshb") throw FileError(path, 0, -1, "binary MEDIT .meshb is read, not written (write .mesh)");
   const std::string data = f == "mesh"  ? io_detail::write_medit(mesh, path)
+                           : f == "meshb" ? io_detail::write_meshb(mesh, path)
                            : f == "vtk" ? io_detail::write_vtk(mesh, path, options.binary)
                            : f == "msh" ? io_detail::write_msh(mesh, path)
                                         : write_volume_mesh_to_string(mesh, f, options);

@@ -1,4 +1,4 @@
-"""Named vertex sets of mesh files: gmsh physical groups (docs/io.md, "gmsh .msh")."""
+"""Named vertex sets of mesh files: gmsh physical groups and MEDIT references (docs/io.md, "Groups")."""
 
 from . import _polydec
 
@@ -6,7 +6,9 @@ from . import _polydec
 def read_mesh_groups(path, with_elements=False):
     """The physical groups of a gmsh .msh file (surface or volume) as a dict name -> sorted int32
     array of vertex indices (the vertices of read_mesh / read_volume_mesh of the same file). An
-    unnamed group is named by its number ("7"). With with_elements=True, returns
+    unnamed group is named by its number ("7"). The references of a MEDIT .mesh or .meshb file
+    make the groups "ref r" (the vertices of the elements with reference r, cells among them) and
+    "vertex ref r" (the vertices carrying r); reference 0 makes none. With with_elements=True, returns
     (vertices, elements, skipped): elements maps the groups of the mesh's own faces (surface) or
     cells (volume) to their indices, skipped counts the lower-dimensional elements the reader
     skipped ({"triangles": 14, ...}). Files of other formats have no groups ({}).

@@ -1,8 +1,9 @@
 """tests/python/test_vtu_vtk.py — the .vtu files polydec writes, read by VTK itself (Debian's
 python3-vtk9, vtkXMLUnstructuredGridReader): point and cell counts, cell types (standard cells as
 such, other polyhedra as type 42), each cell's volume as VTK computes it (vtkCellSizeFilter)
-against polydec's, positions and point data bit-exact; surfaces with their scalars. Skipped with a
-message when VTK's Python bindings are not installed."""
+against polydec's, positions and point data bit-exact; the zlib-compressed files of `polydec convert
+--compress`; surfaces with their scalars. Skipped with a message when VTK's Python bindings are not
+installed."""
 
 import numpy as np
 import pytest
@@ -50,6 +51,27 @@ def test_vtk_reads_our_volume_vtu(name, tmp_path):
     volumes = vtk_to_numpy(sizes.GetOutput().GetCellData().GetArray("Volume"))
     scale = np.abs(mesh.cell_volumes).max()
     assert np.abs(volumes - mesh.cell_volumes).max() <= 1e-12 * scale
+    assert abs(volumes.sum() - mesh.volume) <= 1e-12 * abs(mesh.volume)
+
+
+@pytest.mark.parametrize("name", ["hex", "truncated"])
+def test_vtk_reads_our_compressed_vtu(name, tmp_path, cli):
+    """polydec convert --compress: appended raw data in zlib blocks (ParaView's default), as VTK reads it."""
+    mesh = MESHES[name][0]()
+    source, out = tmp_path / "m.vtk", tmp_path / "m.vtu"
+    mesh.write(str(source))
+    cli("convert", source, out, "--compress")
+    assert 'compressor="vtkZLibDataCompressor"' in out.read_text(errors="replace")
+    g = read_vtu(out)
+    assert g.GetNumberOfPoints() == mesh.n_vertices
+    assert g.GetNumberOfCells() == mesh.n_cells
+    assert np.array_equal(vtk_to_numpy(g.GetPoints().GetData()), mesh.positions)
+    assert {g.GetCellType(c) for c in range(g.GetNumberOfCells())} == {MESHES[name][1]}
+    sizes = vtk.vtkCellSizeFilter()
+    sizes.SetInputData(g)
+    sizes.ComputeVolumeOn()
+    sizes.Update()
+    volumes = vtk_to_numpy(sizes.GetOutput().GetCellData().GetArray("Volume"))
     assert abs(volumes.sum() - mesh.volume) <= 1e-12 * abs(mesh.volume)
 
 

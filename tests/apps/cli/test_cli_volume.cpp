@@ -167,6 +167,25 @@ TEST_CASE("polydec info, geodesics --source-group and convert on gmsh files", "[
   CHECK(r.code == 2);
   CHECK(r.err.find("--source V or --source-group NAME") != std::string::npos);
 
+  // MEDIT references: --source-group "ref 5" is the triangle's three vertices.
+  {
+    const std::string medit = dir.path("refs.mesh");
+    std::ofstream(medit) << "MeshVersionFormatted 2\nDimension 3\nVertices\n5\n0 0 0 1\n1 0 0 0\n0 1 0 0\n0 0 1 0\n"
+                            "1 1 1 7\nTriangles\n1\n1 2 3 5\nTetrahedra\n2\n1 2 3 4 0\n2 3 4 5 3\nEnd\n";
+    r = test::run_cli_in(dir.dir, "geodesics '" + medit + "' --source-group 'ref 5' --json");
+    REQUIRE(r.code == 0);
+    const nlohmann::json medit_group = nlohmann::json::parse(r.out);
+    r = test::run_cli_in(dir.dir, "geodesics '" + medit + "' --source 0 --source 1 --source 2 --json");
+    REQUIRE(r.code == 0);
+    const nlohmann::json medit_index = nlohmann::json::parse(r.out);
+    CHECK(medit_group["sources"] == medit_index["sources"]);
+    CHECK(medit_group["max"] == medit_index["max"]);
+    // polydec convert writes .meshb.
+    r = test::run_cli_in(dir.dir, "convert '" + medit + "' '" + dir.path("refs.meshb") + "'");
+    REQUIRE(r.code == 0);
+    CHECK(read_volume_mesh(dir.path("refs.meshb")).positions() == read_volume_mesh(medit).positions());
+  }
+
   // convert: a volume .msh to a gmsh 4.1 file and back, a surface to .msh.
   const std::string out = dir.path("out.msh");
   REQUIRE(test::run_cli_in(dir.dir, "convert '" + msh_fixture("prism_22_binary.msh") + "' '" + out + "'").code == 0);

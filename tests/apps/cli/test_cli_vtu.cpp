@@ -1,11 +1,13 @@
 // tests/apps/cli/test_cli_vtu.cpp — the command line with VTK XML files ([vtu-cli]): `info` on a .vtu
 // written by VTK (counts, volume, the skipped boundary cells), `geodesics` and `spectrum --vtu` on a
-// volume writing their fields as .vtu point data (equal to the JSON and the .mtx), `convert` to .vtu;
-// a surface .vtu taken as a surface by every command, and `convert --boundary` writing one.
+// volume writing their fields as .vtu point data (equal to the JSON and the .mtx), `convert` to .vtu
+// (base64, and zlib-compressed with --compress); a surface .vtu taken as a surface by every command,
+// and `convert --boundary` writing one.
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "polydec/dec/detail/io_common.h"
 #include "polydec/dec/io/mesh_io.h"
 #include "polydec/dec/io/volume_io.h"
 #include "polydec/dec/io/vtu.h"
@@ -68,6 +70,21 @@ TEST_CASE("polydec info, geodesics, spectrum and convert with .vtu files", "[vtu
     INFO(r.err);
     REQUIRE(r.code == 0);
     CHECK(read_volume_mesh(scratch.path("b.vtu")).positions() == mesh.positions());
+  }
+  {
+    // --compress: appended zlib blocks, the same mesh; only for .vtu.
+    const auto r =
+        test::run_cli_in(scratch.dir, "convert '" + file + "' '" + scratch.path("c.vtu") + "' --compress");
+    INFO(r.err);
+    REQUIRE(r.code == 0);
+    const std::string bytes = io_detail::slurp(scratch.path("c.vtu"));
+    CHECK(bytes.find("compressor=\"vtkZLibDataCompressor\"") != std::string::npos);
+    CHECK(bytes.find("<AppendedData encoding=\"raw\">") != std::string::npos);
+    CHECK(read_volume_mesh(scratch.path("c.vtu")).positions() == mesh.positions());
+    const auto wrong =
+        test::run_cli_in(scratch.dir, "convert '" + file + "' '" + scratch.path("c.vtk") + "' --compress");
+    CHECK(wrong.code == 2);
+    CHECK(wrong.err.find("--compress") != std::string::npos);
   }
 }
 

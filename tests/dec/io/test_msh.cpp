@@ -307,6 +307,124 @@ TEST_CASE("meshb: versions 1 and 2 (float and double, 32-bit), both byte orders,
   }
 }
 
+TEST_CASE("MEDIT references as groups in .mesh and .meshb files", "[io][msh][volume]") {
+  // Two tetrahedra (references 0 and 3), a triangle (5) and an edge (3) beside them; vertices 0 and
+  // 4 carry references 1 and 7, the others 0 (none).
+  const std::string text =
+      "MeshVersionFormatted 2\nDimension 3\nVertices\n5\n0 0 0 1\n1 0 0 0\n0 1 0 0\n0 0 1 0\n1 1 1 7\n"
+      "Triangles\n1\n1 2 3 5\nEdges\n1\n4 5 3\nTetrahedra\n2\n1 2 3 4 0\n2 3 4 5 3\nEnd\n";
+  // The same in GMF version 2 (and 4: 64-bit integers and positions), written by hand.
+  auto binary = [](int version) {
+    std::string s;
+    auto i32 = [&](std::int32_t x) { put(s, x, false); };
+    auto integer = [&](long long x) { version == 4 ? put(s, std::int64_t(x), false) : i32(std::int32_t(x)); };
+    auto keyword = [&](int code) {
+      i32(code);
+      version >= 3 ? put(s, std::int64_t(0), false) : i32(0);
+    };
+    i32(1), i32(version);
+    keyword(3), i32(3);
+    keyword(4), integer(5);
+    const double X[5][4] = {{0, 0, 0, 1}, {1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {1, 1, 1, 7}};
+    for (const auto& x : X) {
+      for (int c = 0; c < 3; ++c) put(s, x[c], false);
+      integer((long long)x[3]);
+    }
+    keyword(6), integer(1);
+    for (int v : {1, 2, 3, 5}) integer(v);
+    keyword(5), integer(1);
+    for (int v : {4, 5, 3}) integer(v);
+    keyword(8), integer(2);
+    for (int v : {1, 2, 3, 4, 0, 2, 3, 4, 5, 3}) integer(v);
+    i32(54);
+    return s;
+  };
+  test::ScratchDir dir("medit_refs");
+  std::ofstream(dir.path("t.mesh")) << text;
+  std::ofstream(dir.path("t2.meshb"), std::ios::binary) << binary(2);
+  std::ofstream(dir.path("t4.meshb"), std::ios::binary) << binary(4);
+  const std::map<std::string, std::vector<int>> vertices{
+      {"ref 3", {1, 2, 3, 4}}, {"ref 5", {0, 1, 2}}, {"vertex ref 1", {0}}, {"vertex ref 7", {4}}};
+  const std::map<std::string, std::vector<int>> elements{{"ref 3", {1}}};
+  const std::map<std::string, long> skipped{{"lines", 1}, {"triangles", 1}};
+  for (const char* name : {"t.mesh", "t2.meshb", "t4.meshb"}) {
+    INFO(name);
+    MeshGroups g;
+    const VolumeMesh m = read_volume_mesh_with_groups(dir.path(name), g);
+    CHECK(m.n_cells() == 2);
+    CHECK(g.vertices == vertices);
+    CHECK(g.elements == elements);
+    CHECK(g.skipped == skipped);
+    const MeshGroups alone = read_mesh_groups(dir.path(name));
+    CHECK(alone.vertices == vertices);
+    CHECK(alone.elements == elements);
+    CHECK(alone.skipped == skipped);
+  }
+  // meshio's fixtures give every vertex and element the reference 1: the whole mesh.
+  MeshGroups g;
+  const VolumeMesh tet = read_volume_mesh_with_groups(fixture("tet.mesh"), g);
+  CHECK(g.vertices.at("ref 1").size() == size_t(tet.n_vertices()));
+  CHECK(g.vertices.at("vertex ref 1").size() == size_t(tet.n_vertices()));
+  CHECK(g.elements.at("ref 1").size() == 90);
+  CHECK(g.skipped == std::map<std::string, long>{{"lines", 2}, {"triangles", 14}});
+  // The skipped elements' indices are checked too, and they must follow Vertices.
+  auto expect_medit = [](const std::string& bytes, long line, const std::string& reason) {
+    try {
+      read_volume_mesh_from_memory(bytes, "mesh", "bad.mesh");
+      FAIL("accepted " << reason);
+    } catch (const FileError& e) {
+      INFO(e.what());
+      CHECK(e.line == line);
+      CHECK(e.reason.find(reason) != std::string::npos);
+    }
+  };
+  expect_medit(replace(text, "1 2 3 5", "1 2 6 5"), 12, "vertex index 6 out of range [1, 5]");
+  expect_medit(replace(text, "4 5 3", "4 0 3"), 15, "vertex index 0 out of range");
+  expect_medit(replace(text, "Dimension 3\n", "Dimension 3\nEdges\n0\n"), 3, "Edges before Vertices");
+  std::string lying = binary(2);
+  const size_t triangle = 8 + 12 + 12 + 5 * 28 + 12;  // the triangle's first vertex index
+  lying[triangle] = 9;
+  CHECK_THROWS_WITH(read_volume_mesh_from_memory(lying, "meshb", "bad"), Catch::Contains("vertex index 9 out of range"));
+}
+
+TEST_CASE("meshb writer: GMF version 2, the same cells and bit-exact positions", "[io][msh][volume]") {
+  test::ScratchDir dir("meshb_write");
+  std::vector<VolumeMesh> meshes;
+  for (const char* kind : {"tet", "hex", "prism", "pyramid"})
+    meshes.push_back(read_volume_mesh(fixture(std::string(kind) + "_41_binary.msh")));
+  meshes.push_back(hex_grid_volume(3, 2, 2, {0.1, 3}));
+  meshes.push_back(pyramid_grid_volume(2, 2, 1, {0.2, 5}));
+  for (size_t k = 0; k < meshes.size(); ++k) {
+    INFO(k);
+    const VolumeMesh& m = meshes[k];
+    const std::string path = dir.path(fmt::format("m{}.meshb", k));
+    write_volume_mesh(m, path);
+    const std::string bytes = bytes_of(path);
+    CHECK(bytes == write_volume_mesh_to_string(m, "meshb"));
+    CHECK(bytes.substr(0, 8) == std::string("\1\0\0\0\2\0\0\0", 8));  // code 1, version 2
+    const VolumeMesh back = read_volume_mesh(path);
+    CHECK(back.positions() == m.positions());
+    CHECK(back.volume() == Approx(m.volume()).epsilon(1e-14));  // the cells summed in another order
+    // Cells are written by kind (tetrahedra, prisms, hexahedra, pyramids): the same outward faces,
+    // in that order.
+    REQUIRE(back.n_cells() == m.n_cells());
+    std::multiset<std::vector<std::vector<int>>> a, b;
+    for (int c = 0; c < m.n_cells(); ++c) a.insert(outward_faces(m, c)), b.insert(outward_faces(back, c));
+    CHECK(a == b);
+    bool one_kind = true;
+    for (int c = 1; c < m.n_cells(); ++c) one_kind = one_kind && cell_shape(m, c) == cell_shape(m, 0);
+    if (one_kind) check_same(m, back);
+  }
+  // polydec convert's path: from .vtk to .meshb and back to the same mesh.
+  const std::string vtk = dir.path("p.vtk");
+  write_volume_mesh(meshes[3], vtk);
+  write_volume_mesh(read_volume_mesh(vtk), dir.path("p.meshb"));
+  CHECK(read_volume_mesh(dir.path("p.meshb")).positions() == meshes[3].positions());
+  // A general polyhedron has no MEDIT element.
+  CHECK_THROWS_WITH(write_volume_mesh(truncated_octahedra_volume(1), dir.path("t.meshb")),
+                    Catch::Contains("general polyhedron") && Catch::Contains("t.meshb"));
+}
+
 TEST_CASE("gmsh hostile files: the line or byte offset and the reason", "[io][msh]") {
   const std::string v2 =
       "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n10 0 0 0\n3 1 0 0\n7 0 1 0\n2 0 0 1\n$EndNodes\n"

@@ -205,7 +205,7 @@ TEST_CASE("VTK: hostile files name the line", "[volume]") {
   expect_file_error(replace(poly, "3 0 3 2\n", "3 0 2 3\n"), "vtk", 8, "same direction");
 }
 
-TEST_CASE("MEDIT: tetrahedra and hexahedra, references ignored, hostile files", "[volume]") {
+TEST_CASE("MEDIT: tetrahedra and hexahedra, hostile files", "[volume]") {
   const std::string g =
       "MeshVersionFormatted 2\n# a comment\nDimension 3\nVertices\n5\n0 0 0 1\n1 0 0 1\n0 1 0 1\n0 0 1 1\n1 "
       "1 1 7\n"

@@ -1,12 +1,14 @@
 // tests/dec/io/test_vtu.cpp — VTK XML unstructured grids: the fixtures of tests/data/vtu (written by
 // VTK 9.1 and meshio in every encoding: ASCII, inline base64 with UInt32 and UInt64 headers,
-// appended raw and base64, zlib blocks, big-endian, Float32 points, Int32 and Int64 ids) read to the
+// appended raw and base64, zlib, LZ4 and LZMA blocks, big-endian, Float32 points, Int32 and Int64 ids,
+// several pieces) read to the
 // same mesh with exact counts, the analytic volume and their point and cell data; bit-exact write ->
 // read round trips of volumes (polyhedra included) and surfaces with fields; hostile variants
 // refused with FileError; the legacy VTK reader's boundary cells, voxels, byte order and point type.
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -36,7 +38,11 @@ const std::vector<std::string> kVtkVolumes = {"vtk_ascii.vtu",
                                               "vtk_zlib_binary_u64.vtu",
                                               "vtk_bigendian_binary.vtu",
                                               "vtk_bigendian_zlib_appended.vtu",
-                                              "vtk_float32_appended_base64.vtu"};
+                                              "vtk_float32_appended_base64.vtu",
+                                              "vtk_lz4_appended_raw.vtu",
+                                              "vtk_lz4_bigendian_binary.vtu",
+                                              "vtk_lzma_binary_u64.vtu",
+                                              "vtk_lzma_appended_base64.vtu"};
 const std::vector<std::string> kMeshioVolumes = {"meshio_ascii.vtu", "meshio_binary.vtu", "meshio_zlib.vtu"};
 
 std::string replace(std::string s, const std::string& from, const std::string& to) {
@@ -138,7 +144,7 @@ TEST_CASE("VTU: meshio's ASCII, binary and zlib files read the same mesh", "[vtu
 }
 
 TEST_CASE("VTU: surfaces (triangles, quads, polygons) when the file has no volume cells", "[vtu][io]") {
-  for (const char* name : {"vtk_surface_ascii.vtu", "vtk_surface_zlib_binary.vtu"}) {
+  for (const char* name : {"vtk_surface_ascii.vtu", "vtk_surface_zlib_binary.vtu", "vtk_surface_lzma_appended_raw.vtu"}) {
     INFO(name);
     const Mesh m = read_mesh(fixture(name));
     CHECK(m.n_vertices() == 8);
@@ -161,6 +167,94 @@ TEST_CASE("VTU: surfaces (triangles, quads, polygons) when the file has no volum
   CHECK(s.n_faces() == 3);
   // And a volume file is not a surface.
   CHECK_THROWS_WITH(read_mesh(fixture("vtk_ascii.vtu")), Catch::Contains("holds a volume mesh"));
+}
+
+TEST_CASE("VTU: the pieces of a partitioned file are concatenated, points, cells and data", "[vtu][io]") {
+  const VolumeMesh reference = read_volume_mesh(fixture("vtk_ascii.vtu"));
+  for (const char* name : {"vtk_pieces_ascii.vtu", "vtk_pieces_binary_zlib.vtu"}) {
+    INFO(name);
+    VolumeReadNotes notes;
+    const VolumeMesh m = read_volume_mesh(fixture(name), &notes);
+    // Piece 1 holds points 0-24 and the row of cubes, piece 2 points 25-32 and the tetrahedra: the
+    // second piece's point ids are offset by 25, so the mesh is the one-piece file's.
+    check_same(reference, m);
+    CHECK(std::abs(m.volume() - 0.75) <= 1e-15);
+    CHECK(notes.skipped_cells ==
+          std::map<std::string, long>{
+              {"vertex", 1}, {"line", 1}, {"triangle", 2}, {"quad", 1}, {"polygon", 1}});
+    const VtuFields fields = read_vtu_fields(fixture(name));
+    const Eigen::MatrixX3d& X = m.positions();
+    CHECK(fields.point_scalars.at("f") == X.col(0) + 2 * X.col(1) + 3 * X.col(2));
+    CHECK(fields.point_vectors.at("v").col(0) == X.col(2));
+    // Each piece numbers its own cells: 15 in the first, 8 in the second.
+    Eigen::VectorXd ids(23);
+    ids << Eigen::VectorXd::LinSpaced(15, 0, 14), Eigen::VectorXd::LinSpaced(8, 0, 7);
+    CHECK(fields.cell_scalars.at("cell_id") == ids);
+  }
+  // Surfaces: the square and a copy moved by 3 in x, 8 points each.
+  const Mesh one = read_mesh(fixture("vtk_surface_ascii.vtu"));
+  const Mesh two = read_mesh(fixture("vtk_surface_pieces_binary.vtu"));
+  REQUIRE(two.n_vertices() == 16);
+  CHECK(two.n_faces() == 8);
+  CHECK(two.positions().topRows(8) == one.positions());
+  CHECK(two.positions().bottomRows(8).col(0) == (one.positions().col(0).array() + 3.0).matrix());
+  CHECK(std::abs(area(two) - 2.0) <= 1e-15);
+  CHECK(read_vtu_fields(fixture("vtk_surface_pieces_binary.vtu")).point_scalars.at("f").size() == 16);
+
+  const std::string ascii = io_detail::slurp(fixture("vtk_pieces_ascii.vtu"));
+  // An array missing from one piece is dropped; the mesh reads.
+  {
+    const size_t second = ascii.find("<Piece", ascii.find("</Piece>"));
+    const std::string bad = replace(ascii.substr(0, second), "Name=\"f\"", "Name=\"g\"") + ascii.substr(second);
+    const VtuFields fields = read_vtu_fields_from_memory(bad, "p.vtu");
+    CHECK(fields.point_scalars.count("f") == 0);
+    CHECK(fields.point_scalars.count("g") == 0);
+    CHECK(fields.point_vectors.count("v") == 1);
+  }
+  // A cell of the second piece naming a point beyond its own 8 (ids are per piece).
+  {
+    const size_t second = ascii.find("<Piece", ascii.find("</Piece>"));
+    const size_t c = ascii.find("Name=\"connectivity\"", second);
+    const size_t v = ascii.find_first_of("0123456789", ascii.find('>', c));
+    std::string bad = ascii;
+    bad.replace(v, 1, "8");
+    expect_error(bad, "cell 15: point index 8 out of range [0, 8)");
+  }
+  expect_error(replace(ascii, "NumberOfPoints=\"8\"", "NumberOfPoints=\"9\""), "");
+  {
+    std::string none = ascii;
+    none.erase(none.find("    <Piece"), none.rfind("</Piece>") + 9 - none.find("    <Piece"));
+    expect_error(none, "no Piece element");
+  }
+}
+
+TEST_CASE("VTU: VTK 9.4's polyhedron arrays read the same polyhedron", "[vtu][io]") {
+  const VolumeMesh reference = read_volume_mesh(fixture("vtk_ascii.vtu"));
+  for (const char* name : {"vtk94_polyhedra_ascii.vtu", "vtk94_polyhedra_binary.vtu"}) {
+    INFO(name);
+    const VolumeMesh m = read_volume_mesh(fixture(name));
+    check_same(reference, m);
+    CHECK(cell_shape(m, 4) == CellShape::other);  // the 7-faced polyhedron
+    CHECK(m.cell_size(4) == 7);
+  }
+  const std::string ascii = io_detail::slurp(fixture("vtk94_polyhedra_ascii.vtu"));
+  // Its seven faces end at 4 7 10 14 18 22 26 in face_connectivity; the cell lists faces 0-6.
+  expect_error(replace(ascii, "0 1 2 3 4 5 6", "0 1 2 3 4 5 7"), "polyhedron cell 4: face 7 out of range [0, 7)");
+  expect_error(replace(ascii, "4 7 10 14 18 22 26", "4 7 10 9 18 22 26"), "face_offset 9 of face 3 is below");
+  expect_error(replace(ascii, "4 7 10 14 18 22 26", "4 7 10 14 18 22 27"), "face_connectivity holds 26 values, 27");
+  expect_error(replace(ascii, "3 9 10 4 15", "3 9 10 4 99"), "polyhedron cell 4: point index 99 out of range [0, 33)");
+  expect_error(replace(ascii, "0 0 0 0 7 7 7", "0 0 0 0 7 6 7"), "polyhedron_offset 6 of cell 5 is below");
+  expect_error(replace(ascii, "Name=\"face_offsets\"", "Name=\"face_offset\""), "face_connectivity, face_offsets");
+  // Faces shared by more than two polyhedra cannot bound a volume mesh.
+  {
+    std::string three = replace(ascii, "0 0 0 0 7 7 7 7 7 7 7 7 7 7 7 7 7 7 7 7 7 7 7",
+                                "0 0 0 0 7 14 21 21 21 21 21 21 21 21 21 21 21 21 21 21 21 21 21");
+    three = replace(three, ">\n          0 1 2 3 4 5 6\n", ">\n          0 1 2 3 4 5 6 0 1 2 3 4 5 6 0 1 2 3 4 5 6\n");
+    three = replace(three, "<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\" RangeMin=\"1\" RangeMax=\"42\">\n          12 11 13 13 42 14",
+                    "<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\" RangeMin=\"1\" RangeMax=\"42\">\n          12 11 13 13 42 42");
+    three = replace(three, "14 14 14 14 14 10", "42 14 14 14 14 10");
+    expect_error(three, "face 0 bounds more than two polyhedra");
+  }
 }
 
 TEST_CASE("VTU: written volumes and surfaces read back bit-exactly with their fields", "[vtu][io]") {
@@ -205,6 +299,49 @@ TEST_CASE("VTU: written volumes and surfaces read back bit-exactly with their fi
   VtuFields wrong;
   wrong.point_scalars["w"] = Eigen::VectorXd::Zero(3);
   CHECK_THROWS_AS(write_vtu_to_string(quads, wrong), std::invalid_argument);
+}
+
+TEST_CASE("VTU: the compressed writer (appended zlib blocks) round-trips bit-exactly", "[vtu][io]") {
+  // 13 x 11 x 11 points: 37752 bytes of coordinates, two blocks of 32 KiB.
+  const VolumeMesh hex = hex_grid_volume(12, 10, 10, {0.2, 4});
+  const VolumeMesh tro = truncated_octahedra_volume(2);
+  for (const VolumeMesh* m : {&hex, &tro}) {
+    VtuFields fields;
+    fields.point_scalars["u"] = m->positions().col(1).array().cos().matrix();
+    fields.point_vectors["x"] = m->positions() * (1.0 / 3.0);
+    fields.cell_scalars["c"] = Eigen::VectorXd::LinSpaced(m->n_cells(), -1.0, 1.0 / 7.0);
+    const std::string bytes = write_vtu_to_string(*m, fields, false, true);
+    CHECK(bytes.find("compressor=\"vtkZLibDataCompressor\"") != std::string::npos);
+    CHECK(bytes.find("<AppendedData encoding=\"raw\">") != std::string::npos);
+    CHECK(bytes.find("format=\"binary\"") == std::string::npos);
+    CHECK(bytes.find("format=\"ascii\"") == std::string::npos);
+    CHECK(bytes.size() < write_vtu_to_string(*m, fields, true).size());
+    check_same(*m, read_volume_mesh_from_memory(bytes, "vtu", "z.vtu"));
+    const VtuFields back = read_vtu_fields_from_memory(bytes, "z.vtu");
+    CHECK(back.point_scalars.at("u") == fields.point_scalars.at("u"));
+    CHECK(back.point_vectors.at("x") == fields.point_vectors.at("x"));
+    CHECK(back.cell_scalars.at("c") == fields.cell_scalars.at("c"));
+  }
+  // The points' header: 2 blocks of 32768 bytes, the last one 37752 - 32768 = 4984 bytes.
+  {
+    const std::string bytes = write_vtu_to_string(hex, {}, true, true);
+    const size_t data = bytes.find('_', bytes.find("<AppendedData")) + 1;
+    const size_t offset = std::stoul(bytes.substr(bytes.find("offset=\"", bytes.find("Name=\"Points\"")) + 8, 12));
+    std::uint64_t header[3];
+    std::memcpy(header, bytes.data() + data + offset, sizeof header);
+    CHECK(header[0] == 2);
+    CHECK(header[1] == 32768);
+    CHECK(header[2] == 4984);
+  }
+  const Mesh quads = quad_grid(30, 20);
+  test::ScratchDir dir("vtu_zlib");
+  VtuFields fields;
+  fields.point_scalars["h"] = quads.positions().col(0) * 0.7;
+  write_vtu(dir.path("s.vtu"), quads, fields, true, true);
+  const Mesh back = read_mesh(dir.path("s.vtu"));
+  CHECK(back.positions() == quads.positions());
+  CHECK(back.n_faces() == quads.n_faces());
+  CHECK(read_vtu_fields(dir.path("s.vtu")).point_scalars.at("h") == fields.point_scalars.at("h"));
 }
 
 TEST_CASE("OBJ and OFF refuse vertex scalars instead of dropping them", "[vtu][io]") {
@@ -269,9 +406,8 @@ TEST_CASE("VTU: hostile files are refused with FileError", "[vtu][io]") {
   expect_error(replace(ascii, "NumberOfCells=\"23\"", "NumberOfCells=\"24\""), "");
   expect_error(replace(ascii, "type=\"UnstructuredGrid\"", "type=\"PolyData\""), "'PolyData' is not read");
   expect_error(replace(ascii, "byte_order=\"LittleEndian\"", "byte_order=\"Middle\""), "byte_order");
-  expect_error(
-      replace(raw, "header_type=\"UInt32\"", "header_type=\"UInt64\" compressor=\"vtkLZ4DataCompressor\""),
-      "compressor 'vtkLZ4DataCompressor' is not supported");
+  expect_error(replace(raw, "header_type=\"UInt32\"", "header_type=\"UInt32\" compressor=\"vtkBZ2DataCompressor\""),
+               "compressor 'vtkBZ2DataCompressor' is not supported");
   expect_error(replace(ascii, "<VTKFile", "<!DOCTYPE x [<!ENTITY a \"aaaa\">]>\n<VTKFile"), "DOCTYPE");
   // A connectivity entry beyond the points.
   {
@@ -280,6 +416,27 @@ TEST_CASE("VTU: hostile files are refused with FileError", "[vtu][io]") {
     std::string bad = ascii;
     bad.replace(v, 1, "99");
     expect_error(bad, "out of range");
+  }
+}
+
+TEST_CASE("VTU: LZ4 and LZMA blocks, corrupted or lying, are refused with FileError", "[vtu][io]") {
+  for (const char* name : {"vtk_lz4_appended_raw.vtu", "vtk_lzma_appended_base64.vtu"}) {
+    INFO(name);
+    const std::string good = io_detail::slurp(fixture(name));
+    const bool lz4 = std::string(name).find("lz4") != std::string::npos;
+    // The points' compressed blocks, damaged after their header (base64: whole groups of 4).
+    std::string bad = good;
+    const size_t offset = bad.find("offset=\"", bad.find("Name=\"Points\"")) + 8;
+    const size_t at = bad.find('_', bad.find("<AppendedData")) + 1 + std::stoul(bad.substr(offset, 12));
+    for (size_t k = 120; k < 160; ++k) bad[at + k] = lz4 ? char(bad[at + k] ^ 0x5a) : "QUJD"[k % 4];
+    expect_error(bad, lz4 ? "is not a LZ4 stream" : "is not a LZMA stream");
+    // A compressor other than the one that wrote the blocks.
+    expect_error(replace(good, lz4 ? "vtkLZ4DataCompressor" : "vtkLZMADataCompressor",
+                         lz4 ? "vtkLZMADataCompressor" : "vtkLZ4DataCompressor"),
+                 "compressed block 0");
+    // Truncated, and a count the blocks cannot hold.
+    expect_error(good.substr(0, good.size() - 200), "");
+    expect_error(replace(good, "NumberOfPoints=\"33\"", "NumberOfPoints=\"1000000000\""), "");
   }
 }
 
