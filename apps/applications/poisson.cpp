@@ -8,6 +8,7 @@
 
 #include "polydec/apps/applications/convergence.h"
 #include "polydec/dec/mesh/generators.h"
+#include "polydec/dec/mesh/sawtooth_grid.h"
 #include "polydec/operators/solvers/cholesky.h"
 
 namespace polydec {
@@ -130,7 +131,10 @@ std::vector<ConvergenceSeries> franke_convergence(const ConvergenceOptions& opti
   if (options.resolutions.size() < 2)
     throw std::invalid_argument("convergence study: need two or more resolutions");
   std::vector<ConvergenceSeries> out;
-  for (const std::string family : {"triangles", "quads", "hexagons"}) {
+  for (const std::string& family : options.families) {
+    if (family != "triangles" && family != "quads" && family != "hexagons" && family != "sawtooth")
+      throw std::invalid_argument("convergence study: unknown family '" + family +
+                                  "' (triangles, quads, hexagons, sawtooth)");
     ConvergenceSeries s;
     s.family = family;
     std::vector<double> h, err;
@@ -138,6 +142,7 @@ std::vector<ConvergenceSeries> franke_convergence(const ConvergenceOptions& opti
       if (n < 1) throw std::invalid_argument("convergence study: resolutions must be >= 1");
       const Mesh mesh = family == "triangles" ? triangle_grid(n, n)
                         : family == "quads"   ? quad_grid(n, n)
+                        : family == "sawtooth" ? sawtooth_grid(n, n)
                                               : hex_grid(n, n);
       PoissonError e = franke_poisson(build_operators(mesh, options.laplacian, false), options.lumped_mass);
       e.solution.resize(0);

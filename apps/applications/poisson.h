@@ -61,10 +61,13 @@ struct ConvergenceOptions {
   std::vector<int> resolutions{8, 16, 32, 64};  // n x n cells of dec/mesh/generators.h's grids
   bool lumped_mass = true;
   LaplacianChoice laplacian = parse_laplacian("ours");
+  // Grids of the study: "triangles", "quads", "hexagons" (the paper's) or "sawtooth"
+  // (dec/mesh/sawtooth_grid.h: non-convex cells without a valid single fan).
+  std::vector<std::string> families{"triangles", "quads", "hexagons"};
 };
 
 // The study of Figure 9 on triangle_grid, quad_grid and hex_grid (dec/mesh/generators.h), all on
-// [0,1]^2 with the square as boundary.
+// [0,1]^2 with the square as boundary (options.families); std::invalid_argument for an unknown family.
 std::vector<ConvergenceSeries> franke_convergence(const ConvergenceOptions& options = {});
 
 }  // namespace polydec

@@ -4,7 +4,9 @@
 // pattern and values; load time excluded) and writes no files. Volume meshes (.ovm, .vtk, .mesh,
 // or --volume) get S, M, M_lumped and P of the polyhedral refinement (operators/volume/laplacian.h).
 // `--order 2`: the quadratic operators (operators/surface/quadratic.h) on the vertex and edge dofs.
+// `--virtual-vertex split`: several virtual vertices per non-convex face (apps/cli/split_operators.h).
 #include "polydec/apps/cli/command.h"
+#include "polydec/apps/cli/split_operators.h"
 #include "polydec/apps/cli/virtual_lift.h"
 #include "polydec/dec/io/mesh_io.h"
 #include "polydec/dec/io/volume_io.h"
@@ -213,6 +215,11 @@ void run(const Options& o) {
     return;
   }
   const Mesh mesh = load_mesh(o.mesh, o.repair);
+  if (o.rule == "split") {
+    if (o.order != 1 || o.repeat > 0 || o.lift.lift != "none" || !o.lift.positions.empty())
+      throw UsageError("--virtual-vertex split: order 1 files only (no --order 2, --repeat, --virtual-lift)");
+    return write_split_operators(mesh, o.mesh, o.out, o.json);
+  }
   RefinementOptions ropt;
   ropt.rule = parse_virtual_vertex_rule(o.rule);
   ropt.lift = virtual_lift(o.lift, mesh);
@@ -261,7 +268,7 @@ const RegisterCommand reg("operators", "Assemble S, M, lumped M, G, D, P and wri
   app.add_option("--out", o->out, "output directory (required unless --repeat)");
   app.add_flag("--volume", o->volume, "read MESH as a volume mesh whatever its extension");
   app.add_option("--cell-point", o->cell_rule, "volumes: cell-point weights, squared-volume (default) or polylaplace");
-  app.add_option("--virtual-vertex", o->rule, "virtual-vertex rule: squared-area (default), centroid");
+  app.add_option("--virtual-vertex", o->rule, "virtual-vertex rule: squared-area (default), centroid, split (several per non-convex face)");
   app.add_option("--order", o->order, "1 (default): the paper's operators; 2: quadratic elements on vertex and edge dofs");
   app.add_option("--repeat", o->repeat, "time N assemblies of S, M, lumped M instead of writing files");
   app.add_option("--threads", o->threads, "threads for the virtual vertices and the assembly (default 1; 0: all hardware threads)");

@@ -29,6 +29,7 @@ struct Options {
   // --volume
   bool volume = false;
   std::string family = "hex", data;
+  std::vector<std::string> surface_families{"triangles", "quads", "hexagons"};  // --family without --volume
   std::vector<int> levels{1, 2, 3};
 };
 
@@ -166,6 +167,7 @@ void run(const Options& o) {
   copt.resolutions = o.resolutions;
   copt.lumped_mass = o.mass == "lumped";
   copt.laplacian = parse_laplacian(o.laplacian);
+  copt.families = o.surface_families;
   const auto series = franke_convergence(copt);
   nlohmann::json fam = nlohmann::json::object();
   for (const auto& s : series) {
@@ -233,7 +235,7 @@ const RegisterCommand reg(
           "grid resolutions n (n x n cells), default 8 16 32 64 (--volume: n^3 cells, 4 8 16)");
       auto* mass = app.add_option("--mass", o->mass, "lumped (default; --volume: unlumped) or unlumped mass");
       app.add_flag("--volume", o->volume, "the 3D Franke study on polyhedral meshes of the unit cube");
-      app.add_option("--family", o->family, "--volume: hex (default), pyramids, truncated, cuboctahedra (generated: the structure of the "
+      auto* family = app.add_option("--family", o->family, "surface: triangles, quads, hexagons (default: all three) or sawtooth; --volume: hex (default), pyramids, truncated, cuboctahedra (generated: the structure of the "
                      "cube_truncated files) or tetrahedra");
       app.add_option("--data", o->data,
                      "--volume: folder of the cube_<family>_<level>.ovm files (else generated grids)");
@@ -247,7 +249,8 @@ const RegisterCommand reg(
       app.add_option("--order", o->order,
                      "1 (default): the paper's operators; 2: quadratic elements, L2 and H1 errors, a "
                      "fourth family of non-convex polygons (Galerkin mass)");
-      app.callback([o, res, mass] {
+      app.callback([o, res, mass, family] {
+        if (!o->volume && family->count() > 0) o->surface_families = {o->family};
         if (o->order == 2 && (mass->count() > 0 || o->laplacian != "ours"))
           throw UsageError("--order 2 uses the quadratic operators with the Galerkin mass (no --mass, --laplacian)");
         if (o->volume && res->count() == 0) o->resolutions = {4, 8, 16};

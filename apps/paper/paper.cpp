@@ -17,6 +17,7 @@
 #include "polydec/apps/pictures/image.h"
 #include "polydec/apps/paper/metrics.h"
 #include "polydec/apps/paper/sphere_spectrum.h"
+#include "polydec/apps/paper/split_faces.h"
 #include "polydec/apps/paper/virtual_vertices.h"
 #include "polydec/apps/paper/volume_tables.h"
 #include "polydec/apps/applications/parametrization.h"
@@ -207,6 +208,12 @@ class Evaluation {
     for (const std::string& s : spheres())
       steps_.push_back({"Beyond the paper: virtual vertices, " + s, s == "FINE SPHERE" ? 20.0 : s == "HEX SPHERE" ? 8.0 : 1.0,
                         [this, s] { r_["virtual_vertices"][s] = virtual_vertex_rows(mesh(s), s != "FINE SPHERE"); }});
+    // Beyond the paper (apps/paper/split_faces.h): several virtual vertices in non-convex faces.
+    for (const std::string p : {"L-SHAPED", "TETRIS 1", "TETRIS 2"})
+      steps_.push_back({"Beyond the paper: split faces, " + p, 0.3, [this, p] { r_["split_faces"][p] = split_face_rows(mesh(p)); }});
+    steps_.push_back({"Beyond the paper: split faces, Poisson", o_.quick ? 0.5 : 3.0, [this] {
+                        r_["split_poisson"] = split_poisson(o_.quick ? std::vector<int>{8, 16, 32} : std::vector<int>{8, 16, 32, 64});
+                      }});
     // The volume tables (apps/paper/volume_tables.h): 3D Poisson on the shared cubes, ball eigenvalues.
     steps_.push_back({"Volumes: 3D Poisson, ball eigenvalues", o_.quick ? 1.0 : 20.0,
                       [this] { r_["volumes"] = volume_tables(o_.data_dir, o_.quick); }});
@@ -824,6 +831,7 @@ std::string paper_report_markdown(const json& r) {
        "`ours`; isolines at 1/15 of it).\n\n";
   s += sphere_spectrum_markdown(r, kAllMethods);
   s += virtual_vertices_markdown(r);
+  s += split_faces_markdown(r);
   s += volume_tables_markdown(r);
   return s;
 }

@@ -10,6 +10,7 @@
 #include "polydec/operators/comparison/degoes20.h"
 #include "polydec/operators/comparison/diamond.h"
 #include "polydec/operators/surface/gradient.h"
+#include "polydec/operators/surface/split_laplacian.h"
 #include "polydec/operators/comparison/intrinsic_delaunay.h"
 #include "polydec/operators/comparison/triangulation.h"
 
@@ -28,6 +29,7 @@ const MethodInfo kMethods[] = {
     {"abs-area", false},
     {"convex", false},
     {"trace-min", false},
+    {"split", false},
     {"triangulated-minarea", false},
     {"triangulated-maxminangle", false},
     {"refined", false},
@@ -109,6 +111,23 @@ OperatorSet virtual_vertex_operators(const Mesh& mesh, VirtualVertexRule rule,
     ops.G.swap(G);
     ops.D.swap(D);
   }
+  return ops;
+}
+
+// Several virtual vertices per non-convex face (operators/surface/split_laplacian.h); the paper's
+// operators, bit for bit, when no face is split.
+OperatorSet split_operators(const Mesh& mesh, const OperatorOptions& options) {
+  if (split_refine(mesh).n_faces_split == 0) return virtual_vertex_operators(mesh, VirtualVertexRule::SquaredArea, options);
+  OperatorSet ops;
+  ops.domain = mesh;
+  ops.n_input_vertices = mesh.n_vertices();
+  SplitLaplacian L = split_laplacian(mesh, options.with_gradient);
+  ops.S.swap(L.S);
+  ops.M.swap(L.M);
+  ops.M_lumped = std::move(L.M_lumped);
+  ops.G.swap(L.G);
+  ops.D.swap(L.D);
+  ops.quality = L.split.after;
   return ops;
 }
 
@@ -203,6 +222,7 @@ OperatorSet operators_by_name(const Mesh& mesh, const LaplacianChoice& choice,
   if (m == "abs-area") return virtual_vertex_operators(mesh, VirtualVertexRule::AbsArea, options);
   if (m == "convex") return virtual_vertex_operators(mesh, VirtualVertexRule::Convex, options);
   if (m == "trace-min") return virtual_vertex_operators(mesh, VirtualVertexRule::TraceMin, options);
+  if (m == "split") return split_operators(mesh, options);
   if (m == "triangulated-minarea")
     return triangulated_operators(mesh, TriangulationRule::MinSquaredArea, with_gradient);
   if (m == "triangulated-maxminangle")

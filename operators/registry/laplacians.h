@@ -5,6 +5,8 @@
 // Names (docs/laplacians.md describes each):
 //   ours                      the paper's operator (squared-area virtual vertex, affine weights)
 //   centroid, abs-area, convex, trace-min   ours with another virtual vertex (dec/surface/virtual_vertex.h)
+//   split                     ours with several virtual vertices in faces whose fan is invalid
+//                             (operators/surface/split_laplacian.h)
 //   triangulated-minarea, triangulated-maxminangle   cotangent Laplacian of a triangulation of
 //                             each polygon without new vertices (operators/comparison/triangulation.h)
 //   refined                   cotangent Laplacian of the refined mesh with the virtual vertices made
