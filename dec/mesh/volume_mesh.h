@@ -117,7 +117,7 @@ class VolumeMesh {
   // Signed volume of cell c (divergence theorem over its half-faces, each split into triangles
   // around its vertex centroid, so independent of where a face's vertex cycle starts; positive
   // after validation's orientation) and the total. Both throw InvalidMeshError when the volume
-  // is beyond double's range (coordinates near kMaxVolumeCoordinate).
+  // lies outside double's normal range (overflow near kMaxVolumeCoordinate, or underflow).
   double cell_volume(int c) const;
   double volume() const;
 
