@@ -342,8 +342,8 @@ Eigen::MatrixXd HeatGeodesics::distances(std::span<const int> sources, int block
   if (block < 1) throw std::invalid_argument(fmt::format("heat geodesics: block size {} must be positive", block));
   check_sources(sources);
   // G row by row (a gather per gradient entry) and D column by column (a scatter into the small
-  // right-hand side): one pass over both for all columns of a block.
-  // (Not needed by the face-wise pass of the paper's operator.)
+  // right-hand side): one pass over both for all columns of a block. The paper's operator runs
+  // face by face instead and needs no copy of G.
   Eigen::SparseMatrix<double, Eigen::RowMajor> Gr;
   if (fan_.empty()) Gr = ops_.G;
   const int n_blocks = ops_.G_blocks.empty() ? int(ops_.G.rows() / 3) : int(ops_.G_blocks.size()) - 1;

@@ -26,6 +26,9 @@ OperatorSet quadratic_operator_set(const Mesh& mesh, const Refinement& refinemen
   ops.M_lumped = std::move(Q.M_lumped);
   ops.quality = Q.quality;
   ops.mean_edge_length = mesh.mean_edge_length();
+  QuadraticGradient G = quadratic_gradient(mesh, refinement);
+  ops.G.swap(G.G);
+  ops.D.swap(G.D);
   return ops;
 }
 

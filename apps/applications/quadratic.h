@@ -13,10 +13,11 @@
 
 namespace polydec {
 
-// The quadratic S, M and HRZ-lumped M as an OperatorSet named "quadratic" (domain: `mesh`;
-// n_input_vertices = |V|, the first |V| dofs being the vertices). Its matrices act on the
-// |V| + |E| dofs, so only applications that read S, M and M_lumped alone take it:
-// solve_dirichlet_poisson (apps/applications/poisson.h) and laplacian_spectrum.
+// The quadratic S, M, HRZ-lumped M, and G, D (quadratic_gradient: per fan triangle at its
+// centroid) as an OperatorSet named "quadratic" (domain: `mesh`; n_input_vertices = |V|, the first
+// |V| dofs being the vertices). Its matrices act on the |V| + |E| dofs, so only applications that
+// read these matrices alone take it: solve_dirichlet_poisson (apps/applications/poisson.h) and
+// laplacian_spectrum (heat geodesics with G and D measure far worse than order 1: docs/extensions.md).
 OperatorSet quadratic_operator_set(const Mesh& mesh, const Refinement& refinement);
 OperatorSet quadratic_operator_set(const Mesh& mesh, const RefinementOptions& options = {});
 

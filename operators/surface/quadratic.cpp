@@ -77,6 +77,50 @@ QuadraticLaplacian assemble_quadratic_laplacian(const Mesh& mesh, const Refineme
   return Q;
 }
 
+QuadraticGradient quadratic_gradient(const Mesh& mesh, const Refinement& refinement) {
+  check_refinement(mesh, refinement, "quadratic_gradient");
+  const int nv = mesh.n_vertices(), nd = nv + mesh.n_edges(), nh = mesh.n_halfedges();
+  std::vector<Eigen::Triplet<double>> tg, td;
+  std::vector<int> dof;
+  const Eigen::Vector3d centroid = Eigen::Vector3d::Constant(1.0 / 3.0);
+  for (int f = 0; f < mesh.n_faces(); ++f) {
+    const auto face = mesh.face(f);
+    const int n = int(face.size()), h0 = mesh.face_offsets()[f];
+    const PolygonPositions X = face_positions(mesh, f);
+    const Eigen::Vector3d xf = refinement.virtual_points.row(f).transpose();
+    Eigen::MatrixXd P = Eigen::MatrixXd::Zero(3 * n + 1, 2 * n);
+    P.topRows(2 * n).setIdentity();
+    P.bottomRows(n + 1) = quadratic_face_weights(X, xf);
+    dof.assign(size_t(2 * n), 0);
+    for (int k = 0; k < n; ++k) {
+      dof[size_t(k)] = face[size_t(k)];
+      dof[size_t(n + k)] = nv + mesh.halfedge_edge(h0 + k);
+    }
+    for (int k = 0; k < n; ++k) {
+      const int h = h0 + k;
+      if (refinement.fan[size_t(h)] == FanTriangle::Degenerate) continue;
+      const Eigen::Vector3d a = X.row(k).transpose(), b = X.row((k + 1) % n).transpose();
+      const double area = 0.5 * (b - a).cross(xf - a).norm();
+      const Eigen::Matrix<double, 6, 3> B = p2_basis_gradients(centroid, a, b, xf);
+      const std::array<int, 6> nodes = fan_nodes(n, k);
+      Eigen::MatrixXd Gl = Eigen::MatrixXd::Zero(3, 2 * n);  // the fan triangle's gradient of each coarse dof
+      for (int i = 0; i < 6; ++i) Gl += B.row(i).transpose() * P.row(nodes[size_t(i)]);
+      for (int j = 0; j < 2 * n; ++j)
+        for (int c = 0; c < 3; ++c) {
+          if (Gl(c, j) == 0) continue;
+          tg.emplace_back(3 * h + c, dof[size_t(j)], Gl(c, j));
+          td.emplace_back(dof[size_t(j)], 3 * h + c, -area * Gl(c, j));
+        }
+    }
+  }
+  QuadraticGradient Q;
+  Q.G.resize(3 * nh, nd);
+  Q.G.setFromTriplets(tg.begin(), tg.end());
+  Q.D.resize(nd, 3 * nh);
+  Q.D.setFromTriplets(td.begin(), td.end());
+  return Q;
+}
+
 QuadraticLaplacian quadratic_laplacian(const Mesh& mesh) {
   return assemble_quadratic_laplacian(mesh, refine(mesh));
 }

@@ -35,6 +35,16 @@ QuadraticLaplacian assemble_quadratic_laplacian(const Mesh& mesh, const Refineme
 // With the default refinement (squared-area virtual vertices).
 QuadraticLaplacian quadratic_laplacian(const Mesh& mesh);
 
+// The gradient of the quadratic elements at the centroid of each fan triangle, 3|H| x (|V| + |E|)
+// (rows 3h..3h+2 for the fan triangle of halfedge h, zero when it is degenerate, as gradient()
+// numbers the linear one), and D = -G^T W with W the fan triangles' areas. For a field g constant
+// on each fan triangle, -(D g)_i is exactly the integral of grad phi_i . g (grad phi_i is linear on
+// the triangle, so its mean is its value at the centroid): the heat method's divergence (eq. 33).
+struct QuadraticGradient {
+  SparseMatrix G, D;
+};
+QuadraticGradient quadratic_gradient(const Mesh& mesh, const Refinement& refinement);
+
 // The refined P2 matrices on the fan triangles, numbered as quadratic_prolongation's rows (for
 // the explicit route S = P^T S^f P): S^f negative semi-definite, M^f the mass.
 struct QuadraticRefinedMatrices {

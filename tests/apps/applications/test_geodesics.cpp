@@ -18,6 +18,21 @@ namespace test_geodesics {
 
 namespace {
 
+// The paper's operator set on the given refinement, under `name`.
+OperatorSet operators_on(const Mesh& mesh, const Refinement& r, const std::string& name) {
+  OperatorSet ops;
+  ops.name = name;
+  ops.domain = mesh;
+  ops.n_input_vertices = mesh.n_vertices();
+  Laplacian L = assemble_laplacian(mesh, r);
+  ops.S = L.S;
+  ops.M = L.M;
+  ops.M_lumped = L.M_lumped;
+  ops.G = gradient(mesh, r);
+  ops.D = divergence(mesh, r);
+  return ops;
+}
+
 // RMSE of the heat distance from vertex 0 against the Euclidean distance (planar meshes),
 // both shifted to minimum 0, as the authors' program measures it.
 double euclidean_rmse(const Mesh& mesh, bool lumped = true, double degenerate_tolerance = -1) {
@@ -30,18 +45,7 @@ double euclidean_rmse(const Mesh& mesh, bool lumped = true, double degenerate_to
     // Ours with another degenerate-fan tolerance.
     RefinementOptions ro;
     ro.degenerate_tolerance = degenerate_tolerance;
-    const Refinement r = refine(mesh, ro);
-    OperatorSet ops;
-    ops.name = "ours";
-    ops.domain = mesh;
-    ops.n_input_vertices = mesh.n_vertices();
-    Laplacian L = assemble_laplacian(mesh, r);
-    ops.S = L.S;
-    ops.M = L.M;
-    ops.M_lumped = L.M_lumped;
-    ops.G = gradient(mesh, r);
-    ops.D = divergence(mesh, r);
-    d = HeatGeodesics(ops, mesh.mean_edge_length(), o).distance(0);
+    d = HeatGeodesics(operators_on(mesh, refine(mesh, ro), "ours"), mesh.mean_edge_length(), o).distance(0);
   }
   Eigen::VectorXd e(mesh.n_vertices());
   for (int v = 0; v < mesh.n_vertices(); ++v) e[v] = (mesh.position(v) - mesh.position(0)).norm();
@@ -293,19 +297,7 @@ TEST_CASE("the face-wise pass of the paper's operator equals the route through G
   ro.degenerate_tolerance = 0.3;
   const Refinement r = refine(mesh, ro);
   REQUIRE(r.quality.n_degenerate > 0);
-  auto make = [&](const std::string& name) {
-    OperatorSet ops;
-    ops.name = name;
-    ops.domain = mesh;
-    ops.n_input_vertices = mesh.n_vertices();
-    Laplacian L = assemble_laplacian(mesh, r);
-    ops.S = L.S;
-    ops.M = L.M;
-    ops.M_lumped = L.M_lumped;
-    ops.G = gradient(mesh, r);
-    ops.D = divergence(mesh, r);
-    return HeatGeodesics(std::move(ops), mesh.mean_edge_length());
-  };
+  auto make = [&](const std::string& name) { return HeatGeodesics(operators_on(mesh, r, name), mesh.mean_edge_length()); };
   CHECK(make("ours").distance(0) == make("another").distance(0));
 }
 

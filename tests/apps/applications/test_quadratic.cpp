@@ -87,3 +87,51 @@ TEST_CASE("quadratic: sphere eigenvalues approach l(l+1), limited by the flat fa
 }
 
 }  // namespace test_quadratic_apps
+
+namespace test_quadratic_apps {
+
+TEST_CASE("quadratic: the gradient is exact for quadratics, its divergence integrates against it",
+          "[quadratic][apps]") {
+  // Planar meshes: the prolongation reproduces quadratics, so on every fan triangle the prolonged
+  // function is q itself and G u is grad q at the triangle's centroid.
+  for (const Mesh& mesh : {quad_grid(4, 3), hex_grid(4, 3), triangle_grid(3, 3), chevron_grid(3, 3)}) {
+    const Refinement r = refine(mesh);
+    const OperatorSet ops = quadratic_operator_set(mesh, r);
+    const Eigen::MatrixX3d X = quadratic_dof_positions(mesh);
+    const int nd = int(X.rows()), nh = mesh.n_halfedges();
+    REQUIRE(ops.G.rows() == 3 * nh);
+    REQUIRE(ops.G.cols() == nd);
+    Eigen::VectorXd u(nd);
+    for (int i = 0; i < nd; ++i) {
+      const double x = X(i, 0), y = X(i, 1);
+      u[i] = 1 + 2 * x - y + 0.7 * x * x - 1.3 * x * y + 0.4 * y * y;
+    }
+    const Eigen::VectorXd g = ops.G * u;
+    double worst = 0, scale = 0;
+    Eigen::VectorXd area(nh);
+    for (int f = 0; f < mesh.n_faces(); ++f) {
+      const int h0 = mesh.face_offsets()[f], n = mesh.face_size(f);
+      for (int k = 0; k < n; ++k) {
+        const int h = h0 + k;
+        const Eigen::Vector3d a = mesh.position(mesh.halfedge_source(h)), b = mesh.position(mesh.halfedge_target(h));
+        const Eigen::Vector3d xf = r.virtual_points.row(f).transpose(), c = (a + b + xf) / 3;
+        area[h] = 0.5 * (b - a).cross(xf - a).norm();
+        const Eigen::Vector3d exact(2 + 1.4 * c.x() - 1.3 * c.y(), -1 - 1.3 * c.x() + 0.8 * c.y(), 0);
+        worst = std::max(worst, (g.segment<3>(3 * h) - exact).norm());
+        scale = std::max(scale, exact.norm());
+      }
+    }
+    CHECK(worst <= 1e-12 * scale);
+    // -u^T D g = sum over fan triangles of area (grad u . g) for g constant per triangle, and the
+    // divergence of any such g sums to zero (constants have no gradient).
+    Eigen::VectorXd field(3 * nh);
+    for (int k = 0; k < 3 * nh; ++k) field[k] = std::sin(0.7 * k + 0.2);
+    const Eigen::VectorXd div = ops.D * field;
+    double integral = 0;
+    for (int h = 0; h < nh; ++h) integral += area[h] * g.segment<3>(3 * h).dot(field.segment<3>(3 * h));
+    CHECK(std::abs(-u.dot(div) - integral) <= 1e-12 * (std::abs(integral) + div.cwiseAbs().sum()));
+    CHECK(std::abs(div.sum()) <= 1e-12 * div.cwiseAbs().sum());
+  }
+}
+
+}  // namespace test_quadratic_apps
