@@ -6,6 +6,7 @@
 // serves the 0-form operators (operators/surface/split_laplacian.h).
 #pragma once
 
+#include <Eigen/Sparse>
 #include <vector>
 
 #include "polydec/dec/mesh/mesh.h"
