@@ -17,7 +17,9 @@ trap 'rm -rf "$tmp" "$root/python/build" "$root/python/polydec.egg-info"' EXIT
 
 "$python" -m venv --system-site-packages "$tmp/venv"
 # pip builds in the source tree (python/build/, removed on exit), then installs the wheel.
+t0=$(date +%s)
 PIP_DISABLE_PIP_VERSION_CHECK=1 "$tmp/venv/bin/pip" install --no-build-isolation --no-index -q "$root/python"
+echo "test_pip_install.sh: pip install took $(( $(date +%s) - t0 )) s${POLYDEC_PREFIX:+ (against the installation in $POLYDEC_PREFIX)}"
 cd "$tmp"
 "$tmp/venv/bin/python" - <<'PY'
 import sys

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <map>
 #include <span>
 #include <string>
@@ -93,6 +94,15 @@ bool looks_like_meshb(std::string_view bytes);
 // quadrilaterals.
 PolyhedronRead read_medit(std::string_view bytes, const std::string& name, MeshGroups* groups);
 PolyhedronRead read_meshb(std::string_view bytes, const std::string& name, MeshGroups* groups = nullptr);
+// A volume mesh's cells grouped as MEDIT's four cell sections, in this order: Tetrahedra, Prisms,
+// Hexahedra, Pyramids; each block holds the cells' 0-based vertices in MEDIT's order (cell_shape's
+// VTK order; a prism's reversed). A general polyhedron throws FileError naming `name`.
+struct MeditBlocks {
+  static constexpr const char* kNames[4] = {"Tetrahedra", "Prisms", "Hexahedra", "Pyramids"};
+  static constexpr int kSizes[4] = {4, 6, 8, 5};
+  std::array<std::vector<int>, 4> vertices;
+};
+MeditBlocks medit_blocks(const VolumeMesh& mesh, const std::string& name);
 // GMF version 2 (32-bit integers and positions, float64 coordinates, little-endian): tetrahedra,
 // prisms, hexahedra and pyramids (cell_shape), references 0; another cell, or a file beyond 2^31
 // bytes, throws FileError naming `name`.

@@ -135,38 +135,20 @@ PolyhedronRead read_medit(std::string_view bytes, const std::string& name, MeshG
 }
 
 std::string write_medit(const VolumeMesh& mesh, const std::string& name) {
-  std::vector<std::array<int, 8>> tets, hexes;
-  for (int c = 0; c < mesh.n_cells(); ++c) {
-    std::array<int, 8> o;
-    const CellShape s = cell_shape(mesh, c, &o);
-    if (s == CellShape::tetrahedron)
-      tets.push_back(o);
-    else if (s == CellShape::hexahedron)
-      hexes.push_back(o);
-    else
-      throw FileError(name, 0, -1,
-                      fmt::format("cell {} is {} with {} faces: MEDIT holds tetrahedra and hexahedra only (use "
-                                  ".vtk or .ovm)",
-                                  c, s == CellShape::other ? std::string("a general polyhedron")
-                                                           : std::string("a ") + cell_shape_name(s),
-                                  mesh.cell_size(c)));
-  }
+  const MeditBlocks blocks = medit_blocks(mesh, name);
   const auto& X = mesh.positions();
   fmt::memory_buffer b;
   auto out = std::back_inserter(b);
   fmt::format_to(out, "MeshVersionFormatted 2\nDimension 3\nVertices\n{}\n", mesh.n_vertices());
   for (int v = 0; v < mesh.n_vertices(); ++v)
     fmt::format_to(out, "{} {} {} 0\n", num(X(v, 0)), num(X(v, 1)), num(X(v, 2)));
-  auto block = [&](const char* keyword, const std::vector<std::array<int, 8>>& cells, int n) {
-    if (cells.empty()) return;
-    fmt::format_to(out, "{}\n{}\n", keyword, cells.size());
-    for (const auto& o : cells) {
-      for (int i = 0; i < n; ++i) fmt::format_to(out, "{} ", o[i] + 1);
-      fmt::format_to(out, "0\n");
-    }
-  };
-  block("Tetrahedra", tets, 4);
-  block("Hexahedra", hexes, 8);
+  for (size_t k = 0; k < 4; ++k) {
+    const std::vector<int>& cells = blocks.vertices[k];
+    const size_t n = size_t(MeditBlocks::kSizes[k]);
+    if (cells.empty()) continue;
+    fmt::format_to(out, "{}\n{}\n", MeditBlocks::kNames[k], cells.size() / n);
+    for (size_t i = 0; i < cells.size(); ++i) fmt::format_to(out, "{}{}", cells[i] + 1, (i + 1) % n == 0 ? " 0\n" : " ");
+  }
   fmt::format_to(out, "End\n");
   return fmt::to_string(b);
 }

@@ -198,26 +198,31 @@ PolyhedronRead read_meshb(std::string_view bytes, const std::string& name, MeshG
   return build_medit_cells(std::move(r), blocks, name, true);
 }
 
-std::string write_meshb(const VolumeMesh& mesh, const std::string& name) {
-  // The cells by GMF keyword, in MEDIT's vertex order (a prism's: VTK's wedge reversed).
-  constexpr std::array<int, 4> kKeywords{kTetrahedra, kPrisms, kHexahedra, kPyramids};
-  std::array<std::vector<int>, 4> cells;
+MeditBlocks medit_blocks(const VolumeMesh& mesh, const std::string& name) {
+  MeditBlocks b;
   for (int c = 0; c < mesh.n_cells(); ++c) {
     std::array<int, 8> o;
     const CellShape s = cell_shape(mesh, c, &o);
-    const int kind = s == CellShape::tetrahedron ? 0
-                     : s == CellShape::wedge     ? 1
+    const int kind = s == CellShape::tetrahedron  ? 0
+                     : s == CellShape::wedge      ? 1
                      : s == CellShape::hexahedron ? 2
-                     : s == CellShape::pyramid   ? 3
-                                                 : -1;
+                     : s == CellShape::pyramid    ? 3
+                                                  : -1;
     if (kind < 0)
       throw FileError(name, 0, -1,
                       fmt::format("cell {} is a general polyhedron with {} faces: MEDIT holds tetrahedra, prisms, "
                                   "hexahedra and pyramids only (use .vtk, .vtu or .ovm)",
                                   c, mesh.cell_size(c)));
-    const int n = vtk_cell_size(vtk_type_of(kKeywords[size_t(kind)]));
-    for (int k = 0; k < n; ++k) cells[size_t(kind)].push_back(kind == 1 ? o[size_t(kPrismToVtk[k])] : o[size_t(k)]);
+    for (int k = 0; k < MeditBlocks::kSizes[kind]; ++k)
+      b.vertices[size_t(kind)].push_back(kind == 1 ? o[size_t(kPrismToVtk[k])] : o[size_t(k)]);
   }
+  return b;
+}
+
+std::string write_meshb(const VolumeMesh& mesh, const std::string& name) {
+  // The GMF keyword of each of medit_blocks' sections.
+  constexpr std::array<int, 4> kKeywords{kTetrahedra, kPrisms, kHexahedra, kPyramids};
+  const std::array<std::vector<int>, 4> cells = medit_blocks(mesh, name).vertices;
   // Code word, version, Dimension, Vertices, the cell keywords, End: 32-bit positions must hold the size.
   std::uint64_t size = 8 + 12 + 12 + std::uint64_t(mesh.n_vertices()) * 28 + 8;
   for (size_t k = 0; k < 4; ++k)

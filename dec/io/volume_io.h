@@ -40,7 +40,7 @@ VolumeMesh read_volume_mesh_from_memory(std::string_view bytes, std::string_view
 // Writes by extension (.ovm, .vtk, .vtu, .mesh, .msh: gmsh 4.1 ASCII of tetrahedra, hexahedra,
 // prisms and pyramids, another cell a FileError), positions with 17 significant digits. OVM files
 // are written with outward half-faces (polydec's convention; the reader accepts either).
-// MEDIT holds tetrahedra and hexahedra only: another cell throws FileError. With
+// MEDIT (.mesh, .meshb) holds tetrahedra, prisms, hexahedra and pyramids: another cell throws FileError. With
 // options.binary, VTK is written as a legacy BINARY file (version 4.2, big-endian float64
 // points, classic int32 cell list and types: bit-exact like the ASCII file); OVM and MEDIT have
 // no binary form here (ignored); .vtu is ASCII, or inline base64 with options.binary (dec/io/vtu.h). Throws

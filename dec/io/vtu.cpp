@@ -707,17 +707,28 @@ void read_piece(const Document& doc, const Node& piece, const Arrays& arrays, co
   g.faces.insert(g.faces.end(), stream.begin(), stream.end());
 }
 
+// A .vtu file parsed once: its XML tree, encoding, pieces and the decoder of its DataArrays (which
+// refer to the bytes: they must outlive it). Not copied or moved (the decoder refers to the members).
+struct VtuDocument {
+  VtuDocument(std::string_view bytes, const std::string& name)
+      : text(strip_bom(bytes)), doc(parse_xml(text, name)), parts(pieces(doc, encoding, name)),
+        arrays(text, doc, encoding, name) {}
+  VtuDocument(const VtuDocument&) = delete;
+  VtuDocument& operator=(const VtuDocument&) = delete;
+  std::string_view text;
+  Document doc;
+  Encoding encoding;
+  std::vector<const Node*> parts;
+  Arrays arrays;
+};
+
 Grid read_grid(std::string_view bytes, const std::string& name) {
-  const std::string_view text = strip_bom(bytes);
-  const Document doc = parse_xml(text, name);
-  Encoding e;
-  const std::vector<const Node*> parts = pieces(doc, e, name);
-  const Arrays arrays(text, doc, e, name);
+  const VtuDocument d(bytes, name);
   Grid g;
   std::vector<double> xyz;
   DigitCounter digits;
   bool float32 = false;
-  for (const Node* piece : parts) read_piece(doc, *piece, arrays, name, g, xyz, digits, float32);
+  for (const Node* piece : d.parts) read_piece(d.doc, *piece, d.arrays, name, g, xyz, digits, float32);
   g.points.resize(Eigen::Index(xyz.size() / 3), 3);
   for (size_t k = 0; k < xyz.size(); ++k) g.points(Eigen::Index(k / 3), Eigen::Index(k % 3)) = xyz[k];
   g.precision = float32 ? float_precision(g.points) : digits.precision(g.points);
@@ -983,10 +994,21 @@ SoupRead read_vtu_surface(std::string_view bytes, const std::string& name) {
 }
 
 bool vtu_holds_volume(std::string_view bytes, const std::string& name) {
+  // Only the cell types are decoded; a file that cannot be judged is left to the volume reader.
   try {
-    const io_vtu_detail::Grid g = io_vtu_detail::read_grid(bytes, name);
-    return g.types.empty() ||
-           std::any_of(g.types.begin(), g.types.end(), [](int t) { return vtk_cell_dimension(t) == 3; });
+    const io_vtu_detail::VtuDocument d(bytes, name);
+    bool any_cell = false;
+    for (const io_vtu_detail::Node* piece : d.parts) {
+      const long long nc = io_vtu_detail::count(*piece, "NumberOfCells", name);
+      if (nc == 0) continue;
+      any_cell = true;
+      const io_vtu_detail::Node* cells = io_vtu_detail::child(d.doc, *piece, "Cells");
+      const io_vtu_detail::Node* types = cells ? io_vtu_detail::child(d.doc, *cells, "DataArray", "types") : nullptr;
+      if (!types) return true;
+      const std::vector<int> kinds = io_vtu_detail::integers(d.arrays, *types, size_t(nc), "types", 0);
+      if (std::any_of(kinds.begin(), kinds.end(), [](int t) { return vtk_cell_dimension(t) == 3; })) return true;
+    }
+    return !any_cell;
   } catch (const FileError&) {
     return true;
   }
@@ -1047,11 +1069,10 @@ void write_vtu(const std::string& path, const Mesh& mesh, const VtuFields& field
 }
 
 VtuFields read_vtu_fields_from_memory(std::string_view bytes, const std::string& name) {
-  const std::string_view text = strip_bom(bytes);
-  const Document doc = parse_xml(text, name);
-  Encoding e;
-  const std::vector<const Node*> parts = pieces(doc, e, name);
-  const Arrays arrays(text, doc, e, name);
+  const VtuDocument d(bytes, name);
+  const Document& doc = d.doc;
+  const std::vector<const Node*>& parts = d.parts;
+  const Arrays& arrays = d.arrays;
   // Per section and array name: its components and its values, piece after piece, and in how many
   // pieces it was found (an array missing from a piece is dropped).
   struct Field {

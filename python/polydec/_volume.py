@@ -272,7 +272,7 @@ def read_volume_mesh(path):
 
 
 def write_volume_mesh(path, mesh, scalars=None):
-    """Writes by extension (.ovm, .vtk, .vtu, .mesh; MEDIT holds tetrahedra and hexahedra only),
+    """Writes by extension (.ovm, .vtk, .vtu, .mesh; MEDIT holds tetrahedra, prisms, hexahedra and pyramids),
     positions with 17 significant digits. scalars: optional {name: (|V|,) array}, written as VTK
     point data (.vtk POINT_DATA or .vtu Float64 arrays only). Raises FileError.
 

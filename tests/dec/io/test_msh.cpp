@@ -387,21 +387,23 @@ TEST_CASE("MEDIT references as groups in .mesh and .meshb files", "[io][msh][vol
   CHECK_THROWS_WITH(read_volume_mesh_from_memory(lying, "meshb", "bad"), Catch::Contains("vertex index 9 out of range"));
 }
 
-TEST_CASE("meshb writer: GMF version 2, the same cells and bit-exact positions", "[io][msh][volume]") {
+TEST_CASE("MEDIT writers (.meshb GMF version 2, ASCII .mesh): the same cells and bit-exact positions", "[io][msh][volume]") {
   test::ScratchDir dir("meshb_write");
   std::vector<VolumeMesh> meshes;
   for (const char* kind : {"tet", "hex", "prism", "pyramid"})
     meshes.push_back(read_volume_mesh(fixture(std::string(kind) + "_41_binary.msh")));
   meshes.push_back(hex_grid_volume(3, 2, 2, {0.1, 3}));
   meshes.push_back(pyramid_grid_volume(2, 2, 1, {0.2, 5}));
-  for (size_t k = 0; k < meshes.size(); ++k) {
-    INFO(k);
-    const VolumeMesh& m = meshes[k];
-    const std::string path = dir.path(fmt::format("m{}.meshb", k));
+  for (size_t k = 0; k < 2 * meshes.size(); ++k) {
+    const std::string ext = k < meshes.size() ? "meshb" : "mesh";
+    INFO(k << " " << ext);
+    const VolumeMesh& m = meshes[k % meshes.size()];
+    const std::string path = dir.path(fmt::format("m{}.{}", k, ext));
     write_volume_mesh(m, path);
     const std::string bytes = bytes_of(path);
-    CHECK(bytes == write_volume_mesh_to_string(m, "meshb"));
-    CHECK(bytes.substr(0, 8) == std::string("\1\0\0\0\2\0\0\0", 8));  // code 1, version 2
+    CHECK(bytes == write_volume_mesh_to_string(m, ext));
+    if (ext == "meshb") CHECK(bytes.substr(0, 8) == std::string("\1\0\0\0\2\0\0\0", 8));  // code 1, version 2
+    if (ext == "mesh") CHECK(bytes.rfind("MeshVersionFormatted 2\nDimension 3\nVertices\n", 0) == 0);
     const VolumeMesh back = read_volume_mesh(path);
     CHECK(back.positions() == m.positions());
     CHECK(back.volume() == Approx(m.volume()).epsilon(1e-14));  // the cells summed in another order
@@ -423,6 +425,8 @@ TEST_CASE("meshb writer: GMF version 2, the same cells and bit-exact positions",
   // A general polyhedron has no MEDIT element.
   CHECK_THROWS_WITH(write_volume_mesh(truncated_octahedra_volume(1), dir.path("t.meshb")),
                     Catch::Contains("general polyhedron") && Catch::Contains("t.meshb"));
+  CHECK_THROWS_WITH(write_volume_mesh(truncated_octahedra_volume(1), dir.path("t.mesh")),
+                    Catch::Contains("general polyhedron") && Catch::Contains("t.mesh"));
 }
 
 TEST_CASE("gmsh hostile files: the line or byte offset and the reason", "[io][msh]") {
