@@ -47,22 +47,6 @@ std::vector<int> vertex_components(const SparseMatrix& S) {
   return comp;
 }
 
-// `src` moved into a new set without copying its sparse matrices: Eigen 3.4's SparseMatrix has
-// no move constructor, so std::move(OperatorSet) deep-copies S, M, G and D (~0.3 s on FINE SPHERE).
-OperatorSet take(OperatorSet& src) {
-  SparseMatrix S, M, G, D;
-  S.swap(src.S);
-  M.swap(src.M);
-  G.swap(src.G);
-  D.swap(src.D);
-  OperatorSet dst = std::move(src);  // the other members move; the matrices are empty here
-  dst.S.swap(S);
-  dst.M.swap(M);
-  dst.G.swap(G);
-  dst.D.swap(D);
-  return dst;
-}
-
 // Eq. (32) on one element's gradient block: x (n rows of `stride` apart) becomes -x / |x|, zero
 // where the gradient vanishes or is not finite. Rescaled first: far from the source |grad u|
 // underflows when squared. No allocation.
@@ -130,49 +114,13 @@ void fan_gradient_divergence(const Mesh& mesh, const std::vector<double>& weight
   }
 }
 
-// Whether the fan data reproduce G x and D y for fixed pseudo-random x and y to round-off: the
-// guard that lets the face-wise pass stand in for G and D (an operator set named "ours" built with
-// other refinement options, say, keeps the matrices).
-bool fan_data_match(const Mesh& mesh, const std::vector<double>& weights, const std::vector<double>& fan,
-                    const SparseMatrix& G, const SparseMatrix& D) {
-  const int nv = mesh.n_vertices(), nh = mesh.n_halfedges();
-  if (nh == 0 || G.rows() != 3 * nh || G.cols() != nv || D.rows() != nv || D.cols() != 3 * nh) return false;
-  Eigen::VectorXd x(nv), y(3 * nh);
-  for (int v = 0; v < nv; ++v) x[v] = std::sin(1.7 * v + 0.3);
-  for (int r = 0; r < 3 * nh; ++r) y[r] = std::cos(0.9 * r + 0.1);
-  const Eigen::VectorXd gx = G * x, dy = D * y;
-  Eigen::VectorXd g(3 * nh), d = Eigen::VectorXd::Zero(nv);
-  g.setZero();
-  const int* fo = mesh.face_offsets().data();
-  const int* fi = mesh.face_indices().data();
-  for (int f = 0; f < mesh.n_faces(); ++f) {
-    const int b0 = fo[f], n = fo[f + 1] - b0;
-    double xf = 0, acc = 0;
-    for (int k = 0; k < n; ++k) xf += weights[size_t(b0 + k)] * x[fi[b0 + k]];
-    for (int k = 0; k < n; ++k) {
-      const int h = b0 + k, i = fi[h], j = fi[b0 + (k + 1) % n];
-      const double* q = fan.data() + 7 * size_t(h);
-      if (q[6] == 0) continue;
-      for (int c = 0; c < 3; ++c) g[3 * h + c] = (x[i] - xf) * q[c] + (x[j] - xf) * q[3 + c];
-      const double si = -q[6] * (y[3 * h] * q[0] + y[3 * h + 1] * q[1] + y[3 * h + 2] * q[2]);
-      const double sj = -q[6] * (y[3 * h] * q[3] + y[3 * h + 1] * q[4] + y[3 * h + 2] * q[5]);
-      d[i] += si;
-      d[j] += sj;
-      acc -= si + sj;
-    }
-    for (int k = 0; k < n; ++k) d[fi[b0 + k]] += weights[size_t(b0 + k)] * acc;
-  }
-  const double eg = gx.size() ? gx.cwiseAbs().maxCoeff() : 0.0, ed = dy.size() ? dy.cwiseAbs().maxCoeff() : 0.0;
-  return (g - gx).cwiseAbs().maxCoeff() <= 1e-10 * eg && (d - dy).cwiseAbs().maxCoeff() <= 1e-10 * ed;
-}
-
 }  // namespace
 
 HeatGeodesics::HeatGeodesics(const Mesh& mesh, const HeatGeodesicsOptions& options)
     : HeatGeodesics(build_operators(mesh, parse_laplacian("ours")), mesh.mean_edge_length(), options) {}
 
 HeatGeodesics::HeatGeodesics(OperatorSet operators, double mean_edge_length, const HeatGeodesicsOptions& options)
-    : ops_(take(operators)), options_(options) {
+    : ops_(take_operators(operators)), options_(options) {
   // By shape, not by emptiness: a mesh without faces has a 0 x |V| gradient. |V| is S's size, so
   // that an operator set without a surface domain (a volume mesh's, operators/registry/volume_laplacians.h)
   // works the same way.
@@ -222,12 +170,13 @@ HeatGeodesics::HeatGeodesics(OperatorSet operators, double mean_edge_length, con
   poisson_ = std::make_unique<SparseCholesky>(
       heat_->with_values(pin_to_identity(poisson, pinned_, true), "Poisson operator -S"));
 
-  // The paper's operator: its refinement again (the default one, as build_operators makes it) for
-  // the face-wise pass, used only when it reproduces G and D.
+  // Operators with one virtual vertex per face carry the refinement G and D were built from: the
+  // face-wise pass reads its fan triangles, the same ones as G and D (tests/apps/applications/
+  // test_geodesics.cpp compares the two routes), without refining again.
   const Mesh& domain = ops_.domain;
-  if (ops_.name == "ours" && domain.n_vertices() == nv && ops_.G.rows() == 3 * domain.n_halfedges()) {
-    const Refinement r = refine(domain);
-    weights_ = r.weights;
+  if (ops_.refinement && domain.n_vertices() == nv && ops_.G.rows() == 3 * domain.n_halfedges()) {
+    const Refinement& r = *ops_.refinement;
+    check_refinement(domain, r, "HeatGeodesics");
     fan_.assign(7 * size_t(domain.n_halfedges()), 0.0);
     for (int f = 0; f < domain.n_faces(); ++f) {
       const auto face = domain.face(f);
@@ -243,7 +192,6 @@ HeatGeodesics::HeatGeodesics(OperatorSet operators, double mean_edge_length, con
         q[6] = 0.5 * (xi - xf).cross(xj - xf).norm();
       }
     }
-    if (!fan_data_match(domain, weights_, fan_, ops_.G, ops_.D)) fan_.clear(), weights_.clear();
   }
 }
 
@@ -297,7 +245,7 @@ Eigen::VectorXd HeatGeodesics::distance(std::span<const int> sources, HeatDiagno
   if (!fan_.empty()) {
     b = Eigen::VectorXd::Zero(nv);
     std::vector<double> scratch;
-    fan_gradient_divergence(ops_.domain, weights_, fan_, u.data(), 1, b.data(), scratch);
+    fan_gradient_divergence(ops_.domain, ops_.refinement->weights, fan_, u.data(), 1, b.data(), scratch);
   } else {
     Eigen::VectorXd g = ops_.G * u;
     const int n_blocks = ops_.G_blocks.empty() ? int(g.size() / 3) : int(ops_.G_blocks.size()) - 1;
@@ -371,7 +319,7 @@ Eigen::MatrixXd HeatGeodesics::distances(std::span<const int> sources, int block
     const double* U = Ut.data();  // vertex v's m values at U + v m
     double* Bv = Bt.data();
     std::vector<double> g(size_t(widest) * size_t(m));  // block row i's m values at g + i m
-    if (!fan_.empty()) fan_gradient_divergence(ops_.domain, weights_, fan_, U, m, Bv, g);
+    if (!fan_.empty()) fan_gradient_divergence(ops_.domain, ops_.refinement->weights, fan_, U, m, Bv, g);
     for (int h = 0; h < n_blocks && fan_.empty(); ++h) {
       const int b0 = ops_.G_blocks.empty() ? 3 * h : ops_.G_blocks[h];
       const int b1 = ops_.G_blocks.empty() ? 3 * h + 3 : ops_.G_blocks[h + 1];

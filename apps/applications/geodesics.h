@@ -53,7 +53,9 @@ class HeatGeodesics {
  public:
   // With the paper's operator ("ours").
   explicit HeatGeodesics(const Mesh& mesh, const HeatGeodesicsOptions& options = {});
-  // With any operator set; `mean_edge_length` sets the time step (that of the input mesh).
+  // With any operator set; `mean_edge_length` sets the time step (that of the input mesh). A set
+  // that carries its refinement (OperatorSet::refinement, whose fan triangles G and D must be
+  // those of) is solved face by face from it; any other through its G and D.
   HeatGeodesics(OperatorSet operators, double mean_edge_length, const HeatGeodesicsOptions& options = {});
 
   // Distances from the given source vertices (at least one; throws std::out_of_range for a
@@ -84,11 +86,12 @@ class HeatGeodesics {
   std::vector<int> component_;        // component id per vertex, -1 for unreferenced
   std::vector<unsigned char> pinned_;  // vertices fixed to 0 in the Poisson solve
   std::unique_ptr<SparseCholesky> heat_, poisson_;
-  // For the paper's operator ("ours", as build_operators makes it): per fan triangle of
-  // ops_.domain the hat gradients of its two polygon corners and its area (7 values, zero when
-  // degenerate), and the corner weights, so that eqs. (32)-(33)'s gradient, normalization and
-  // divergence run face by face without reading G and D. Empty for other operator sets.
-  std::vector<double> fan_, weights_;
+  // For operator sets that carry their refinement (OperatorSet::refinement: "ours" and the other
+  // one-virtual-vertex methods): per fan triangle of ops_.domain the hat gradients of its two
+  // polygon corners and its area (7 values, zero when degenerate), so that with the refinement's
+  // corner weights eqs. (32)-(33)'s gradient, normalization and divergence run face by face
+  // without reading G and D. Empty for other operator sets (their G and D are used).
+  std::vector<double> fan_;
 };
 
 // Root-mean-square of (a - b).

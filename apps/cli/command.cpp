@@ -1,8 +1,12 @@
 // apps/cli/command.cpp — shared CLI helpers: loading a mesh with the opt-in `--repair`, loading a
-// volume mesh.
+// volume mesh, the phases' times of --json.
 #include "polydec/apps/cli/command.h"
 
 #include <fmt/format.h>
+
+#include <algorithm>
+#include <iterator>
+#include <stdexcept>
 
 #include "polydec/dec/io/mesh_io.h"
 #include "polydec/dec/io/volume_io.h"
@@ -55,6 +59,31 @@ Mesh load_mesh(const std::string& path, bool repair_first, std::vector<int>* ver
 VolumeMesh load_volume_mesh(const std::string& path, VolumeReadNotes* notes) {
   global_options().last_input = path;
   return load_detail::with_global_options(read_volume_mesh(path, notes));
+}
+
+void PhaseTimer::check_phase(const char* phase) {
+  static const char* const kPhases[] = {"read", "operators", "factorization", "solve", "write"};
+  if (std::find_if(std::begin(kPhases), std::end(kPhases), [&](const char* p) { return std::string(p) == phase; }) ==
+      std::end(kPhases))
+    throw std::logic_error(fmt::format("PhaseTimer: unknown phase '{}'", phase));
+}
+
+void PhaseTimer::add(const char* phase, Clock::time_point start) {
+  check_phase(phase);
+  const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+  for (auto& [name, total] : ms_)
+    if (name == phase) {
+      total += ms;
+      return;
+    }
+  ms_.emplace_back(phase, ms);
+}
+
+nlohmann::json PhaseTimer::json() const {
+  nlohmann::json j = nlohmann::json::object();
+  for (const auto& [name, ms] : ms_) j[name] = ms;
+  j["total"] = std::chrono::duration<double, std::milli>(Clock::now() - start_).count();
+  return j;
 }
 
 void add_repair_flag(CLI::App& app, bool& flag) {

@@ -8,6 +8,7 @@
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "polydec/dec/io/volume_io.h"
@@ -81,10 +82,39 @@ struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Seconds since t0 on the steady clock (the phases' times of --json).
-inline double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
+// Wall times of a command's phases, reported by every --json as "times_ms": milliseconds of the
+// phases that happened, named read, operators (refinement and assembly), factorization, solve (all
+// solves), write, and total (from the timer's construction to json(), so at least their sum). A
+// phase timed twice adds up; another name is an internal error (std::logic_error).
+class PhaseTimer {
+ public:
+  using Clock = std::chrono::steady_clock;
+
+  // Runs f() and adds its wall time to `phase`; returns what f returns.
+  template <class F>
+  decltype(auto) time(const char* phase, F&& f) {
+    check_phase(phase);
+    const Stop stop{*this, phase, Clock::now()};
+    return std::forward<F>(f)();
+  }
+
+  // Adds the time since `start` to `phase`.
+  void add(const char* phase, Clock::time_point start);
+
+  // {"read": ms, ..., "total": ms}.
+  nlohmann::json json() const;
+
+ private:
+  static void check_phase(const char* phase);
+  struct Stop {
+    PhaseTimer& timer;
+    const char* phase;
+    Clock::time_point start;
+    ~Stop() { timer.add(phase, start); }
+  };
+  Clock::time_point start_ = Clock::now();
+  std::vector<std::pair<std::string, double>> ms_;
+};
 
 // parse(text) of an option's value, its std::invalid_argument turned into a UsageError (exit 2).
 template <class Parse>

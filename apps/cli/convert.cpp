@@ -69,13 +69,14 @@ bool is_either_kind(const std::string& path) {
 void run_volume(const Options& o) {
   if (o.dual || o.subdivide != 0 || o.unit_sphere || o.repair)
     throw UsageError("--dual, --subdivide, --unit-sphere and --repair apply to surface meshes only");
-  const VolumeMesh m = load_volume_mesh(o.in);
+  PhaseTimer timer;
+  const VolumeMesh m = timer.time("read", [&] { return load_volume_mesh(o.in); });
   nlohmann::json j = {{"in", o.in}, {"out", o.out}};
   if (o.boundary) {
     if (is_volume_mesh_path(o.out) && !is_either_kind(o.out))
       throw UsageError(fmt::format("--boundary writes a surface mesh ({})", kSurfaceFormats));
     const Mesh b = m.boundary_surface();
-    write_out(o, b);
+    timer.time("write", [&] { write_out(o, b); });
     j["vertices"] = b.n_vertices();
     j["faces"] = b.n_faces();
     j["boundary"] = true;
@@ -86,7 +87,7 @@ void run_volume(const Options& o) {
     if (!is_volume_mesh_path(o.out) && !is_either_kind(o.out))
       throw UsageError(fmt::format(
           "{}: a volume mesh is written as .ovm, .vtk, .vtu, .mesh, .meshb or .msh (or use --boundary)", o.out));
-    write_out(o, m);
+    timer.time("write", [&] { write_out(o, m); });
     j["vertices"] = m.n_vertices();
     j["faces"] = m.n_faces();
     j["cells"] = m.n_cells();
@@ -94,6 +95,7 @@ void run_volume(const Options& o) {
       fmt::print("wrote {}: {} vertices, {} faces, {} cells\n", o.out, m.n_vertices(), m.n_faces(),
                  m.n_cells());
   }
+  j["times_ms"] = timer.json();
   if (o.json) print_json(j);
 }
 
@@ -105,13 +107,18 @@ void run(const Options& o) {
   if (o.boundary)
     throw UsageError(fmt::format("--boundary applies to volume meshes ({}, or --volume)", kVolumeFormats));
   if (o.subdivide < 0) throw UsageError("--subdivide takes a non-negative count");
-  Mesh mesh = load_mesh(o.in, o.repair);
+  PhaseTimer timer;
+  Mesh mesh = timer.time("read", [&] { return load_mesh(o.in, o.repair); });
   auto project = [&](Mesh m) { return o.unit_sphere ? project_to_unit_sphere(m) : m; };
   if (o.dual) mesh = project(dual(mesh));
   for (int k = 0; k < o.subdivide; ++k) mesh = project(catmull_clark(mesh));
   if (!o.dual && o.subdivide == 0) mesh = project(mesh);
-  write_out(o, mesh);
-  const nlohmann::json j = {{"in", o.in}, {"out", o.out}, {"vertices", mesh.n_vertices()}, {"faces", mesh.n_faces()}};
+  timer.time("write", [&] { write_out(o, mesh); });
+  const nlohmann::json j = {{"in", o.in},
+                            {"out", o.out},
+                            {"vertices", mesh.n_vertices()},
+                            {"faces", mesh.n_faces()},
+                            {"times_ms", timer.json()}};
   if (o.json)
     print_json(j);
   else

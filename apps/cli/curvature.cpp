@@ -22,20 +22,24 @@ struct Options {
 
 void run(const Options& o) {
   if (o.mass != "lumped" && o.mass != "unlumped") throw UsageError("--mass must be lumped or unlumped");
-  Mesh mesh = load_mesh(o.mesh, o.repair);
+  PhaseTimer timer;
+  Mesh mesh = timer.time("read", [&] { return load_mesh(o.mesh, o.repair); });
   if (o.unit_sphere) mesh = project_to_unit_sphere(mesh);
   OperatorOptions oopt;
   oopt.with_gradient = false;
   oopt.lift = virtual_lift(o.lift, mesh);
-  const OperatorSet ops = build_operators(mesh, parse_laplacian(o.laplacian), oopt);
+  const OperatorSet ops =
+      timer.time("operators", [&] { return build_operators(mesh, parse_laplacian(o.laplacian), oopt); });
   CurvatureOptions copt;
   copt.lumped_mass = o.mass == "lumped";
-  const Eigen::VectorXd H = mean_curvature(ops, copt).head(ops.n_input_vertices);
+  const Eigen::VectorXd H =
+      timer.time("solve", [&] { return Eigen::VectorXd(mean_curvature(ops, copt).head(ops.n_input_vertices)); });
   nlohmann::json j = {{"mesh", o.mesh},          {"laplacian", ops.name},
                       {"mass", o.mass},          {"vertices", mesh.n_vertices()},
                       {"faces", mesh.n_faces()}, {"min", H.minCoeff()},
                       {"max", H.maxCoeff()},     {"mean", H.mean()}};
   if (o.unit_sphere) j["rmse_vs_unit_sphere"] = curvature_rmse(H, 1.0);
+  const auto t_write = PhaseTimer::Clock::now();
   if (!o.out.empty()) {
     write_mesh(o.out, mesh, {{"mean_curvature", H}});
     j["out"] = o.out;
@@ -50,6 +54,8 @@ void run(const Options& o) {
     render_png(o.png, mesh, H, ropt);
     j["png"] = o.png;
   }
+  timer.add("write", t_write);
+  j["times_ms"] = timer.json();
   if (o.json) {
     print_json(j);
     return;

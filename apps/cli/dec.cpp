@@ -64,12 +64,12 @@ void write_lists(const std::string& path, int n, List list) {
 }
 
 // The surface mesh complex: d, P and the stars on the mesh's edges and faces.
-void run_surface_mesh_complex(const Options& o, const Mesh& mesh, const Refinement& r, double read_seconds) {
+void run_surface_mesh_complex(const Options& o, const Mesh& mesh, const Refinement& r, PhaseTimer& timer) {
   const SpokeRule rule = parse_option(parse_spoke_rule, o.spoke_rule);
-  auto t0 = std::chrono::steady_clock::now();
-  const SurfaceDec D = surface_dec(mesh, r, {.max_degree = 2, .complex = DecComplex::Mesh, .spoke_rule = rule});
-  const double build_seconds = seconds_since(t0);
-  t0 = std::chrono::steady_clock::now();
+  const SurfaceDec D = timer.time("operators", [&] {
+    return surface_dec(mesh, r, {.max_degree = 2, .complex = DecComplex::Mesh, .spoke_rule = rule});
+  });
+  const auto t_write = PhaseTimer::Clock::now();
   std::filesystem::create_directories(o.out);
   SparseMatrix star0 = D.star[0];
   if (o.lumped) {
@@ -85,7 +85,7 @@ void run_surface_mesh_complex(const Options& o, const Mesh& mesh, const Refineme
   for (int k = 0; k < 3; ++k) write_matrix_market(d + fmt::format("P{}.mtx", k), D.P[k]);
   write_cells(d + "edges.txt", mesh.edges());
   write_lists(d + "faces.txt", mesh.n_faces(), [&](int f) { return mesh.face(f); });
-  const double write_seconds = seconds_since(t0);
+  timer.add("write", t_write);
   nlohmann::json j = {{"mesh", o.mesh},
                       {"out", o.out},
                       {"complex", "mesh"},
@@ -99,7 +99,7 @@ void run_surface_mesh_complex(const Options& o, const Mesh& mesh, const Refineme
                       {"star2_nonzeros", D.star[2].nonZeros()},
                       {"fan_degenerate", r.quality.n_degenerate},
                       {"fan_inverted", r.quality.n_inverted},
-                      {"seconds", {{"read", read_seconds}, {"operators", build_seconds}, {"write", write_seconds}}},
+                      {"times_ms", timer.json()},
                       {"files",
                        {"d0.mtx", "d1.mtx", "star0.mtx", "star1.mtx", "star2.mtx", "P0.mtx", "P1.mtx", "P2.mtx",
                         "edges.txt", "faces.txt"}}};
@@ -118,18 +118,18 @@ void run_surface_mesh_complex(const Options& o, const Mesh& mesh, const Refineme
 // The volume mesh complex: d0..d2, P0..P3, star0..star3 on the mesh's edges, faces and cells (every
 // degree for every cell size), edges.txt, faces.txt and cells.txt (one cell a line: its half-faces
 // h, face h / 2 as listed in faces.txt when h is even (then d2 = +1), reversed when odd (d2 = -1)).
-void run_volume_mesh_complex(const Options& o, const VolumeMesh& mesh, const VolumeRefinement& r, double read_seconds) {
+void run_volume_mesh_complex(const Options& o, const VolumeMesh& mesh, const VolumeRefinement& r, PhaseTimer& timer) {
   const SpokeRule rule = parse_option(parse_spoke_rule, o.spoke_rule);
   const int degree = o.max_degree < 0 ? 3 : o.max_degree;
-  auto t0 = std::chrono::steady_clock::now();
+  const auto t_build = PhaseTimer::Clock::now();
   VolumeDec D;
   try {
     D = volume_dec(mesh, r, VolumeDecOptions{.max_degree = degree, .complex = DecComplex::Mesh, .spoke_rule = rule});
   } catch (const std::invalid_argument& e) {  // a cell that is not a ball: the file's content
     throw FileError(o.mesh, 0, -1, e.what());
   }
-  const double build_seconds = seconds_since(t0);
-  t0 = std::chrono::steady_clock::now();
+  timer.add("operators", t_build);
+  const auto t_write = PhaseTimer::Clock::now();
   std::filesystem::create_directories(o.out);
   const std::string d = o.out + "/";
   std::vector<std::string> files;
@@ -152,7 +152,7 @@ void run_volume_mesh_complex(const Options& o, const VolumeMesh& mesh, const Vol
   write_lists(d + "cells.txt", mesh.n_cells(), [&](int c) { return mesh.cell(c); });
   files.push_back("faces.txt");
   files.push_back("cells.txt");
-  const double write_seconds = seconds_since(t0);
+  timer.add("write", t_write);
   nlohmann::json nonzeros = nlohmann::json::object();
   for (int k = 0; k <= degree; ++k) nonzeros[fmt::format("star{}", k)] = D.star[k].nonZeros();
   nlohmann::json j = {{"mesh", o.mesh},
@@ -168,7 +168,7 @@ void run_volume_mesh_complex(const Options& o, const VolumeMesh& mesh, const Vol
                       {"nonzeros", nonzeros},
                       {"subtet_degenerate", r.quality.n_degenerate},
                       {"subtet_inverted", r.quality.n_inverted},
-                      {"seconds", {{"read", read_seconds}, {"operators", build_seconds}, {"write", write_seconds}}},
+                      {"times_ms", timer.json()},
                       {"files", files}};
   if (o.json) {
     print_json(j);
@@ -183,9 +183,8 @@ void run_volume_mesh_complex(const Options& o, const VolumeMesh& mesh, const Vol
 
 void run_volume(const Options& o) {
   const DecComplex complex = parse_option(parse_dec_complex, o.complex);
-  const auto t_read = std::chrono::steady_clock::now();
-  const VolumeMesh mesh = load_volume_mesh(o.mesh);
-  const double read_seconds = seconds_since(t_read);
+  PhaseTimer timer;
+  const VolumeMesh mesh = timer.time("read", [&] { return load_volume_mesh(o.mesh); });
   VolumeRefinementOptions ropt;
   try {
     ropt.cell_rule = parse_cell_point_rule(o.cell_rule);
@@ -193,8 +192,8 @@ void run_volume(const Options& o) {
     throw UsageError(e.what());
   }
   if (o.max_degree < -1 || o.max_degree > 3) throw UsageError("--max-degree must be 0, 1, 2 or 3");
-  const VolumeRefinement r = refine_volume(mesh, ropt);
-  if (complex == DecComplex::Mesh) return run_volume_mesh_complex(o, mesh, r, read_seconds);
+  const VolumeRefinement r = timer.time("operators", [&] { return refine_volume(mesh, ropt); });
+  if (complex == DecComplex::Mesh) return run_volume_mesh_complex(o, mesh, r, timer);
   const int allowed = volume_dec_max_degree(mesh);
   const int degree = o.max_degree < 0 ? allowed : o.max_degree;
   if (degree < 3 && o.max_degree < 0)
@@ -203,12 +202,15 @@ void run_volume(const Options& o) {
         "entries from a cell of m vertices; cells of at most {}, {}, {} vertices for k = 1, 2, 3)\n",
         max_dec_cell_vertices(degree + 1), degree, max_dec_cell_vertices(1), max_dec_cell_vertices(2),
         max_dec_cell_vertices(3));
+  const auto t_build = PhaseTimer::Clock::now();
   VolumeDec D;
   try {
     D = volume_dec(mesh, r, degree);
   } catch (const std::invalid_argument& e) {  // a cell with too many vertices: the file's content
     throw FileError(o.mesh, 0, -1, e.what());
   }
+  timer.add("operators", t_build);
+  const auto t_write = PhaseTimer::Clock::now();
   std::filesystem::create_directories(o.out);
   SparseMatrix star0 = D.star[0];
   if (o.lumped) {
@@ -232,6 +234,7 @@ void run_volume(const Options& o) {
     write_simplices(d + lists[k], D.coarse, k);
     files.push_back(lists[k]);
   }
+  timer.add("write", t_write);
   // Ranks of star1..star3 by the dense reduced-basis decision, when the mesh is small enough.
   nlohmann::json ranks = nlohmann::json::object();
   for (int k = 1; k < 4; ++k) {
@@ -259,6 +262,7 @@ void run_volume(const Options& o) {
                       {"subtet_inverted", r.quality.n_inverted},
                       {"files", files}};
   j.update(ranks);
+  j["times_ms"] = timer.json();
   if (o.json) {
     print_json(j);
     return;
@@ -277,13 +281,12 @@ void run(const Options& o) {
     return;
   }
   const DecComplex complex = parse_option(parse_dec_complex, o.complex);
-  const auto t_read = std::chrono::steady_clock::now();
-  const Mesh mesh = load_mesh(o.mesh, o.repair);
-  const double read_seconds = seconds_since(t_read);
+  PhaseTimer timer;
+  const Mesh mesh = timer.time("read", [&] { return load_mesh(o.mesh, o.repair); });
   if (complex == DecComplex::Mesh) {
     RefinementOptions ropt;
     ropt.rule = parse_virtual_vertex_rule(o.rule);
-    run_surface_mesh_complex(o, mesh, refine(mesh, ropt), read_seconds);
+    run_surface_mesh_complex(o, mesh, timer.time("operators", [&] { return refine(mesh, ropt); }), timer);
     return;
   }
   if (mesh.max_face_size() > kHighValence)
@@ -295,9 +298,13 @@ void run(const Options& o) {
             (long(mesh.max_face_size()) * (mesh.max_face_size() - 1) * (mesh.max_face_size() - 2) / 6));
   RefinementOptions ropt;
   ropt.rule = parse_virtual_vertex_rule(o.rule);
+  const auto t_build = PhaseTimer::Clock::now();
   const Refinement r = refine(mesh, ropt);
   const CoarseComplex K(mesh);
   const HodgeStars H = hodge_stars(mesh, r, K);
+  const SparseMatrix P0 = prolongation(mesh, r), P1 = prolongation1(mesh, r, K), P2 = prolongation2(mesh, r, K);
+  timer.add("operators", t_build);
+  const auto t_write = PhaseTimer::Clock::now();
   std::filesystem::create_directories(o.out);
   SparseMatrix star0 = H.star0;
   if (o.lumped) {
@@ -311,11 +318,12 @@ void run(const Options& o) {
   write_matrix_market(d + "star0.mtx", star0);
   write_matrix_market(d + "star1.mtx", H.star1);
   write_matrix_market(d + "star2.mtx", H.star2);
-  write_matrix_market(d + "P0.mtx", prolongation(mesh, r));
-  write_matrix_market(d + "P1.mtx", prolongation1(mesh, r, K));
-  write_matrix_market(d + "P2.mtx", prolongation2(mesh, r, K));
+  write_matrix_market(d + "P0.mtx", P0);
+  write_matrix_market(d + "P1.mtx", P1);
+  write_matrix_market(d + "P2.mtx", P2);
   write_cells(d + "edges.txt", K.pairs());
   write_cells(d + "triangles.txt", K.triples());
+  timer.add("write", t_write);
   const FormSpan s1 = form_span(mesh, r, K, 1), s2 = form_span(mesh, r, K, 2);
   nlohmann::json j = {{"mesh", o.mesh},
                       {"out", o.out},
@@ -333,7 +341,8 @@ void run(const Options& o) {
                       {"fan_inverted", r.quality.n_inverted},
                       {"files",
                        {"d0.mtx", "d1.mtx", "star0.mtx", "star1.mtx", "star2.mtx", "P0.mtx", "P1.mtx",
-                        "P2.mtx", "edges.txt", "triangles.txt"}}};
+                        "P2.mtx", "edges.txt", "triangles.txt"}},
+                      {"times_ms", timer.json()}};
   if (o.json) {
     print_json(j);
     return;

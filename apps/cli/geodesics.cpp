@@ -34,7 +34,7 @@ struct Options {
 
 void report(const Options& o, const LazyMesh& mesh, const std::vector<int>& sources, const Eigen::VectorXd& d,
             const std::string& laplacian, double time_step, const HeatDiagnostics& heat, const FanQuality& quality,
-            const nlohmann::json* engine, nlohmann::json* seconds = nullptr);
+            const nlohmann::json* engine, PhaseTimer& timer);
 
 // The heat step's reach into the JSON summary, and a warning (on stderr) when it fell short.
 void report_heat(const Options& o, const HeatDiagnostics& heat, int n_vertices, double extent, nlohmann::json& j) {
@@ -54,6 +54,7 @@ void report_heat(const Options& o, const HeatDiagnostics& heat, int n_vertices, 
 
 // --engine petsc: the distributed run (apps/cli/engine.h); rank 0 reports as the serial run does.
 void run_petsc(const Options& o) {
+  PhaseTimer timer;  // the engine's phases are its own (engine.per_rank); total and write here
   if (o.laplacian != "ours") throw UsageError("--engine petsc computes the paper's Laplacian only (--laplacian ours)");
   if (o.mass != "lumped" && o.mass != "unlumped") throw UsageError("--mass must be lumped or unlumped");
   if (o.time_step_edges != "input" && o.time_step_edges != "operator")
@@ -61,7 +62,7 @@ void run_petsc(const Options& o) {
 #ifdef POLYDEC_HAVE_PETSC
   petsc_geodesics(o.mesh, o.repair, o.sources, o.mass == "lumped", !o.delta_source, o.time_factor, o.engine,
                   [&](const EngineGeodesics& r) {
-                    report(o, r.mesh, r.sources, r.distance, "ours", r.time_step, r.heat, r.quality, &r.summary);
+                    report(o, r.mesh, r.sources, r.distance, "ours", r.time_step, r.heat, r.quality, &r.summary, timer);
                   });
 #else
   throw UsageError("--engine petsc: this polydec was built without PETSc (configure with -DPOLYDEC_WITH_PETSC=ON)");
@@ -99,16 +100,12 @@ double euclidean_rmse(const Eigen::MatrixX3d& X, int source, const Eigen::Vector
 // right-hand sides), |file vertices| x k in file vertex order (rows of vertices --repair removed,
 // and of vertices no source reaches, hold inf), written as a dense Matrix Market file.
 void run_per_source(const Options& o, const HeatGeodesics& heat, const std::vector<int>& sources,
-                    const std::vector<int>& vertex_map, nlohmann::json seconds) {
-  auto t0 = std::chrono::steady_clock::now();
-  const Eigen::MatrixXd D = heat.distances(sources);
-  seconds["solves"] = seconds_since(t0);
+                    const std::vector<int>& vertex_map, PhaseTimer& timer) {
+  const Eigen::MatrixXd D = timer.time("solve", [&] { return heat.distances(sources); });
   Eigen::MatrixXd out = Eigen::MatrixXd::Constant(long(vertex_map.size()), D.cols(), INFINITY);
   for (size_t v = 0; v < vertex_map.size(); ++v)
     if (vertex_map[v] >= 0) out.row(long(v)) = D.row(vertex_map[v]);
-  t0 = std::chrono::steady_clock::now();
-  write_dense_matrix_market(o.out, out);
-  seconds["write"] = seconds_since(t0);
+  timer.time("write", [&] { write_dense_matrix_market(o.out, out); });
   long unreached = 0;
   double mx = 0;
   for (long i = 0; i < out.size(); ++i) {
@@ -127,7 +124,7 @@ void run_per_source(const Options& o, const HeatGeodesics& heat, const std::vect
                             {"max", mx},
                             {"unreached_entries", unreached},
                             {"out", o.out},
-                            {"seconds", seconds}};
+                            {"times_ms", timer.json()}};
   if (o.json) {
     print_json(j);
     return;
@@ -145,7 +142,8 @@ void run_volume(const Options& o) {
   if (o.mass != "lumped" && o.mass != "unlumped") throw UsageError("--mass must be lumped or unlumped");
   if (o.time_step_edges != "input")
     throw UsageError("--time-step-edges: volume meshes use the input's edges only");
-  const VolumeMesh mesh = load_volume_mesh(o.mesh);
+  PhaseTimer timer;
+  const VolumeMesh mesh = timer.time("read", [&] { return load_volume_mesh(o.mesh); });
   for (int s : o.sources)
     if (s < 0 || s >= mesh.n_vertices())
       throw std::out_of_range(
@@ -155,12 +153,15 @@ void run_volume(const Options& o) {
   hopt.mass_weighted_source = !o.delta_source;
   hopt.time_step_factor = o.time_factor;
   // The operators keep their refinement for the picture (only with --png).
-  const HeatGeodesics heat(
-      build_volume_operators(mesh, parse_volume_laplacian(o.laplacian), {.keep_refinement = !o.png.empty()}),
-      mesh.mean_edge_length(), hopt);
+  OperatorSet ops = timer.time("operators", [&] {
+    return build_volume_operators(mesh, parse_volume_laplacian(o.laplacian), {.keep_refinement = !o.png.empty()});
+  });
+  const HeatGeodesics heat = timer.time("factorization", [&] {
+    return HeatGeodesics(take_operators(ops), mesh.mean_edge_length(), hopt);
+  });
   const SubTetQuality& quality = heat.operators().sub_tet_quality;
   HeatDiagnostics diagnostics;
-  const Eigen::VectorXd d = heat.distance(o.sources, &diagnostics);
+  const Eigen::VectorXd d = timer.time("solve", [&] { return heat.distance(o.sources, &diagnostics); });
   const Stats st = stats(d);
   nlohmann::json j = {{"mesh", o.mesh},
                       {"laplacian", heat.operators().name},
@@ -176,6 +177,7 @@ void run_volume(const Options& o) {
                       {"subtet_inverted", quality.n_inverted}};
   report_heat(o, diagnostics, mesh.n_vertices(), mesh.bounding_box_diagonal(), j);
   if (o.euclidean) j["rmse_vs_euclidean"] = euclidean_rmse(mesh.positions(), o.sources[0], d);
+  const auto t_write = PhaseTimer::Clock::now();
   if (!o.out.empty()) {
     write_volume_vtk_with_point_data(mesh, o.out, {{"distance", d}});
     j["out"] = o.out;
@@ -189,6 +191,8 @@ void run_volume(const Options& o) {
                           centre_plane(mesh, Eigen::Vector3d::UnitZ()), ropt);
     j["png"] = o.png;
   }
+  timer.add("write", t_write);
+  j["times_ms"] = timer.json();
   if (o.json) {
     print_json(j);
     return;
@@ -214,9 +218,8 @@ void run(const Options& o) {
   if (o.engine.engine == "petsc") return run_petsc(o);
   if (o.engine.engine != "serial") throw UsageError("--engine must be serial or petsc");
   std::vector<int> vertex_map;
-  auto t0 = std::chrono::steady_clock::now();
-  const Mesh mesh = load_mesh(o.mesh, o.repair, &vertex_map);
-  nlohmann::json seconds = {{"read", seconds_since(t0)}};
+  PhaseTimer timer;
+  const Mesh mesh = timer.time("read", [&] { return load_mesh(o.mesh, o.repair, &vertex_map); });
   // Sources are file vertices; --repair may renumber or remove them.
   std::vector<int> sources = o.sources;
   for (int& s : sources) {
@@ -233,27 +236,22 @@ void run(const Options& o) {
   hopt.time_step_factor = o.time_factor;
   if (o.time_step_edges != "input" && o.time_step_edges != "operator")
     throw UsageError("--time-step-edges must be input or operator");
-  t0 = std::chrono::steady_clock::now();
-  OperatorSet ops = build_operators(mesh, parse_laplacian(o.laplacian));
-  seconds["operators"] = seconds_since(t0);
+  OperatorSet ops = timer.time("operators", [&] { return build_operators(mesh, parse_laplacian(o.laplacian)); });
   const double h = o.time_step_edges == "input" ? mesh.mean_edge_length() : ops.mean_edge_length;
-  t0 = std::chrono::steady_clock::now();
-  const HeatGeodesics heat(std::move(ops), h, hopt);
-  seconds["factorization"] = seconds_since(t0);
-  if (o.per_source) return run_per_source(o, heat, sources, vertex_map, seconds);
+  const HeatGeodesics heat =
+      timer.time("factorization", [&] { return HeatGeodesics(take_operators(ops), h, hopt); });
+  if (o.per_source) return run_per_source(o, heat, sources, vertex_map, timer);
   HeatDiagnostics diagnostics;
-  t0 = std::chrono::steady_clock::now();
-  const Eigen::VectorXd d = heat.distance(sources, &diagnostics);
-  seconds["solves"] = seconds_since(t0);
+  const Eigen::VectorXd d = timer.time("solve", [&] { return heat.distance(sources, &diagnostics); });
   report(o, LazyMesh::of(mesh), sources, d, heat.operators().name, heat.time_step(), diagnostics,
-         heat.operators().quality, nullptr, &seconds);
+         heat.operators().quality, nullptr, timer);
 }
 
 // The outputs of both engines: text or JSON (with the engine's summary), the PLY, the picture.
 void report(const Options& o, const LazyMesh& mesh, const std::vector<int>& sources, const Eigen::VectorXd& d,
             const std::string& laplacian, double time_step, const HeatDiagnostics& heat, const FanQuality& quality,
-            const nlohmann::json* engine, nlohmann::json* seconds) {
-  const auto t_write = std::chrono::steady_clock::now();
+            const nlohmann::json* engine, PhaseTimer& timer) {
+  const auto t_write = PhaseTimer::Clock::now();
   const Stats st = stats(d);
   const double mn = st.min, mx = st.max;
   nlohmann::json j = {{"mesh", o.mesh},
@@ -285,10 +283,8 @@ void report(const Options& o, const LazyMesh& mesh, const std::vector<int>& sour
     render_png(o.png, mesh.get(), d, ropt);
     j["png"] = o.png;
   }
-  if (seconds) {
-    (*seconds)["write"] = seconds_since(t_write);
-    j["seconds"] = *seconds;
-  }
+  timer.add("write", t_write);
+  j["times_ms"] = timer.json();
   if (o.json) {
     print_json(j);
     return;
@@ -356,7 +352,7 @@ const RegisterCommand reg("geodesics", "Geodesic distances by the heat method (p
   app.add_flag("--per-source", o->per_source,
                "one distance field per source (not the distance to the set): --out FILE.mtx gets the |V| x k "
                "distances (Matrix Market array, one column per --source, file vertex order)");
-  app.add_flag("--json", o->json, "print one JSON object instead of text (with the phases' seconds)");
+  app.add_flag("--json", o->json, "print one JSON object instead of text (with the phases' times, times_ms)");
   add_repair_flag(app, o->repair);
   add_engine_options(app, o->engine);
   app.callback([o] {

@@ -22,16 +22,18 @@ struct Options {
 
 void run(const Options& o) {
   if (o.mass != "lumped" && o.mass != "unlumped") throw UsageError("--mass must be lumped or unlumped");
-  Mesh mesh = load_mesh(o.mesh, o.repair);
+  PhaseTimer timer;
+  Mesh mesh = timer.time("read", [&] { return load_mesh(o.mesh, o.repair); });
   if (!o.keep_positions) mesh = project_to_unit_sphere(mesh);
   OperatorOptions oopt;
   oopt.with_gradient = false;
   oopt.lift = virtual_lift(o.lift, mesh);
-  const OperatorSet ops = build_operators(mesh, parse_laplacian(o.laplacian), oopt);
+  const OperatorSet ops =
+      timer.time("operators", [&] { return build_operators(mesh, parse_laplacian(o.laplacian), oopt); });
   HarmonicsOptions hopt;
   hopt.max_band = 9;
   hopt.lumped_mass = o.mass == "lumped";
-  const HarmonicsError e = spherical_harmonics_error(ops, hopt);
+  const HarmonicsError e = timer.time("solve", [&] { return spherical_harmonics_error(ops, hopt); });
   nlohmann::json j = {{"mesh", o.mesh},
                       {"laplacian", ops.name},
                       {"mass", o.mass},
@@ -41,6 +43,7 @@ void run(const Options& o) {
                       {"band_error", e.band_error},
                       {"error_l1_8", e.sum(8)},
                       {"error_l1_9", e.sum(9)}};
+  const auto t_write = PhaseTimer::Clock::now();
   if (!o.png.empty()) {
     // Error density: each vertex's share of eq. (30) summed over l = 1..9, per unit area.
     Eigen::VectorXd density = Eigen::VectorXd::Zero(e.vertex_error.size());
@@ -54,7 +57,9 @@ void run(const Options& o) {
     ropt.colormap = Colormap::turbo;
     render_png(o.png, mesh, density.head(ops.n_input_vertices), ropt);
     j["png"] = o.png;
+    timer.add("write", t_write);
   }
+  j["times_ms"] = timer.json();
   if (o.json) {
     print_json(j);
     return;

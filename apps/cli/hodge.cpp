@@ -88,14 +88,12 @@ struct Decomposed {
   std::string counts;  // "V vertices, F faces" (and cells)
 };
 
-// Reads the mesh, builds the decomposer, decomposes the given or built-in form; the phases'
-// seconds go to `seconds`.
+// Builds the decomposer (its operators and factorizations: the phase "operators"), decomposes the given
+// or built-in form (the phase "solve").
 template <class AnyMesh, class Decomposer>
-Decomposed decompose(const Options& o, const AnyMesh& mesh, DecComplex complex, nlohmann::json& seconds) {
+Decomposed decompose(const Options& o, const AnyMesh& mesh, DecComplex complex, PhaseTimer& timer) {
   const bool on_mesh = complex == DecComplex::Mesh;
-  auto t0 = std::chrono::steady_clock::now();
-  const Decomposer hd(mesh, {}, complex);
-  seconds["operators"] = seconds_since(t0);
+  const Decomposer hd = timer.time("operators", [&] { return Decomposer(mesh, {}, complex); });
   Decomposed r;
   if constexpr (std::is_same_v<Decomposer, HodgeDecomposer>)
     r.cells = on_mesh ? mesh.edges() : hd.complex().pairs();
@@ -103,9 +101,7 @@ Decomposed decompose(const Options& o, const AnyMesh& mesh, DecComplex complex, 
     r.cells = hd.cells();
   const char* cell_name = on_mesh ? "edges" : "coarse 1-cells";
   r.omega = o.form.empty() ? builtin_form(mesh, r.cells, o.noise, o.seed) : read_form(o.form, r.cells.rows(), cell_name);
-  t0 = std::chrono::steady_clock::now();
-  r.parts = hd.decompose(r.omega);
-  seconds["solves"] = seconds_since(t0);
+  r.parts = timer.time("solve", [&] { return hd.decompose(r.omega); });
   r.harmonic_dimension = hd.harmonic_dimension();
   return r;
 }
@@ -115,28 +111,25 @@ void run(const Options& o) {
   const DecComplex complex = parse_option(parse_dec_complex, o.complex);
   const bool on_mesh = complex == DecComplex::Mesh;
   const bool volume = o.volume || is_volume_mesh_path(o.mesh);
-  nlohmann::json seconds;
-  auto t0 = std::chrono::steady_clock::now();
+  PhaseTimer timer;
   Decomposed r;
   if (volume) {
     if (o.repair) throw UsageError("--repair applies to surface meshes only");
-    const VolumeMesh mesh = load_volume_mesh(o.mesh);
-    seconds["read"] = seconds_since(t0);
-    r = decompose<VolumeMesh, VolumeHodgeDecomposer>(o, mesh, complex, seconds);
+    const VolumeMesh mesh = timer.time("read", [&] { return load_volume_mesh(o.mesh); });
+    r = decompose<VolumeMesh, VolumeHodgeDecomposer>(o, mesh, complex, timer);
     r.counts = fmt::format("{} vertices, {} faces, {} cells", mesh.n_vertices(), mesh.n_faces(), mesh.n_cells());
   } else {
-    const Mesh mesh = load_mesh(o.mesh, o.repair);
-    seconds["read"] = seconds_since(t0);
+    const Mesh mesh = timer.time("read", [&] { return load_mesh(o.mesh, o.repair); });
     if (!on_mesh && mesh.max_face_size() > kHighValence)
       std::cerr << fmt::format("polydec: warning: faces with up to {} corners: star1 grows as n^4 per face\n",
                                mesh.max_face_size());
-    r = decompose<Mesh, HodgeDecomposer>(o, mesh, complex, seconds);
+    r = decompose<Mesh, HodgeDecomposer>(o, mesh, complex, timer);
     r.counts = fmt::format("{} vertices, {} faces", mesh.n_vertices(), mesh.n_faces());
   }
   const long n1 = r.cells.rows();
   const char* cell_name = on_mesh ? "edges" : "coarse 1-cells";
   const HodgeParts& parts = r.parts;
-  t0 = std::chrono::steady_clock::now();
+  const auto t_write = PhaseTimer::Clock::now();
   if (!o.out.empty()) {
     std::ofstream out(o.out);
     if (!out) throw FileError(o.out, 0, -1, "cannot open file for writing");
@@ -147,7 +140,7 @@ void run(const Options& o) {
                          parts.exact[p], parts.coexact[p], parts.harmonic[p]);
     if (!out) throw FileError(o.out, 0, -1, "write failed");
   }
-  seconds["write"] = seconds_since(t0);
+  if (!o.out.empty()) timer.add("write", t_write);
   const nlohmann::json j = {{"mesh", o.mesh},
                             {"kind", volume ? "volume" : "surface"},
                             {"form", o.form.empty() ? "builtin" : o.form},
@@ -159,7 +152,7 @@ void run(const Options& o) {
                             {"norm_coexact", parts.norm_coexact},
                             {"norm_harmonic", parts.norm_harmonic},
                             {"out", o.out},
-                            {"seconds", seconds}};
+                            {"times_ms", timer.json()}};
   if (o.json) {
     print_json(j);
     return;
@@ -187,7 +180,7 @@ const RegisterCommand reg(
                      "the cells: complete (default; vertex pairs sharing a face) or mesh (the mesh's edges: "
                      "positive definite star1, unique parts)");
       app.add_flag("--volume", o->volume, "read MESH as a volume mesh whatever its extension");
-      app.add_flag("--json", o->json, "print one JSON object instead of text (with the phases' seconds)");
+      app.add_flag("--json", o->json, "print one JSON object instead of text (with the phases' times, times_ms)");
       add_repair_flag(app, o->repair);
       app.callback([o] { run(*o); });
     });

@@ -49,7 +49,8 @@ double median(std::vector<double> v) {
 
 // --repeat N: times N full assemblies (refine + pattern + S, M, lumped M) and N re-assemblies
 // with the pattern kept.
-void run_timing(const Options& o, const Mesh& mesh, const RefinementOptions& ropt, const AssemblyOptions& aopt) {
+void run_timing(const Options& o, const Mesh& mesh, const RefinementOptions& ropt, const AssemblyOptions& aopt,
+                PhaseTimer& timer) {
   using Clock = std::chrono::steady_clock;
   std::vector<double> full, full_cpu, values;
   Laplacian L;
@@ -81,7 +82,8 @@ void run_timing(const Options& o, const Mesh& mesh, const RefinementOptions& rop
                       {"min_ms", *std::min_element(full.begin(), full.end())},
                       {"median_thread_cpu_ms", median(full_cpu)},
                       {"pattern_kept_median_ms", median(values)},
-                      {"parts", {"S", "M", "M_lumped"}}};
+                      {"parts", {"S", "M", "M_lumped"}},
+                      {"times_ms", timer.json()}};
   if (o.json) {
     print_json(j);
     return;
@@ -94,7 +96,8 @@ void run_timing(const Options& o, const Mesh& mesh, const RefinementOptions& rop
 // Volume meshes: S, M, M_lumped, P of the polyhedral refinement, or --repeat N timings.
 void run_volume(const Options& o) {
   using Clock = std::chrono::steady_clock;
-  const VolumeMesh mesh = load_volume_mesh(o.mesh);
+  PhaseTimer timer;
+  const VolumeMesh mesh = timer.time("read", [&] { return load_volume_mesh(o.mesh); });
   VolumeRefinementOptions ropt;
   ropt.threads = resolve_threads(o.threads);
   try {
@@ -121,7 +124,7 @@ void run_volume(const Options& o) {
                         {"cells", mesh.n_cells()}, {"S_nonzeros", nnz},             {"repeat", o.repeat},
                         {"median_ms", median(full)}, {"min_ms", *std::min_element(full.begin(), full.end())},
                         {"pattern_kept_median_ms", median(values)}, {"threads", ropt.threads},
-                        {"parts", {"S", "M", "M_lumped"}}};
+                        {"parts", {"S", "M", "M_lumped"}}, {"times_ms", timer.json()}};
     if (o.json) {
       print_json(j);
       return;
@@ -131,8 +134,12 @@ void run_volume(const Options& o) {
                o.repeat, median(values));
     return;
   }
+  const auto t_build = Clock::now();
   const VolumeRefinement r = refine_volume(mesh, ropt);
   const VolumeLaplacian L = assemble_volume_laplacian(mesh, r, nullptr, ropt.threads);
+  const SparseMatrix P = volume_prolongation(mesh, r);
+  timer.add("operators", t_build);
+  const auto t_write = Clock::now();
   std::filesystem::create_directories(o.out);
   SparseMatrix Ml(mesh.n_vertices(), mesh.n_vertices());
   Ml.setIdentity();
@@ -140,7 +147,8 @@ void run_volume(const Options& o) {
   write_matrix_market(o.out + "/S.mtx", L.S);
   write_matrix_market(o.out + "/M.mtx", L.M);
   write_matrix_market(o.out + "/M_lumped.mtx", Ml);
-  write_matrix_market(o.out + "/P.mtx", volume_prolongation(mesh, r));
+  write_matrix_market(o.out + "/P.mtx", P);
+  timer.add("write", t_write);
   nlohmann::json j = {{"mesh", o.mesh},
                       {"out", o.out},
                       {"vertices", mesh.n_vertices()},
@@ -151,7 +159,8 @@ void run_volume(const Options& o) {
                       {"volume", L.M_lumped.sum()},
                       {"subtet_degenerate", r.quality.n_degenerate},
                       {"subtet_inverted", r.quality.n_inverted},
-                      {"files", {"S.mtx", "M.mtx", "M_lumped.mtx", "P.mtx"}}};
+                      {"files", {"S.mtx", "M.mtx", "M_lumped.mtx", "P.mtx"}},
+                      {"times_ms", timer.json()}};
   if (o.json) {
     print_json(j);
     return;
@@ -163,8 +172,12 @@ void run_volume(const Options& o) {
 }
 
 // --order 2: S, M, M_lumped (HRZ) and P of the quadratic elements, dofs.txt (x y z per dof).
-void run_quadratic(const Options& o, const Mesh& mesh, const Refinement& r) {
+void run_quadratic(const Options& o, const Mesh& mesh, const Refinement& r, PhaseTimer& timer) {
+  const auto t_build = PhaseTimer::Clock::now();
   const QuadraticLaplacian Q = assemble_quadratic_laplacian(mesh, r);
+  const SparseMatrix P = quadratic_prolongation(mesh, r);
+  timer.add("operators", t_build);
+  const auto t_write = PhaseTimer::Clock::now();
   const int nd = int(Q.dofs.rows());
   std::filesystem::create_directories(o.out);
   SparseMatrix Ml(nd, nd);
@@ -173,12 +186,13 @@ void run_quadratic(const Options& o, const Mesh& mesh, const Refinement& r) {
   write_matrix_market(o.out + "/S.mtx", Q.S);
   write_matrix_market(o.out + "/M.mtx", Q.M);
   write_matrix_market(o.out + "/M_lumped.mtx", Ml);
-  write_matrix_market(o.out + "/P.mtx", quadratic_prolongation(mesh, r));
+  write_matrix_market(o.out + "/P.mtx", P);
   {
     std::ofstream f(o.out + "/dofs.txt");
     if (!f) throw FileError(o.out + "/dofs.txt", 0, -1, "cannot open file for writing");
     for (int i = 0; i < nd; ++i) f << fmt::format("{:.17g} {:.17g} {:.17g}\n", Q.dofs(i, 0), Q.dofs(i, 1), Q.dofs(i, 2));
   }
+  timer.add("write", t_write);
   nlohmann::json j = {{"mesh", o.mesh},
                       {"out", o.out},
                       {"order", 2},
@@ -189,7 +203,8 @@ void run_quadratic(const Options& o, const Mesh& mesh, const Refinement& r) {
                       {"S_nonzeros", Q.S.nonZeros()},
                       {"fan_degenerate", r.quality.n_degenerate},
                       {"fan_inverted", r.quality.n_inverted},
-                      {"files", {"S.mtx", "M.mtx", "M_lumped.mtx", "P.mtx", "dofs.txt"}}};
+                      {"files", {"S.mtx", "M.mtx", "M_lumped.mtx", "P.mtx", "dofs.txt"}},
+                      {"times_ms", timer.json()}};
   if (o.json) {
     print_json(j);
     return;
@@ -214,11 +229,12 @@ void run(const Options& o) {
     run_volume(o);
     return;
   }
-  const Mesh mesh = load_mesh(o.mesh, o.repair);
+  PhaseTimer timer;
+  const Mesh mesh = timer.time("read", [&] { return load_mesh(o.mesh, o.repair); });
   if (o.rule == "split") {
     if (o.order != 1 || o.repeat > 0 || o.lift.lift != "none" || !o.lift.positions.empty())
       throw UsageError("--virtual-vertex split: order 1 files only (no --order 2, --repeat, --virtual-lift)");
-    return write_split_operators(mesh, o.mesh, o.out, o.json);
+    return write_split_operators(mesh, o.mesh, o.out, o.json, timer);
   }
   RefinementOptions ropt;
   ropt.rule = parse_virtual_vertex_rule(o.rule);
@@ -227,12 +243,16 @@ void run(const Options& o) {
   aopt.threads = resolve_threads(o.threads);
   ropt.threads = aopt.threads;
   if (o.repeat > 0) {
-    run_timing(o, mesh, ropt, aopt);
+    run_timing(o, mesh, ropt, aopt, timer);
     return;
   }
-  const Refinement r = refine(mesh, ropt);
-  if (o.order == 2) return run_quadratic(o, mesh, r);
+  const Refinement r = timer.time("operators", [&] { return refine(mesh, ropt); });
+  if (o.order == 2) return run_quadratic(o, mesh, r, timer);
+  const auto t_build = PhaseTimer::Clock::now();
   const Laplacian L = assemble_laplacian(mesh, r, {}, nullptr, aopt);
+  const SparseMatrix G = gradient(mesh, r), D = divergence(mesh, r), P = prolongation(mesh, r);
+  timer.add("operators", t_build);
+  const auto t_write = PhaseTimer::Clock::now();
   std::filesystem::create_directories(o.out);
   SparseMatrix Ml(mesh.n_vertices(), mesh.n_vertices());
   Ml.setIdentity();
@@ -240,9 +260,10 @@ void run(const Options& o) {
   write_matrix_market(o.out + "/S.mtx", L.S);
   write_matrix_market(o.out + "/M.mtx", L.M);
   write_matrix_market(o.out + "/M_lumped.mtx", Ml);
-  write_matrix_market(o.out + "/G.mtx", gradient(mesh, r));
-  write_matrix_market(o.out + "/D.mtx", divergence(mesh, r));
-  write_matrix_market(o.out + "/P.mtx", prolongation(mesh, r));
+  write_matrix_market(o.out + "/G.mtx", G);
+  write_matrix_market(o.out + "/D.mtx", D);
+  write_matrix_market(o.out + "/P.mtx", P);
+  timer.add("write", t_write);
   nlohmann::json j = {{"mesh", o.mesh},
                       {"out", o.out},
                       {"vertices", mesh.n_vertices()},
@@ -251,7 +272,8 @@ void run(const Options& o) {
                       {"fan_degenerate", r.quality.n_degenerate},
                       {"fan_inverted", r.quality.n_inverted},
                       {"virtual_lift", to_string(ropt.lift)},
-                      {"files", {"S.mtx", "M.mtx", "M_lumped.mtx", "G.mtx", "D.mtx", "P.mtx"}}};
+                      {"files", {"S.mtx", "M.mtx", "M_lumped.mtx", "G.mtx", "D.mtx", "P.mtx"}},
+                      {"times_ms", timer.json()}};
   if (o.json) {
     print_json(j);
     return;

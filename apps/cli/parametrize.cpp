@@ -17,9 +17,11 @@ struct Options {
 };
 
 void run(const Options& o) {
-  const Mesh mesh = load_mesh(o.mesh, o.repair);
-  const OperatorSet ops = build_operators(mesh, parse_laplacian(o.laplacian), false);
-  const ConformalParametrization p = spectral_conformal_parametrization(ops);
+  PhaseTimer timer;
+  const Mesh mesh = timer.time("read", [&] { return load_mesh(o.mesh, o.repair); });
+  const OperatorSet ops =
+      timer.time("operators", [&] { return build_operators(mesh, parse_laplacian(o.laplacian), false); });
+  const ConformalParametrization p = timer.time("solve", [&] { return spectral_conformal_parametrization(ops); });
   const Eigen::MatrixX2d uv = p.uv.topRows(ops.n_input_vertices);
   const int flipped = count_flipped_fan_triangles(mesh, refine(mesh), uv);
   const double distortion = conformal_distortion(mesh, uv);
@@ -31,6 +33,7 @@ void run(const Options& o) {
                       {"eigenvalue", p.eigenvalue},
                       {"conformal_distortion", distortion},
                       {"flipped_fan_triangles", flipped}};
+  const auto t_write = PhaseTimer::Clock::now();
   if (!o.out.empty()) {
     write_obj_with_uv(o.out, mesh, uv);
     j["out"] = o.out;
@@ -48,6 +51,8 @@ void run(const Options& o) {
     render_png(o.png, mesh.with_positions(flat), vertex_conformal_distortion(mesh, uv), ropt);
     j["png"] = o.png;
   }
+  timer.add("write", t_write);
+  j["times_ms"] = timer.json();
   if (o.json) {
     print_json(j);
     return;

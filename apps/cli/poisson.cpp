@@ -46,6 +46,8 @@ void run_volume(const Options& o) {
     throw UsageError("--family must be hex, pyramids, truncated, cuboctahedra or tetrahedra");
   if (o.mass != "lumped" && o.mass != "unlumped") throw UsageError("--mass must be lumped or unlumped");
   const bool lumped = o.mass == "lumped";
+  PhaseTimer timer;  // "read": the --data files or the generated grids; "solve": the study (operators included)
+  const auto t_read = PhaseTimer::Clock::now();
   std::vector<VolumeMesh> meshes;
   std::vector<std::string> labels;
   if (!o.data.empty()) {
@@ -65,9 +67,11 @@ void run_volume(const Options& o) {
       labels.push_back(fmt::format("n = {}", n));
     }
   }
+  timer.add("read", t_read);
   if (meshes.size() < 2) throw UsageError("the study needs two or more levels");
   const LaplacianChoice laplacian = parse_volume_laplacian(o.laplacian);
-  const VolumeConvergenceSeries s = volume_franke_convergence(o.family, meshes, labels, lumped, laplacian);
+  const VolumeConvergenceSeries s = timer.time(
+      "solve", [&] { return volume_franke_convergence(o.family, meshes, labels, lumped, laplacian); });
   nlohmann::json rows = nlohmann::json::array();
   for (size_t i = 0; i < s.errors.size(); ++i) {
     const auto& e = s.errors[i];
@@ -85,7 +89,8 @@ void run_volume(const Options& o) {
                             {"source", o.data.empty() ? "generated" : o.data},
                             {"mass", o.mass},
                             {"laplacian", laplacian.canonical_name()},
-                            {"levels", rows}};
+                            {"levels", rows},
+                            {"times_ms", timer.json()}};
   if (o.json) {
     print_json(j);
     return;
@@ -106,7 +111,8 @@ void run_volume(const Options& o) {
 
 // --order 2: the study with quadratic elements on four families (Galerkin mass for the load).
 void run_quadratic(const Options& o) {
-  const auto series = franke_convergence_quadratic(o.resolutions);
+  PhaseTimer timer;  // "solve": the study (generated grids and operators included); "write": the plot
+  const auto series = timer.time("solve", [&] { return franke_convergence_quadratic(o.resolutions); });
   nlohmann::json fam = nlohmann::json::object();
   for (const auto& s : series) {
     nlohmann::json rows = nlohmann::json::array();
@@ -136,9 +142,10 @@ void run_quadratic(const Options& o) {
     popt.title = "Poisson, Franke function, quadratic elements: errors vs h";
     popt.x_label = "h (mean edge length)";
     popt.y_label = "L2 and H1 errors";
-    write_plot(o.plot, ps, popt);
+    timer.time("write", [&] { write_plot(o.plot, ps, popt); });
     j["plot"] = o.plot;
   }
+  j["times_ms"] = timer.json();
   if (o.json) {
     print_json(j);
     return;
@@ -168,7 +175,8 @@ void run(const Options& o) {
   copt.lumped_mass = o.mass == "lumped";
   copt.laplacian = parse_laplacian(o.laplacian);
   copt.families = o.surface_families;
-  const auto series = franke_convergence(copt);
+  PhaseTimer timer;  // "solve": the study (generated grids and operators included); "write": plot and picture
+  const auto series = timer.time("solve", [&] { return franke_convergence(copt); });
   nlohmann::json fam = nlohmann::json::object();
   for (const auto& s : series) {
     nlohmann::json rows = nlohmann::json::array();
@@ -194,10 +202,11 @@ void run(const Options& o) {
     popt.title = "Poisson, Franke function: L2 error vs h";
     popt.x_label = "h (mean edge length)";
     popt.y_label = "L2 error";
-    write_plot(o.plot, ps, popt);
+    timer.time("write", [&] { write_plot(o.plot, ps, popt); });
     j["plot"] = o.plot;
   }
   if (!o.png.empty()) {
+    const auto t_write = PhaseTimer::Clock::now();
     // The error f - f* on the coarsest hexagon grid.
     const Mesh mesh = hex_grid(o.resolutions.front(), o.resolutions.front());
     const PoissonError e = franke_poisson(build_operators(mesh, copt.laplacian, false), copt.lumped_mass);
@@ -209,7 +218,9 @@ void run(const Options& o) {
     ropt.colormap = Colormap::turbo;
     render_png(o.png, mesh, e.solution - e.exact, ropt);
     j["png"] = o.png;
+    timer.add("write", t_write);
   }
+  j["times_ms"] = timer.json();
   if (o.json) {
     print_json(j);
     return;

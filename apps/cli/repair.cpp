@@ -23,7 +23,8 @@ struct Options {
 void run(const Options& o) {
   if (!(o.merge_tolerance >= 0) || !std::isfinite(o.merge_tolerance))
     throw UsageError("--merge-tolerance must be a finite number >= 0");
-  PolygonSoup soup = read_polygon_soup(o.in);
+  PhaseTimer timer;
+  PolygonSoup soup = timer.time("read", [&] { return read_polygon_soup(o.in); });
   const int nv0 = soup.n_vertices(), nf0 = soup.n_faces();
   RepairOptions ropt;
   ropt.merge_vertices = !o.no_merge;
@@ -36,7 +37,7 @@ void run(const Options& o) {
     throw InvalidMeshError(e.element, e.index,
                            fmt::format("{}: still invalid after repair: {}", o.in, e.what()));
   }
-  write_mesh(o.out, mesh);
+  timer.time("write", [&] { write_mesh(o.out, mesh); });
   const MeshReport checks = check_mesh(mesh);
   if (o.json) {
     print_json({{"in", o.in},
@@ -54,7 +55,8 @@ void run(const Options& o) {
                 {"dropped_zero_area", r.drop.n_zero_area},
                 {"duplicate_faces_removed", r.dedup.n_removed()},
                 {"unreferenced_removed", r.unreferenced.n_removed},
-                {"remaining_findings", checks.summary()}});
+                {"remaining_findings", checks.summary()},
+                {"times_ms", timer.json()}});
     return;
   }
   fmt::print("{}: {} vertices, {} faces\n", o.in, nv0, nf0);

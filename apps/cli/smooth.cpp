@@ -34,19 +34,20 @@ void run(const Options& o) {
   if (o.steps < 0) throw UsageError("--steps must be >= 0");
   if (o.format != "obj" && o.format != "off" && o.format != "ply")
     throw UsageError("--format must be obj, off or ply");
-  const Mesh mesh = load_mesh(o.mesh, o.repair);
+  PhaseTimer timer;
+  const Mesh mesh = timer.time("read", [&] { return load_mesh(o.mesh, o.repair); });
   SmoothingOptions sopt;
   sopt.time_step = o.dt;
   sopt.lumped_mass = o.mass == "lumped";
-  CurvatureFlow flow(mesh, sopt, parse_laplacian(o.laplacian));
+  CurvatureFlow flow = timer.time("operators", [&] { return CurvatureFlow(mesh, sopt, parse_laplacian(o.laplacian)); });
   if (!o.out.empty()) std::filesystem::create_directories(o.out);
   nlohmann::json steps = nlohmann::json::array();
   for (int i = 1; i <= o.steps; ++i) {
-    const Mesh& m = flow.step();
+    const Mesh& m = timer.time("solve", [&]() -> const Mesh& { return flow.step(); });
     nlohmann::json s = {{"step", i}, {"radius_spread", sphericity_spread(m)}};
     if (!o.out.empty()) {
       const std::string p = fmt::format("{}/step_{:03d}.{}", o.out, i, o.format);
-      write_mesh(p, m);
+      timer.time("write", [&] { write_mesh(p, m); });
       s["file"] = p;
     }
     steps.push_back(s);
@@ -57,6 +58,7 @@ void run(const Options& o) {
                       {"area", flow.area()}, {"steps", steps}};
   if (png) {
     // The last mesh coloured by its mean curvature (Figure 5), with the input's Laplacian.
+    const auto t_write = PhaseTimer::Clock::now();
     const Mesh& m = flow.mesh();
     const Eigen::VectorXd H = mean_curvature(build_operators(m, parse_laplacian(o.laplacian), false));
     RenderOptions ropt;
@@ -66,7 +68,9 @@ void run(const Options& o) {
     ropt.title = fmt::format("curvature flow, {} steps, eps {:.3g}", o.steps, flow.time_step());
     render_png(o.png, m, H, ropt);
     j["png"] = o.png;
+    timer.add("write", t_write);
   }
+  j["times_ms"] = timer.json();
   if (o.json) {
     print_json(j);
     return;

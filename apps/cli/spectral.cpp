@@ -41,15 +41,16 @@ void run(const Options& o) {
     throw UsageError("nothing to write: give --out FILE.ply, --png or --json");
   if (o.samples < 2) throw UsageError("--samples must be at least 2");
   std::vector<int> vertex_map;
-  const Mesh mesh = load_mesh(o.mesh, o.repair, &vertex_map);
-  const OperatorSet ops = build_operators(mesh, parse_laplacian("ours"), false);
+  PhaseTimer timer;
+  const Mesh mesh = timer.time("read", [&] { return load_mesh(o.mesh, o.repair, &vertex_map); });
+  const OperatorSet ops = timer.time("operators", [&] { return build_operators(mesh, parse_laplacian("ours"), false); });
   SpectrumOptions so;
   // At most all eigenpairs but one (the solver's limit); --filter K needs K of them.
   const int n_ref = mesh.n_vertices() - mesh.n_unreferenced_vertices();
   if (o.filter >= n_ref)
     throw UsageError(fmt::format("--filter {} must be below the {} vertices", o.filter, n_ref));
   so.k = std::min(std::max(o.k, o.filter), n_ref - 1);
-  const Spectrum sp = laplacian_spectrum(ops, so);
+  const Spectrum sp = timer.time("solve", [&] { return laplacian_spectrum(ops, so); });
   nlohmann::json j = {{"mesh", o.mesh},
                       {"vertices", mesh.n_vertices()},
                       {"faces", mesh.n_faces()},
@@ -109,6 +110,7 @@ void run(const Options& o) {
     j["max_displacement"] = picture.maxCoeff();
     title = fmt::format("low-pass filter, {} eigenvectors", o.filter);
   }
+  const auto t_write = PhaseTimer::Clock::now();
   if (!o.out.empty()) {
     write_mesh(o.out, out_mesh, props);
     j["out"] = o.out;
@@ -125,6 +127,8 @@ void run(const Options& o) {
     render_png(o.png, out_mesh, picture, r);
     j["png"] = o.png;
   }
+  timer.add("write", t_write);
+  j["times_ms"] = timer.json();
   if (o.json) {
     print_json(j);
     return;

@@ -41,7 +41,7 @@ struct Options {
 };
 
 void report(const Options& o, const LazyMesh& mesh, const std::string& laplacian, int n_in, const Spectrum& sp,
-            const nlohmann::json* engine);
+            const nlohmann::json* engine, PhaseTimer& timer);
 
 void run_form(const Options& o);
 
@@ -74,19 +74,23 @@ void run_volume(const Options& o) {
   if (o.repair) throw UsageError("--repair applies to surface meshes only");
   if (!o.png.empty() && (o.png_index < 0 || o.png_index >= o.k))
     throw UsageError("--png-index must lie in [0, k)");
-  const VolumeMesh mesh = load_volume_mesh(o.mesh);
+  PhaseTimer timer;
+  const VolumeMesh mesh = timer.time("read", [&] { return load_volume_mesh(o.mesh); });
   // The operators keep their refinement for the picture (only with --png).
-  const OperatorSet ops = build_volume_operators(mesh, parse_volume_laplacian(o.laplacian),
-                                                 {.with_gradient = false, .keep_refinement = !o.png.empty()});
+  const OperatorSet ops = timer.time("operators", [&] {
+    return build_volume_operators(mesh, parse_volume_laplacian(o.laplacian),
+                                  {.with_gradient = false, .keep_refinement = !o.png.empty()});
+  });
   SpectrumOptions sopt;
   sopt.k = o.k;
   sopt.lumped_mass = o.mass == "lumped";
-  const Spectrum sp = laplacian_spectrum(ops, sopt);
+  const Spectrum sp = timer.time("solve", [&] { return laplacian_spectrum(ops, sopt); });
   std::vector<double> ev(sp.eigenvalues.data(), sp.eigenvalues.data() + sp.eigenvalues.size());
   nlohmann::json j = {{"mesh", o.mesh},          {"laplacian", ops.name},
                       {"mass", o.mass},          {"vertices", mesh.n_vertices()},
                       {"cells", mesh.n_cells()}, {"k", o.k},
                       {"shift", sp.shift},       {"eigenvalues", ev}};
+  const auto t_write = PhaseTimer::Clock::now();
   if (!o.out.empty()) {
     std::filesystem::create_directories(o.out);
     write_eigenvalues(o.out + "/eigenvalues.txt", ev);
@@ -104,6 +108,8 @@ void run_volume(const Options& o) {
                           eigenfunction_picture(o, ev, ops.name));
     j["png"] = o.png;
   }
+  timer.add("write", t_write);
+  j["times_ms"] = timer.json();
   if (o.json) {
     print_json(j);
     return;
@@ -130,6 +136,7 @@ void run(const Options& o) {
     throw UsageError(
         "--order 2: function spectra of surface meshes on the serial engine (no --form, --laplacian, --virtual-lift)");
   if (o.volume || is_volume_mesh_path(o.mesh)) return run_volume(o);
+  PhaseTimer timer;  // the PETSc engine's phases are its own (engine.per_rank); total and write here
   if (o.form != 0) {
     run_form(o);
     return;
@@ -141,7 +148,7 @@ void run(const Options& o) {
 #ifdef POLYDEC_HAVE_PETSC
     const bool vectors = !o.out.empty() || !o.png.empty();  // only the files and the picture need them
     petsc_spectrum(o.mesh, o.repair, o.k, o.mass == "lumped", vectors, o.engine, [&](const EngineSpectrum& r) {
-      report(o, r.mesh, "ours", r.mesh.n_vertices, r.spectrum, &r.summary);
+      report(o, r.mesh, "ours", r.mesh.n_vertices, r.spectrum, &r.summary, timer);
     });
     return;
 #else
@@ -149,28 +156,30 @@ void run(const Options& o) {
 #endif
   }
   if (o.engine.engine != "serial") throw UsageError("--engine must be serial or petsc");
-  const Mesh mesh = load_mesh(o.mesh, o.repair);
+  const Mesh mesh = timer.time("read", [&] { return load_mesh(o.mesh, o.repair); });
   OperatorOptions oopt;
   oopt.with_gradient = false;
   oopt.lift = virtual_lift(o.lift, mesh);
-  const OperatorSet ops =
-      o.order == 2 ? quadratic_operator_set(mesh) : build_operators(mesh, parse_laplacian(o.laplacian), oopt);
+  const OperatorSet ops = timer.time("operators", [&] {
+    return o.order == 2 ? quadratic_operator_set(mesh) : build_operators(mesh, parse_laplacian(o.laplacian), oopt);
+  });
   SpectrumOptions sopt;
   sopt.k = o.k;
   sopt.lumped_mass = o.mass == "lumped";
-  const Spectrum sp = laplacian_spectrum(ops, sopt);
-  report(o, LazyMesh::of(mesh), ops.name, ops.n_input_vertices, sp, nullptr);
+  const Spectrum sp = timer.time("solve", [&] { return laplacian_spectrum(ops, sopt); });
+  report(o, LazyMesh::of(mesh), ops.name, ops.n_input_vertices, sp, nullptr, timer);
 }
 
 // The outputs of both engines: text or JSON (with the engine's summary), the files, the picture.
 void report(const Options& o, const LazyMesh& mesh, const std::string& laplacian, int n_in, const Spectrum& sp,
-            const nlohmann::json* engine) {
+            const nlohmann::json* engine, PhaseTimer& timer) {
   std::vector<double> ev(sp.eigenvalues.data(), sp.eigenvalues.data() + sp.eigenvalues.size());
   nlohmann::json j = {{"mesh", o.mesh},          {"laplacian", laplacian},
                       {"mass", o.mass},          {"vertices", mesh.n_vertices},
                       {"faces", mesh.n_faces}, {"k", o.k},
                       {"shift", sp.shift},       {"eigenvalues", ev}};
   if (engine) j["engine"] = *engine;
+  const auto t_write = PhaseTimer::Clock::now();
   if (!o.out.empty()) {
     std::filesystem::create_directories(o.out);
     write_eigenvalues(o.out + "/eigenvalues.txt", ev);
@@ -188,6 +197,8 @@ void report(const Options& o, const LazyMesh& mesh, const std::string& laplacian
     render_png(o.png, mesh.get(), sp.eigenvectors.col(o.png_index).head(n_in), ropt);
     j["png"] = o.png;
   }
+  timer.add("write", t_write);
+  j["times_ms"] = timer.json();
   if (o.json) {
     print_json(j);
     return;
@@ -213,13 +224,14 @@ void run_form(const Options& o) {
     throw UsageError("--png-index must lie in [0, k)");
   const DecComplex complex = parse_option(parse_dec_complex, o.complex);
   const bool on_mesh = complex == DecComplex::Mesh;
-  const Mesh mesh = load_mesh(o.mesh, o.repair);
+  PhaseTimer timer;
+  const Mesh mesh = timer.time("read", [&] { return load_mesh(o.mesh, o.repair); });
   FormSpectrumOptions fo;
   fo.complex = complex;
   fo.degree = o.form;
   fo.k = o.k;
   fo.lumped_mass = o.mass == "lumped";
-  const FormSpectrum sp = form_spectrum(mesh, fo);
+  const FormSpectrum sp = timer.time("solve", [&] { return form_spectrum(mesh, fo); });
   if (sp.quality.n_degenerate > 0)
     std::cerr << fmt::format(
         "polydec: warning: {} degenerate fan triangle(s) (zero area, in {} face(s)) carry no Whitney forms: "
@@ -245,6 +257,7 @@ void run_form(const Options& o) {
                       {"shift", sp.shift},       {"method", sp.method},
                       {"eigenvalues", ev},       {"eigenpairs", pairs},
                       {"fan_degenerate", sp.quality.n_degenerate}};
+  const auto t_write = PhaseTimer::Clock::now();
   if (!o.out.empty()) {
     std::filesystem::create_directories(o.out);
     {
@@ -308,6 +321,8 @@ void run_form(const Options& o) {
     }
     j["png"] = o.png;
   }
+  timer.add("write", t_write);
+  j["times_ms"] = timer.json();
   if (o.json) {
     print_json(j);
     return;

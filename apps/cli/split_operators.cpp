@@ -11,8 +11,10 @@
 
 namespace polydec::cli {
 
-void write_split_operators(const Mesh& mesh, const std::string& mesh_path, const std::string& out, bool json) {
-  const SplitLaplacian L = split_laplacian(mesh);
+void write_split_operators(const Mesh& mesh, const std::string& mesh_path, const std::string& out, bool json,
+                           PhaseTimer& timer) {
+  const SplitLaplacian L = timer.time("operators", [&] { return split_laplacian(mesh); });
+  const auto t_write = PhaseTimer::Clock::now();
   std::filesystem::create_directories(out);
   SparseMatrix Ml(mesh.n_vertices(), mesh.n_vertices());
   Ml.setIdentity();
@@ -23,6 +25,7 @@ void write_split_operators(const Mesh& mesh, const std::string& mesh_path, const
   write_matrix_market(out + "/G.mtx", L.G);
   write_matrix_market(out + "/D.mtx", L.D);
   write_matrix_market(out + "/P.mtx", L.P);
+  timer.add("write", t_write);
   const SplitRefinement& s = L.split;
   nlohmann::json j = {{"mesh", mesh_path},
                       {"out", out},
@@ -40,7 +43,8 @@ void write_split_operators(const Mesh& mesh, const std::string& mesh_path, const
                       {"fan_inverted", s.after.n_inverted},
                       {"fan_worst_before", s.worst_before},
                       {"fan_worst", s.worst_after},
-                      {"files", {"S.mtx", "M.mtx", "M_lumped.mtx", "G.mtx", "D.mtx", "P.mtx"}}};
+                      {"files", {"S.mtx", "M.mtx", "M_lumped.mtx", "G.mtx", "D.mtx", "P.mtx"}},
+                      {"times_ms", timer.json()}};
   if (json) {
     print_json(j);
     return;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "polydec/dec/detail/drop_zeros.h"
 #include "polydec/dec/detail/element_pattern.h"
 #include "polydec/dec/surface/whitney.h"
 
@@ -310,6 +311,12 @@ HodgeStars hodge_stars(const Mesh& mesh, const Refinement& refinement, const Coa
       for (SparseMatrix::InnerIterator it(H.star0, j); it; ++it) H.star0_lumped[it.row()] += it.value();
   }
   if (!parts.star0) H.star0 = SparseMatrix();
+  // The face blocks are dense in the pattern, but pairs and triples that no fan triangle joins
+  // (triples without a polygon edge, say, or of degenerate fan triangles) meet in exact zeros:
+  // dropped, so that the stars store their non-zeros only (the values are untouched).
+  detail::drop_exact_zeros(H.star0);
+  detail::drop_exact_zeros(H.star1);
+  detail::drop_exact_zeros(H.star2);
   return H;
 }
 

@@ -82,7 +82,8 @@ StarPatterns star_patterns(const Mesh& mesh, const CoarseComplex& complex, Hodge
 
 // One pass over the faces computing the requested coarse stars. `patterns` (from
 // star_patterns with at least these parts) skips the symbolic step; std::invalid_argument if
-// it does not match.
+// it does not match. The stars store no exact zeros: the entries of the patterns that no fan
+// triangle fills (most of star2's: triples of a face that share no polygon edge) are dropped.
 HodgeStars hodge_stars(const Mesh& mesh, const Refinement& refinement, const CoarseComplex& complex,
                        HodgeStarParts parts = {}, const StarPatterns* patterns = nullptr);
 

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "polydec/dec/detail/drop_zeros.h"
 #include "polydec/dec/volume/mesh_complex.h"
 #include "polydec/dec/volume/prolongation.h"
 #include "polydec/dec/volume/whitney.h"
@@ -162,6 +163,7 @@ VolumeDec volume_dec(const VolumeMesh& mesh, const VolumeRefinement& refinement,
     VolumeMeshDec M = volume_mesh_dec(mesh, refinement, D.refined, max_degree, options.spoke_rule);
     for (int k = 0; k < 3; ++k) D.d[k].swap(M.d[k]);
     for (int k = 0; k < 4; ++k) D.P[k].swap(M.P[k]), D.star[k].swap(M.star[k]);
+    for (int k = 0; k < 4; ++k) detail::drop_exact_zeros(D.star[k]);
     return D;
   }
   D.max_degree = max_degree;
@@ -172,6 +174,9 @@ VolumeDec volume_dec(const VolumeMesh& mesh, const VolumeRefinement& refinement,
     D.P[k] = volume_prolongation_k(mesh, refinement, D.coarse, D.refined, k);
     const Eigen::SparseMatrix<double> s = volume_refined_star(mesh, refinement, D.refined, k);
     D.star[k] = Eigen::SparseMatrix<double>(D.P[k].transpose() * s * D.P[k]);
+    // The product keeps its structural entries, exact zeros among them (cells of a polyhedron
+    // that no sub-tetrahedron joins): dropped, the values untouched.
+    detail::drop_exact_zeros(D.star[k]);
   }
   return D;
 }

@@ -12,8 +12,8 @@
 // Refined stars: Galerkin inner products of the Whitney forms of the sub-tetrahedra
 // (dec/volume/whitney.h); degenerate sub-tetrahedra add nothing to star1..star3 (as they add no
 // stiffness, so that S = -d0^T star1 d0 holds exactly). Coarse stars star_k = P_k^T star_k^tet P_k
-// (eq. 27), symmetric positive semi-definite; star0 equals the Galerkin mass M. Rows and columns
-// in the numbering of dec/volume/complex.h.
+// (eq. 27), symmetric positive semi-definite, storing no exact zeros; star0 equals the Galerkin
+// mass M. Rows and columns in the numbering of dec/volume/complex.h.
 #pragma once
 
 #include <Eigen/Sparse>

@@ -98,7 +98,7 @@ OperatorSet virtual_vertex_operators(const Mesh& mesh, VirtualVertexRule rule,
   RefinementOptions ro;
   ro.rule = rule;
   ro.lift = options.lift;
-  const Refinement r = refine(mesh, ro);
+  Refinement r = refine(mesh, ro);
   AssemblyOptions aopt;
   aopt.threads = options.threads;
   Laplacian L = assemble_laplacian(mesh, r, {}, nullptr, aopt);
@@ -111,6 +111,7 @@ OperatorSet virtual_vertex_operators(const Mesh& mesh, VirtualVertexRule rule,
     ops.G.swap(G);
     ops.D.swap(D);
   }
+  ops.refinement = std::move(r);
   return ops;
 }
 
@@ -253,6 +254,20 @@ OperatorSet build_operators(const Mesh& mesh, const LaplacianChoice& choice, boo
   OperatorOptions options;
   options.with_gradient = with_gradient;
   return build_operators(mesh, choice, options);
+}
+
+OperatorSet take_operators(OperatorSet& ops) {
+  SparseMatrix S, M, G, D;
+  S.swap(ops.S);
+  M.swap(ops.M);
+  G.swap(ops.G);
+  D.swap(ops.D);
+  OperatorSet dst = std::move(ops);  // the other members move; the matrices are empty here
+  dst.S.swap(S);
+  dst.M.swap(M);
+  dst.G.swap(G);
+  dst.D.swap(D);
+  return dst;
 }
 
 }  // namespace polydec

@@ -5,12 +5,15 @@
 #include "polydec/apps/applications/geodesics.h"
 #include "polydec/dec/mesh/generators.h"
 #include "polydec/dec/io/mesh_io.h"
+#include "polydec/dec/surface/virtual_lift.h"
 #include "polydec/operators/surface/gradient.h"
 #include "tests/support/support.h"
 
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>
+#include <string>
+#include <utility>
 
 using namespace polydec;
 
@@ -280,8 +283,9 @@ TEST_CASE("the face-wise pass of the paper's operator equals the route through G
       HeatGeodesicsOptions o;
       o.lumped_mass = lumped;
       const HeatGeodesics fused(mesh, o);
+      REQUIRE(fused.operators().refinement.has_value());  // the face-wise pass reads it
       OperatorSet ops = build_operators(mesh, parse_laplacian("ours"));
-      ops.name = "ours through G and D";  // another name: the matrices are used
+      ops.refinement.reset();  // without its refinement: the matrices are used
       const HeatGeodesics plain(std::move(ops), mesh.mean_edge_length(), o);
       const std::vector<int> sources = {0, mesh.n_vertices() / 2};
       const Eigen::VectorXd a = fused.distance(sources), b = plain.distance(sources);
@@ -290,15 +294,35 @@ TEST_CASE("the face-wise pass of the paper's operator equals the route through G
       CHECK((A - B).cwiseAbs().maxCoeff() <= 1e-12 * B.maxCoeff());
     }
   }
-  // An operator set named "ours" on another refinement (a far larger degenerate-fan tolerance) does not
-  // match the face-wise data: its own G and D are used, bit for bit.
+  // The other one-virtual-vertex methods carry their refinement too (centroid; virtual vertices
+  // lifted off the plane): the face-wise pass from it equals their G and D route.
+  const Mesh sphere = add_noise(hex_sphere(2), 0.05, 7);
+  for (const auto& [name, lift] : {std::pair<std::string, std::string>{"centroid", "none"}, {"ours", "sphere"}}) {
+    INFO(name << ", lift " << lift);
+    OperatorOptions oo;
+    oo.lift = parse_virtual_lift(lift);
+    OperatorSet with = build_operators(sphere, parse_laplacian(name), oo), without = build_operators(sphere, parse_laplacian(name), oo);
+    REQUIRE(with.refinement.has_value());
+    without.refinement.reset();
+    const HeatGeodesics fused(std::move(with), sphere.mean_edge_length()),
+        plain(std::move(without), sphere.mean_edge_length());
+    const Eigen::VectorXd a = fused.distance(3), b = plain.distance(3);
+    CHECK((a - b).cwiseAbs().maxCoeff() <= 1e-12 * b.maxCoeff());
+  }
+  // An operator set on another refinement (a far larger degenerate-fan tolerance, many fan triangles
+  // without stiffness) that carries it: the fan data come from that refinement, equal to its G and D.
   const Mesh mesh = add_noise(hex_grid(5, 4), 0.3, 9);
   RefinementOptions ro;
   ro.degenerate_tolerance = 0.3;
   const Refinement r = refine(mesh, ro);
   REQUIRE(r.quality.n_degenerate > 0);
-  auto make = [&](const std::string& name) { return HeatGeodesics(operators_on(mesh, r, name), mesh.mean_edge_length()); };
-  CHECK(make("ours").distance(0) == make("another").distance(0));
+  OperatorSet carried = operators_on(mesh, r, "ours");
+  carried.refinement = r;
+  const Eigen::VectorXd a = HeatGeodesics(std::move(carried), mesh.mean_edge_length()).distance(0);
+  const Eigen::VectorXd b = HeatGeodesics(operators_on(mesh, r, "ours"), mesh.mean_edge_length()).distance(0);
+  CHECK((a - b).cwiseAbs().maxCoeff() <= 1e-12 * b.maxCoeff());
+  // Methods without one virtual vertex per face carry none.
+  CHECK_FALSE(build_operators(mesh, parse_laplacian("intrinsic-delaunay")).refinement.has_value());
 }
 
 }  // namespace test_geodesics

@@ -341,4 +341,37 @@ TEST_CASE("closed_edge_generators: closed, not exact, as many as the first Betti
                  p.norm_harmonic * p.norm_harmonic - p.norm * p.norm) <= 1e-9 * p.norm * p.norm);
 }
 
+TEST_CASE("volume stars store no exact zeros and equal P_k^T star_k^tet P_k exactly", "[volume][volume-dec][star-zeros]") {
+  // Stored entries equal to zero, and those where two matrices differ.
+  auto stored_zeros = [](const SparseMatrix& A) {
+    long z = 0;
+    for (int j = 0; j < A.outerSize(); ++j)
+      for (SparseMatrix::InnerIterator it(A, j); it; ++it) z += it.value() == 0.0;
+    return z;
+  };
+  auto differing_entries = [&](const SparseMatrix& A, const SparseMatrix& B) {
+    const SparseMatrix D = A - B;
+    return D.nonZeros() - stored_zeros(D);
+  };
+  Eigen::MatrixX3d Z = test::grid_positions(2, 2, 2);
+  test::jitter_interior(Z, 2, 2, 2, 0.25, 9);
+  const VolumeMesh meshes[] = {test::hex_grid_mesh(2, 2, 2, &Z), test::tet_grid_mesh(2, 2, 2), test::single_pyramid(),
+                               test::prism_volume(5), test::hex_solid_torus(5)};
+  for (const VolumeMesh& mesh : meshes) {
+    const VolumeRefinement R = refine_volume(mesh);
+    const VolumeDec D = volume_dec(mesh, R);
+    for (int k = 0; k <= D.max_degree; ++k) {
+      INFO("k = " << k);
+      // The product as it was returned before: structural entries, zeros included.
+      const SparseMatrix old =
+          SparseMatrix(D.P[k].transpose() * volume_refined_star(mesh, R, D.refined, k) * D.P[k]);
+      CHECK(stored_zeros(D.star[k]) == 0);
+      CHECK(differing_entries(D.star[k], old) == 0);
+      CHECK(D.star[k].nonZeros() == old.nonZeros() - stored_zeros(old));
+    }
+    const VolumeDec M = volume_dec(mesh, R, VolumeDecOptions{.complex = DecComplex::Mesh});
+    for (int k = 0; k < 4; ++k) CHECK(stored_zeros(M.star[k]) == 0);
+  }
+}
+
 }  // namespace test_volume_dec
