@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "polydec/apps/applications/detail/complete_eigs.h"
+#include "polydec/apps/applications/detail/mixed_shift_invert.h"
 #include "polydec/apps/applications/hodge_decomposition.h"
 #include "polydec/apps/applications/spectrum.h"
 #include "polydec/dec/surface/complex.h"
@@ -26,54 +27,7 @@ namespace {
 
 using SpMat = Eigen::SparseMatrix<double>;
 
-// The 2 x 2 block matrix [A, C; C^T, -D] (A: n1 x n1, C: n1 x n2, D: n2 x n2), lower triangle.
-SpMat quasi_definite(const SpMat& A, const SpMat& C, const SpMat& D) {
-  const Eigen::Index n1 = A.rows(), n2 = D.rows();
-  std::vector<Eigen::Triplet<double>> t;
-  t.reserve(size_t(A.nonZeros() + C.nonZeros() + D.nonZeros()));
-  for (int j = 0; j < A.outerSize(); ++j)
-    for (SpMat::InnerIterator it(A, j); it; ++it)
-      if (it.row() >= it.col()) t.emplace_back(int(it.row()), int(it.col()), it.value());
-  for (int j = 0; j < C.outerSize(); ++j)
-    for (SpMat::InnerIterator it(C, j); it; ++it)
-      t.emplace_back(int(n1 + it.col()), int(it.row()), it.value());
-  for (int j = 0; j < D.outerSize(); ++j)
-    for (SpMat::InnerIterator it(D, j); it; ++it)
-      if (it.row() >= it.col()) t.emplace_back(int(n1 + it.row()), int(n1 + it.col()), -it.value());
-  SpMat N(n1 + n2, n1 + n2);
-  N.setFromTriplets(t.begin(), t.end());
-  return N;
-}
-
-// Spectra's shift-invert operator y = (K - sigma B)^-1 x, K - sigma B the Schur complement of the
-// quasi-definite matrix [A - sigma B, C; C^T, -D] on its first block (K = A + C D^-1 C^T).
-class MixedShiftInvert {
- public:
-  using Scalar = double;
-  MixedShiftInvert(const SpMat& A, const SpMat& B, const SpMat& C, const SpMat& D, std::string name)
-      : A_(A), B_(B), C_(C), D_(D), name_(std::move(name)) {}
-  Eigen::Index rows() const { return A_.rows(); }
-  Eigen::Index cols() const { return A_.rows(); }
-  void set_shift(double sigma) {
-    const SpMat N = quasi_definite(SpMat(A_ - sigma * B_), C_, D_);
-    ldlt_.compute(N);
-    if (ldlt_.info() != Eigen::Success)
-      throw SolverError("form spectrum: LDL^T of the quasi-definite system " + name_ + " failed");
-    rhs_ = Eigen::VectorXd::Zero(N.rows());
-  }
-  void perform_op(const double* x_in, double* y_out) const {
-    const Eigen::Index n = rows();
-    rhs_.head(n) = Eigen::Map<const Eigen::VectorXd>(x_in, n);
-    rhs_.tail(rhs_.size() - n).setZero();
-    Eigen::Map<Eigen::VectorXd>(y_out, n) = ldlt_.solve(rhs_).head(n);
-  }
-
- private:
-  const SpMat &A_, &B_, &C_, &D_;
-  std::string name_;
-  Eigen::SimplicialLDLT<SpMat, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt_;
-  mutable Eigen::VectorXd rhs_;
-};
+using mixed_shift_invert_detail::MixedShiftInvert;
 
 SpMat diagonal_matrix(const Eigen::VectorXd& d) {
   SpMat D(d.size(), d.size());

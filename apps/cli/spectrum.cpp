@@ -3,7 +3,8 @@
 // of the Hodge Laplacian on Whitney 1- or 2-forms (apps/applications/form_spectrum.h). On a volume mesh
 // (.ovm, .vtk, .mesh or --volume): the volume operators (operators/registry/volume_laplacians.h), Neumann,
 // eigenvectors as VTK point data (.vtk, or .vtu with --vtu), the picture on a planar cut
-// (apps/pictures/volume_cut.h). With --order 2 the quadratic operators
+// (apps/pictures/volume_cut.h); with --form 1|2|3 the Hodge Laplacian of volume k-forms
+// (apps/applications/volume/spectrum.h). With --order 2 the quadratic operators
 // (apps/applications/quadratic.h); the files hold the vertex dofs.
 #include "polydec/apps/applications/spectrum.h"
 
@@ -14,6 +15,7 @@
 
 #include "polydec/apps/applications/form_spectrum.h"
 #include "polydec/apps/applications/quadratic.h"
+#include "polydec/apps/applications/volume/spectrum.h"
 #include "polydec/apps/cli/command.h"
 #include "polydec/apps/cli/virtual_lift.h"
 #include "polydec/apps/cli/engine.h"
@@ -23,6 +25,7 @@
 #include "polydec/dec/io/mesh_io.h"
 #include "polydec/dec/io/volume_io.h"
 #include "polydec/dec/surface/complex.h"
+#include "polydec/dec/volume/complex.h"
 #include "polydec/operators/registry/volume_laplacians.h"
 #include "polydec/operators/surface/face_to_vertex.h"
 
@@ -44,6 +47,7 @@ void report(const Options& o, const LazyMesh& mesh, const std::string& laplacian
             const nlohmann::json* engine, PhaseTimer& timer);
 
 void run_form(const Options& o);
+void run_volume_form(const Options& o);
 
 // Picture options of eigenfunction --png-index (surfaces add smooth shading).
 RenderOptions eigenfunction_picture(const Options& o, const std::vector<double>& ev,
@@ -68,7 +72,7 @@ void write_eigenvalues(const std::string& path, const std::vector<double>& ev) {
 // A volume mesh: Neumann eigenpairs of the volume operators, files and picture as described in
 // docs/volumes.md.
 void run_volume(const Options& o) {
-  if (o.form != 0) throw UsageError("--form: volume meshes have function spectra only (--form 0)");
+  if (o.form != 0) return run_volume_form(o);
   if (o.engine.engine != "serial")
     throw UsageError("--engine petsc: volume meshes run on the serial engine only");
   if (o.repair) throw UsageError("--repair applies to surface meshes only");
@@ -344,6 +348,102 @@ void run_form(const Options& o) {
         cell_file, o.out);
 }
 
+// Volume k-forms (k = 1, 2, 3): eigenvalues with their Hodge parts, the eigen-cochains on the
+// k-cells, the cell list; no picture.
+void run_volume_form(const Options& o) {
+  if (o.form < 1 || o.form > 3) throw UsageError("--form must be 0, 1, 2 or 3 on volume meshes");
+  if (o.engine.engine != "serial") throw UsageError("--form: only the serial engine computes form spectra");
+  if (o.repair) throw UsageError("--repair applies to surface meshes only");
+  if (o.laplacian != "ours")
+    throw UsageError("--form: the Hodge Laplacian is built from the paper's stars (--laplacian ours)");
+  if (!o.png.empty()) throw UsageError("--png: volume form spectra have no picture");
+  if (o.k < 1) throw UsageError("--k must be positive");
+  const DecComplex complex = parse_option(parse_dec_complex, o.complex);
+  const bool on_mesh = complex == DecComplex::Mesh;
+  const VolumeMesh mesh = load_volume_mesh(o.mesh);
+  FormSpectrumOptions fo;
+  fo.complex = complex;
+  fo.degree = o.form;
+  fo.k = o.k;
+  fo.lumped_mass = o.mass == "lumped";
+  const FormSpectrum sp = volume_form_spectrum(mesh, fo);
+  static const char* const mesh_files[4] = {"", "edges.txt", "faces.txt", "cells.txt"};
+  static const char* const complete_files[4] = {"", "pairs.txt", "triples.txt", "quadruples.txt"};
+  const char* cell_file = on_mesh ? mesh_files[o.form] : complete_files[o.form];
+  std::vector<double> ev(sp.eigenvalues.data(), sp.eigenvalues.data() + sp.eigenvalues.size());
+  nlohmann::json pairs = nlohmann::json::array();
+  for (int i = 0; i < o.k; ++i)
+    pairs.push_back({{"index", i},
+                     {"eigenvalue", ev[size_t(i)]},
+                     {"kind", form_kind_name(sp.kinds[size_t(i)])},
+                     {"norm_exact", sp.norm_exact[i]},
+                     {"norm_coexact", sp.norm_coexact[i]},
+                     {"norm_harmonic", sp.norm_harmonic[i]}});
+  nlohmann::json j = {{"mesh", o.mesh},          {"form", o.form},
+                      {"mass", o.mass},          {"vertices", mesh.n_vertices()},
+                      {"cells", mesh.n_cells()}, {"complex", to_string(complex)},
+                      {"k_cells", sp.eigenvectors.rows()}, {"rank", sp.rank},
+                      {"k", o.k},                {"shift", sp.shift},
+                      {"method", sp.method},     {"eigenvalues", ev},
+                      {"eigenpairs", pairs}};
+  if (!o.out.empty()) {
+    std::filesystem::create_directories(o.out);
+    {
+      const std::string p = o.out + "/eigenvalues.txt";
+      std::ofstream f(p);
+      if (!f) throw FileError(p, 0, -1, "cannot open file for writing");
+      for (int i = 0; i < o.k; ++i)
+        f << fmt::format("{:.17g} {} {:.6g} {:.6g} {:.6g}\n", ev[size_t(i)], form_kind_name(sp.kinds[size_t(i)]),
+                         sp.norm_exact[i], sp.norm_coexact[i], sp.norm_harmonic[i]);
+    }
+    write_dense_matrix_market(o.out + "/eigenvectors.mtx", sp.eigenvectors);
+    write_dense_matrix_market(o.out + "/exact.mtx", sp.exact);
+    write_dense_matrix_market(o.out + "/coexact.mtx", sp.coexact);
+    write_dense_matrix_market(o.out + "/harmonic.mtx", sp.harmonic);
+    {
+      const std::string p = o.out + "/" + cell_file;
+      std::ofstream f(p);
+      if (!f) throw FileError(p, 0, -1, "cannot open file for writing");
+      auto line = [&](auto range) {
+        bool first = true;
+        for (int v : range) f << (first ? "" : " ") << v, first = false;
+        f << '\n';
+      };
+      if (on_mesh && o.form == 1)
+        for (int e = 0; e < mesh.n_edges(); ++e) f << mesh.edges()(e, 0) << ' ' << mesh.edges()(e, 1) << '\n';
+      else if (on_mesh && o.form == 2)
+        for (int fc = 0; fc < mesh.n_faces(); ++fc) line(mesh.face(fc));
+      else if (on_mesh)
+        for (int c = 0; c < mesh.n_cells(); ++c) line(mesh.cell_vertices(c));  // each cell's vertices
+      else {
+        const Eigen::MatrixXi S = volume_coarse_complex(mesh, o.form).simplices(o.form);
+        for (Eigen::Index r = 0; r < S.rows(); ++r) {
+          for (Eigen::Index c = 0; c < S.cols(); ++c) f << (c ? " " : "") << S(r, c);
+          f << '\n';
+        }
+      }
+    }
+    std::ofstream(o.out + "/spectrum.json") << j.dump(2) << '\n';
+    j["out"] = o.out;
+    j["files"] = {"eigenvalues.txt", "eigenvectors.mtx", "exact.mtx", "coexact.mtx", "harmonic.mtx", cell_file,
+                  "spectrum.json"};
+  }
+  if (o.json) {
+    print_json(j);
+    return;
+  }
+  fmt::print("{}: {} vertices, {} cells (volume); Whitney {}-forms on the {} complex: {} k-cells, rank {}; shift {:.6g}\n",
+             o.mesh, mesh.n_vertices(), mesh.n_cells(), o.form, to_string(complex), sp.eigenvectors.rows(), sp.rank,
+             sp.shift);
+  fmt::print("{} smallest eigenvalues of the Hodge Laplacian (norms of the exact, co-exact, harmonic parts):\n", o.k);
+  for (int i = 0; i < o.k; ++i)
+    fmt::print("  {:4d}  {:.10g}  {:<9} {:.3g} {:.3g} {:.3g}\n", i, ev[size_t(i)], form_kind_name(sp.kinds[size_t(i)]),
+               sp.norm_exact[i], sp.norm_coexact[i], sp.norm_harmonic[i]);
+  if (!o.out.empty())
+    fmt::print("wrote eigenvalues.txt, eigenvectors.mtx (k-cells x k), exact/coexact/harmonic.mtx, {} and spectrum.json to {}\n",
+               cell_file, o.out);
+}
+
 const RegisterCommand reg(
     "spectrum", "Smallest eigenpairs of the Laplacian, -S x = lambda M x (Spectra shift-invert)",
     [](CLI::App& app) {
@@ -354,8 +454,8 @@ const RegisterCommand reg(
       app.add_option("--k", o->k, "number of eigenpairs (default 10)");
       app.add_option(
           "--form", o->form,
-          "0 (default): functions, -S x = lambda M x; 1 or 2: Hodge Laplacian of Whitney 1- or 2-forms "
-          "(eigen-cochains, their Hodge parts; --mass is the 0-form mass M0 of the 1-form problem)");
+          "0 (default): functions, -S x = lambda M x; 1 or 2 (volumes: 1, 2 or 3): Hodge Laplacian of Whitney "
+          "k-forms (eigen-cochains, their Hodge parts; --mass is the 0-form mass M0 of the 1-form problem)");
       app.add_option("--out", o->out,
                      "output directory: eigenvalues.txt, eigenvectors.mtx, eigenvectors.ply (volumes: "
                      "eigenvectors.vtk, or with --vtu eigenvectors.vtu, with point data u000..)");
@@ -374,8 +474,8 @@ const RegisterCommand reg(
                      "1 (default): the paper's operators; 2: quadratic elements on vertex and edge dofs (HRZ-lumped "
                      "or Galerkin mass; files and picture at the vertex dofs)");
       app.add_option("--complex", o->complex,
-                     "--form 1|2: the cells, complete (default; the paper's vertex pairs and triples) or mesh "
-                     "(the mesh's edges and faces, dec/surface/mesh_complex.h)");
+                     "--form 1|2|3: the cells, complete (default; the paper's vertex pairs, triples, quadruples) or "
+                     "mesh (the mesh's edges, faces and cells, dec/surface/mesh_complex.h, dec/volume/mesh_complex.h)");
       app.add_flag("--json", o->json, "print one JSON object instead of text");
       add_virtual_lift_options(app, o->lift);
       add_repair_flag(app, o->repair);

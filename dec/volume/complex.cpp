@@ -50,23 +50,46 @@ Eigen::SparseMatrix<double> coboundary(const SimplexComplex3& cx,
 SimplexComplex3::SimplexComplex3(int n_vertices, const std::vector<int>& offsets,
                                  const std::vector<int>& groups, int max_dimension)
     : n_vertices_(n_vertices) {
+  // Each dimension on its own, made unique every kChunk groups: neighbouring groups (the
+  // sub-tetrahedra of one cell) share most of their simplices, so the lists never grow much beyond
+  // their final size (all subsets at once, 14 per tetrahedron, would be several times it).
+  constexpr size_t kChunk = 1 << 14;
+  const size_t n_groups = offsets.empty() ? 0 : offsets.size() - 1;
   std::vector<int> g;
-  for (size_t k = 0; k + 1 < offsets.size(); ++k) {
-    g.assign(groups.begin() + offsets[k], groups.begin() + offsets[k + 1]);
-    std::sort(g.begin(), g.end());
-    const int m = int(g.size());
-    for (int a = 0; a < m; ++a)
-      for (int b = a + 1; b < m && max_dimension >= 1; ++b) {
-        pairs_.push_back({g[a], g[b]});
-        for (int c = b + 1; c < m && max_dimension >= 2; ++c) {
-          triples_.push_back({g[a], g[b], g[c]});
-          for (int d = c + 1; d < m && max_dimension >= 3; ++d) quads_.push_back({g[a], g[b], g[c], g[d]});
-        }
+  auto generate = [&](auto& out, auto emit) {
+    for (size_t begin = 0; begin < n_groups; begin += kChunk) {
+      const size_t first = out.size();
+      for (size_t k = begin; k < std::min(n_groups, begin + kChunk); ++k) {
+        g.assign(groups.begin() + offsets[k], groups.begin() + offsets[k + 1]);
+        std::sort(g.begin(), g.end());
+        emit(out);
       }
-  }
-  volume_complex_detail::sort_unique(pairs_);
-  volume_complex_detail::sort_unique(triples_);
-  volume_complex_detail::sort_unique(quads_);
+      std::sort(out.begin() + long(first), out.end());
+      out.erase(std::unique(out.begin() + long(first), out.end()), out.end());
+    }
+    volume_complex_detail::sort_unique(out);
+  };
+  if (max_dimension >= 1)
+    generate(pairs_, [&](auto& out) {
+      const int m = int(g.size());
+      for (int a = 0; a < m; ++a)
+        for (int b = a + 1; b < m; ++b) out.push_back({g[a], g[b]});
+    });
+  if (max_dimension >= 2)
+    generate(triples_, [&](auto& out) {
+      const int m = int(g.size());
+      for (int a = 0; a < m; ++a)
+        for (int b = a + 1; b < m; ++b)
+          for (int c = b + 1; c < m; ++c) out.push_back({g[a], g[b], g[c]});
+    });
+  if (max_dimension >= 3)
+    generate(quads_, [&](auto& out) {
+      const int m = int(g.size());
+      for (int a = 0; a < m; ++a)
+        for (int b = a + 1; b < m; ++b)
+          for (int c = b + 1; c < m; ++c)
+            for (int d = c + 1; d < m; ++d) out.push_back({g[a], g[b], g[c], g[d]});
+    });
 }
 
 int SimplexComplex3::n_simplices(int k) const {

@@ -6,10 +6,15 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
+#include <span>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "polydec/dec/detail/element_pattern.h"
 #include "polydec/dec/detail/scale.h"
 #include "polydec/dec/volume/prolongation.h"
 #include "polydec/dec/volume/whitney.h"
@@ -379,37 +384,24 @@ struct Assembled {
   std::array<SparseMatrix, 4> star;
 };
 
-// Appends the rows of P_k of cell c's refined simplices not emitted yet (a face's rows are the
-// same from both of its cells).
-void emit_prolongation(const CellMaps& W, int c, int k, const SimplexComplex3& refined, std::vector<char>& done,
-                       std::vector<Triplet>& t) {
-  auto emit = [&](int row, auto values, const std::vector<int>& cols) {
-    if (row < 0 || row >= int(done.size()))
-      throw std::invalid_argument("volume_mesh_prolongation: the refined complex does not belong to this mesh");
-    if (done[size_t(row)]) return;
-    done[size_t(row)] = 1;
-    for (Eigen::Index j = 0; j < values.size(); ++j)
-      if (values[j] != 0.0) t.emplace_back(row, cols[size_t(j)], values[j]);
-  };
-  if (k == 1) {
-    for (size_t r = 0; r < W.s1.size(); ++r) emit(refined.index(W.s1[r]), W.P1.row(Eigen::Index(r)), W.edges);
-  } else if (k == 2) {
-    for (size_t r = 0; r < W.s2.size(); ++r) emit(refined.index(W.s2[r]), W.P2.row(Eigen::Index(r)), W.faces);
-  } else {
-    const std::vector<int> self{c};
-    for (size_t r = 0; r < W.tets.size(); ++r)
-      emit(refined.index(W.tets[r].v), W.P3.segment(Eigen::Index(r), 1), self);
-  }
+// Index of refined simplex s in `refined`; std::invalid_argument when it is not there (a refined
+// complex of another mesh).
+template <size_t K>
+int refined_row(const SimplexComplex3& refined, const std::array<int, K>& s) {
+  const int row = refined.index(s);
+  if (row < 0) throw std::invalid_argument("volume mesh complex: the refined complex does not belong to this mesh");
+  return row;
 }
 
-// Adds cell c's blocks of star_0..star_max_degree: P_k^T star_k^tet P_k over its sub-tetrahedra.
-void add_cell_stars(const VolumeMesh& mesh, const VolumeRefinement& R, const CellMaps& W, int c, int max_degree,
-                    std::vector<Triplet> (&t)[4], std::vector<double>& s3) {
+// Cell c's blocks of star_0..star_min(max_degree, 2), P_k^T star_k^tet P_k over its
+// sub-tetrahedra (local[k] over W's vertices, edges, faces), and its star3 entry s3.
+void cell_star_blocks(const VolumeMesh& mesh, const VolumeRefinement& R, const CellMaps& W, int max_degree,
+                      Eigen::MatrixXd (&local)[3], double& s3) {
   const int nVc = int(W.verts.size()), nEc = int(W.edges.size()), nFc = int(W.faces.size());
-  Eigen::MatrixXd local[3];
   local[0].setZero(nVc, nVc);
   if (max_degree >= 1) local[1].setZero(nEc, nEc);
   if (max_degree >= 2) local[2].setZero(nFc, nFc);
+  s3 = 0.0;
   Eigen::Matrix<double, 4, Eigen::Dynamic> R0(4, nVc), R2(4, nFc);
   Eigen::Matrix<double, 6, Eigen::Dynamic> R1(6, nEc);
   for (size_t i = 0; i < W.tets.size(); ++i) {
@@ -435,19 +427,186 @@ void add_cell_stars(const VolumeMesh& mesh, const VolumeRefinement& R, const Cel
       }
       local[2].noalias() += R2.transpose() * tet_whitney2_mass(p[0], p[1], p[2], p[3]) * R2;
     }
-    if (max_degree >= 3)
-      s3[size_t(c)] += W.P3[Eigen::Index(i)] * W.P3[Eigen::Index(i)] * tet_whitney3_mass(p[0], p[1], p[2], p[3]);
-  }
-  const std::vector<int>* index[3] = {&W.verts, &W.edges, &W.faces};
-  for (int k = 0; k <= std::min(max_degree, 2); ++k) {
-    const std::vector<int>& g = *index[k];
-    const int n = int(g.size());
-    for (int b = 0; b < n; ++b)
-      for (int a = 0; a < n; ++a) t[k].emplace_back(g[size_t(a)], g[size_t(b)], local[k](a, b));
+    if (max_degree >= 3) s3 += W.P3[Eigen::Index(i)] * W.P3[Eigen::Index(i)] * tet_whitney3_mass(p[0], p[1], p[2], p[3]);
   }
 }
 
-// One pass over the cells, each cell's maps built once, up to the highest degree asked for.
+// Every cell's edges (ascending, as CellMaps::edges) and faces (half-face order, as
+// CellMaps::faces), as offsets + indices.
+struct CellLists {
+  std::vector<int> edge_offsets{0}, edges, face_offsets{0}, faces;
+  std::span<const int> edges_of(int c) const {
+    return {edges.data() + edge_offsets[size_t(c)], size_t(edge_offsets[size_t(c) + 1] - edge_offsets[size_t(c)])};
+  }
+  std::span<const int> faces_of(int c) const {
+    return {faces.data() + face_offsets[size_t(c)], size_t(face_offsets[size_t(c) + 1] - face_offsets[size_t(c)])};
+  }
+};
+
+CellLists cell_lists(const VolumeMesh& mesh) {
+  CellLists L;
+  const Eigen::MatrixX2i& E = mesh.edges();
+  std::vector<int> e;
+  for (int c = 0; c < mesh.n_cells(); ++c) {
+    e.clear();
+    for (int hf : mesh.cell(c)) {
+      L.faces.push_back(hf / 2);
+      const auto face = mesh.face(hf / 2);
+      for (size_t k = 0; k < face.size(); ++k) e.push_back(global_edge(E, face[k], face[(k + 1) % face.size()]));
+    }
+    std::sort(e.begin(), e.end());
+    e.erase(std::unique(e.begin(), e.end()), e.end());
+    L.edges.insert(L.edges.end(), e.begin(), e.end());
+    L.edge_offsets.push_back(int(L.edges.size()));
+    L.face_offsets.push_back(int(L.faces.size()));
+  }
+  return L;
+}
+
+// A column-major matrix written entry by entry into columns of known capacity (an upper bound on
+// their entries, from the connectivity), then sorted by row within each column and compacted in
+// place: it needs no storage beyond the result's (setFromTriplets holds the triplets, a transposed
+// copy and the result).
+class ColumnFill {
+ public:
+  // Eigen 3.4's SparseMatrix copies on move: a ColumnFill is set up in place, never moved.
+  void init(int rows, const std::vector<long>& capacity) {
+    used_.assign(capacity.size(), 0);
+    long total = 0;
+    for (long n : capacity) total += n;
+    if (total > long(std::numeric_limits<int>::max()))
+      throw std::length_error("volume mesh complex: a prolongation with more than 2^31 entries");
+    M_.resize(rows, Eigen::Index(capacity.size()));
+    M_.resizeNonZeros(Eigen::Index(total));
+    int* outer = M_.outerIndexPtr();
+    outer[0] = 0;
+    for (size_t j = 0; j < capacity.size(); ++j) outer[j + 1] = outer[j] + int(capacity[j]);
+  }
+
+  void add(int row, int col, double value) {
+    const int p = M_.outerIndexPtr()[col] + used_[size_t(col)];
+    if (p >= M_.outerIndexPtr()[col + 1])
+      throw std::logic_error("volume mesh complex: a column of P holds more entries than counted");
+    ++used_[size_t(col)];
+    M_.innerIndexPtr()[p] = row;
+    M_.valuePtr()[p] = value;
+  }
+
+  // Rows ascending in every column, the columns packed; `out` takes the matrix.
+  void finish(SparseMatrix& out) {
+    int* outer = M_.outerIndexPtr();
+    int* inner = M_.innerIndexPtr();
+    double* value = M_.valuePtr();
+    std::vector<std::pair<int, double>> column;
+    int w = 0;
+    for (size_t j = 0; j < used_.size(); ++j) {
+      const int b = outer[j], n = used_[j];
+      if (!std::is_sorted(inner + b, inner + b + n)) {
+        column.clear();
+        for (int p = b; p < b + n; ++p) column.emplace_back(inner[p], value[p]);
+        std::sort(column.begin(), column.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+        for (int p = 0; p < n; ++p) inner[b + p] = column[size_t(p)].first, value[b + p] = column[size_t(p)].second;
+      }
+      if (w != b) {
+        std::copy(inner + b, inner + b + n, inner + w);
+        std::copy(value + b, value + b + n, value + w);
+      }
+      outer[j] = w;
+      w += n;
+    }
+    outer[used_.size()] = w;
+    M_.data().resize(w);  // within the capacity: no copy
+    out.swap(M_);
+    used_.clear();
+  }
+
+ private:
+  SparseMatrix M_;
+  std::vector<int> used_;
+};
+
+// Capacities of P1's, P2's and P3's columns: a mesh edge's unit row; a face's spokes (dense over
+// its sides) and fan triangles (one entry each); a cell's interior rows, dense over its edges
+// ((v, x_c), (x_f, x_c)) or faces ((v_i, v_j, x_c) per edge, (v, x_f, x_c) per face corner);
+// its sub-tetrahedra (P3).
+std::vector<long> column_capacity(const VolumeMesh& mesh, const CellLists& L, int k) {
+  const int sizes[4] = {mesh.n_vertices(), mesh.n_edges(), mesh.n_faces(), mesh.n_cells()};
+  std::vector<long> cap(size_t(sizes[k]), k == 1 ? 1 : 0);
+  if (k < 3)
+    for (int f = 0; f < mesh.n_faces(); ++f) {
+      const auto face = mesh.face(f);
+      const long n = long(face.size());
+      if (k == 2) cap[size_t(f)] += n;
+      for (size_t i = 0; k == 1 && i < face.size(); ++i)
+        cap[size_t(global_edge(mesh.edges(), face[i], face[(i + 1) % face.size()]))] += n;
+    }
+  for (int c = 0; c < mesh.n_cells(); ++c) {
+    long corners = 0;
+    for (int f : L.faces_of(c)) corners += long(mesh.face(f).size());
+    if (k == 1)
+      for (int e : L.edges_of(c)) cap[size_t(e)] += long(mesh.cell_vertices(c).size() + L.faces_of(c).size());
+    else if (k == 2)
+      for (int f : L.faces_of(c)) cap[size_t(f)] += long(L.edges_of(c).size()) + corners;
+    else
+      cap[size_t(c)] = corners;
+  }
+  return cap;
+}
+
+// Writes the rows of P_k of cell c's refined simplices not written yet (a face's rows are the
+// same from both of its cells), their non-zero entries.
+void emit_prolongation(const CellMaps& W, int c, int k, const SimplexComplex3& refined, std::vector<char>& done,
+                       ColumnFill& P) {
+  auto emit = [&](int row, auto values, auto col_of) {
+    if (done[size_t(row)]) return;
+    done[size_t(row)] = 1;
+    for (Eigen::Index j = 0; j < values.size(); ++j)
+      if (values[j] != 0.0) P.add(row, col_of(j), values[j]);
+  };
+  if (k == 1) {
+    for (size_t r = 0; r < W.s1.size(); ++r)
+      emit(refined_row(refined, W.s1[r]), W.P1.row(Eigen::Index(r)), [&](Eigen::Index j) { return W.edges[size_t(j)]; });
+  } else if (k == 2) {
+    for (size_t r = 0; r < W.s2.size(); ++r)
+      emit(refined_row(refined, W.s2[r]), W.P2.row(Eigen::Index(r)), [&](Eigen::Index j) { return W.faces[size_t(j)]; });
+  } else {
+    for (size_t r = 0; r < W.tets.size(); ++r)
+      emit(refined_row(refined, W.tets[r].v), W.P3.segment(Eigen::Index(r), 1), [&](Eigen::Index) { return c; });
+  }
+}
+
+// The pattern of a star (the pairs of nodes sharing a cell) with each cell's slots, column-relative
+// where every column has at most 65535 entries (half the memory), else absolute. Columns sorted in
+// place: the pattern's arrays are allocated for sum m_c^2 entries but only the first nnz touched.
+template <class NodesOf>
+detail::ElementPattern star_pattern(int n_nodes, int n_cells, NodesOf nodes_of) {
+  using detail::ColumnOrder;
+  using detail::SlotKind;
+  detail::ElementPattern ep = detail::element_pattern<SlotKind::column_relative, ColumnOrder::sort>(n_nodes, n_cells, nodes_of);
+  if (!ep.relative_slots) ep = detail::element_pattern<SlotKind::absolute, ColumnOrder::sort>(n_nodes, n_cells, nodes_of);
+  return ep;
+}
+
+// Adds the local block of cell c (over `nodes`, in the order the pattern was built with) to A.
+void scatter(const detail::ElementPattern& ep, int c, const std::vector<int>& nodes, const Eigen::MatrixXd& local,
+             SparseMatrix& A) {
+  const int n = int(nodes.size());
+  double* value = A.valuePtr();
+  const long o = ep.offsets[size_t(c)];
+  if (ep.relative_slots) {
+    const std::uint16_t* s = ep.relative_slots.get() + o;
+    const int* outer = A.outerIndexPtr();
+    for (int a = 0; a < n; ++a)
+      for (int b = 0; b < n; ++b) value[outer[nodes[size_t(b)]] + s[a * n + b]] += local(a, b);
+  } else {
+    const int* s = ep.slots.data() + o;
+    for (int a = 0; a < n; ++a)
+      for (int b = 0; b < n; ++b) value[s[a * n + b]] += local(a, b);
+  }
+}
+
+// One pass over the cells, each cell's maps built once, up to the highest degree asked for: the
+// stars summed into their patterns, P_k written into its columns.
 Assembled assemble(const VolumeMesh& mesh, const VolumeRefinement& R, const SimplexComplex3* refined,
                    const Request& request, SpokeRule rule) {
   int degree = std::max(request.star_degree, 0);
@@ -456,33 +615,53 @@ Assembled assemble(const VolumeMesh& mesh, const VolumeRefinement& R, const Simp
   const int nV = mesh.n_vertices(), nF = mesh.n_faces(), nC = mesh.n_cells();
   if (degree > 0 && refined && refined->n_vertices() != nV + nF + nC)
     throw std::invalid_argument("volume_mesh_prolongation: the refined complex does not belong to this mesh");
+  const int sizes[4] = {nV, mesh.n_edges(), nF, nC};
+  Assembled out;
   std::vector<char> done[4];
-  std::vector<Triplet> pt[4], st[4];
-  for (int k = 1; k < 4; ++k)
-    if (request.prolongations[k]) done[k].assign(size_t(refined->n_simplices(k)), 0);
-  std::vector<double> s3(size_t(nC), 0.0);
+  ColumnFill P[4];
+  detail::ElementPattern pattern[3];
+  {
+    const CellLists L = cell_lists(mesh);
+    for (int k = 1; k < 4; ++k)
+      if (request.prolongations[k]) {
+        done[k].assign(size_t(refined->n_simplices(k)), 0);
+        P[k].init(refined->n_simplices(k), column_capacity(mesh, L, k));
+      }
+    if (request.star_degree >= 0)
+      pattern[0] = star_pattern(nV, nC, [&](int c) { return mesh.cell_vertices(c); });
+    if (request.star_degree >= 1) pattern[1] = star_pattern(sizes[1], nC, [&](int c) { return L.edges_of(c); });
+    if (request.star_degree >= 2) pattern[2] = star_pattern(nF, nC, [&](int c) { return L.faces_of(c); });
+  }
+  for (int k = 0; k <= std::min(request.star_degree, 2); ++k) out.star[size_t(k)].swap(pattern[k].pattern);
+  Eigen::VectorXd s3;
+  if (request.star_degree >= 3) s3.setZero(nC);
   CellMaps W;
+  Eigen::MatrixXd local[3];
   for (int c = 0; c < nC; ++c) {
     build_cell(mesh, R, c, degree, rule, W);
     for (int k = 1; k < 4; ++k)
-      if (request.prolongations[k]) emit_prolongation(W, c, k, *refined, done[k], pt[k]);
-    if (request.star_degree >= 0) add_cell_stars(mesh, R, W, c, request.star_degree, st, s3);
+      if (request.prolongations[k]) emit_prolongation(W, c, k, *refined, done[k], P[k]);
+    if (request.star_degree < 0) continue;
+    double s = 0;
+    cell_star_blocks(mesh, R, W, request.star_degree, local, s);
+    const std::vector<int>* nodes[3] = {&W.verts, &W.edges, &W.faces};
+    for (int k = 0; k <= std::min(request.star_degree, 2); ++k)
+      scatter(pattern[k], c, *nodes[k], local[k], out.star[size_t(k)]);
+    if (request.star_degree >= 3) s3[c] = s;
   }
-  Assembled out;
-  const int sizes[4] = {nV, mesh.n_edges(), nF, nC};
   for (int k = 1; k < 4; ++k)
     if (request.prolongations[k]) {
-      out.P[k].resize(refined->n_simplices(k), sizes[k]);
-      out.P[k].setFromTriplets(pt[k].begin(), pt[k].end());
+      std::vector<char>().swap(done[k]);
+      P[k].finish(out.P[k]);
     }
-  for (int c = 0; request.star_degree >= 3 && c < nC; ++c) st[3].emplace_back(c, c, s3[size_t(c)]);
-  for (int k = 0; k <= request.star_degree; ++k) {
-    out.star[size_t(k)].resize(sizes[k], sizes[k]);
-    out.star[size_t(k)].setFromTriplets(st[k].begin(), st[k].end());
+  if (request.star_degree >= 3) {
+    out.star[3].resize(nC, nC);
+    out.star[3].resizeNonZeros(nC);
+    for (int c = 0; c <= nC; ++c) out.star[3].outerIndexPtr()[c] = c;
+    for (int c = 0; c < nC; ++c) out.star[3].innerIndexPtr()[c] = c, out.star[3].valuePtr()[c] = s3[c];
   }
   return out;
 }
-
 }  // namespace
 }  // namespace volume_mesh_complex_detail
 
@@ -564,6 +743,34 @@ VolumeMeshDec volume_mesh_dec(const VolumeMesh& mesh, const VolumeRefinement& re
   for (int k = 1; k <= max_degree; ++k) D.P[k].swap(a.P[k]);  // swap: std::move copies an Eigen 3.4 SparseMatrix
   for (int k = 0; k <= max_degree; ++k) D.star[k].swap(a.star[size_t(k)]);
   return D;
+}
+
+VolumeMeshCell volume_mesh_cell(const VolumeMesh& mesh, const VolumeRefinement& refinement,
+                                const SimplexComplex3& refined, int c, int max_degree, SpokeRule rule) {
+  using namespace volume_mesh_complex_detail;
+  check_refinement(mesh, refinement, "volume_mesh_cell");
+  check_degree(max_degree, 0, 3, "volume_mesh_cell");
+  if (c < 0 || c >= mesh.n_cells())
+    throw std::invalid_argument("volume_mesh_cell: cell " + std::to_string(c) + " of " + std::to_string(mesh.n_cells()));
+  if (max_degree > 0 && refined.n_vertices() != mesh.n_vertices() + mesh.n_faces() + mesh.n_cells())
+    throw std::invalid_argument("volume_mesh_cell: the refined complex does not belong to this mesh");
+  CellMaps W;
+  build_cell(mesh, refinement, c, max_degree, rule, W);
+  VolumeMeshCell out;
+  out.vertices = W.verts;
+  out.edges = W.edges;
+  out.faces = W.faces;
+  cell_star_blocks(mesh, refinement, W, max_degree, out.star, out.star3);
+  for (const auto& s : W.s1)
+    if (max_degree >= 1) out.rows[1].push_back(refined_row(refined, s));
+  for (const auto& s : W.s2)
+    if (max_degree >= 2) out.rows[2].push_back(refined_row(refined, s));
+  for (const auto& t : W.tets)
+    if (max_degree >= 3) out.rows[3].push_back(refined_row(refined, t.v));
+  if (max_degree >= 1) out.P[1] = W.P1;
+  if (max_degree >= 2) out.P[2] = W.P2;
+  if (max_degree >= 3) out.P[3] = W.P3;
+  return out;
 }
 
 }  // namespace polydec

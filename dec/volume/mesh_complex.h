@@ -49,6 +49,7 @@
 
 #include <Eigen/Sparse>
 #include <array>
+#include <vector>
 
 #include "polydec/dec/surface/mesh_complex.h"
 #include "polydec/dec/volume/complex.h"
@@ -74,10 +75,31 @@ std::array<SparseMatrix, 4> volume_mesh_stars(const VolumeMesh& mesh, const Volu
                                               int max_degree = 3, SpokeRule rule = SpokeRule::AreaConsistent);
 
 // d_k (k < max_degree), P_k and star_k (k <= max_degree) in one pass over the cells, each cell's
-// local systems solved once (what volume_dec uses for DecComplex::Mesh).
+// local systems solved once (what volume_dec uses for DecComplex::Mesh). The stars are summed into
+// their patterns (dec/detail/element_pattern.h, the pairs of coarse cells sharing a cell) and P_k
+// is written into columns sized from the connectivity: no list of all local entries is held, and
+// the peak memory stays near the size of the results.
 struct VolumeMeshDec {
   SparseMatrix d[3], P[4], star[4];
 };
+// One cell's share of the bundle, as volume_mesh_dec adds it: the cell's vertices (ascending),
+// edges (ascending) and faces (half-face order) as global indices; the dense blocks
+// P_k^T star_k^tet P_k over them (k = 0..min(max_degree, 2)) and its star3 entry (max_degree 3);
+// the rows of P_k (k = 1..max_degree) of every refined k-simplex of its sub-tetrahedra (rows[k]:
+// their indices in `refined`; P[k]: dense over the local vertices, edges or faces, P[3] one column,
+// the cell). A face's rows are in both of its cells' shares, equal. std::invalid_argument for c
+// out of range and as volume_mesh_prolongation.
+struct VolumeMeshCell {
+  std::vector<int> vertices, edges, faces;
+  Eigen::MatrixXd star[3];
+  double star3 = 0;
+  std::vector<int> rows[4];
+  Eigen::MatrixXd P[4];
+};
+VolumeMeshCell volume_mesh_cell(const VolumeMesh& mesh, const VolumeRefinement& refinement,
+                                const SimplexComplex3& refined, int c, int max_degree = 3,
+                                SpokeRule rule = SpokeRule::AreaConsistent);
+
 VolumeMeshDec volume_mesh_dec(const VolumeMesh& mesh, const VolumeRefinement& refinement,
                               const SimplexComplex3& refined, int max_degree = 3,
                               SpokeRule rule = SpokeRule::AreaConsistent);

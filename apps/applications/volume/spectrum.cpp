@@ -1,14 +1,18 @@
 // apps/applications/volume/spectrum.cpp — spherical Bessel zeros, the unit ball's spectrum, volume Laplacian
-// eigenpairs.
+// eigenpairs, and the Hodge Laplacian eigenpairs of 1-, 2- and 3-forms.
 #include "polydec/apps/applications/volume/spectrum.h"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 
+#include "polydec/apps/applications/detail/complete_eigs.h"
+#include "polydec/apps/applications/detail/mixed_shift_invert.h"
 #include "polydec/apps/applications/volume/poisson.h"
+#include "polydec/dec/volume/hodge_star.h"
 #include "polydec/dec/mesh/volume_generators.h"
 #include "polydec/operators/solvers/cholesky.h"
 #include "polydec/operators/registry/volume_laplacians.h"
@@ -160,6 +164,107 @@ BallSpectrum ball_spectrum(int n, int k, bool dirichlet, bool lumped_mass) {
     b.relative_error.push_back(l > 0 ? std::abs(lh - l) / l : std::abs(lh));
   }
   return b;
+}
+
+FormSpectrum volume_form_spectrum(const VolumeMesh& mesh, const FormSpectrumOptions& options) {
+  using SpMat = Eigen::SparseMatrix<double>;
+  const int degree = options.degree;
+  if (degree < 1 || degree > 3)
+    throw std::invalid_argument(fmt::format("volume form spectrum: degree {} must be 1, 2 or 3", degree));
+  if (mesh.n_cells() == 0) throw InvalidMeshError("mesh", -1, "volume form spectrum: the mesh has no cells");
+  const VolumeRefinement ref = refine_volume(mesh);
+  const bool on_mesh = options.complex == DecComplex::Mesh;
+  const int top = std::min(degree + 1, 3);
+  const VolumeDec dec = volume_dec(mesh, ref, VolumeDecOptions{.max_degree = top, .complex = options.complex});
+  const Eigen::VectorXd lumped = dec.star[0] * Eigen::VectorXd::Ones(dec.star[0].cols());
+  const double volume = lumped.sum();
+  if (!(volume > 0)) throw SolverError("volume form spectrum: the mesh has zero volume");
+  const double scale = std::pow(volume, 2.0 / 3.0);  // length^2
+
+  // Reduced bases: the identity on the mesh complex (its stars are definite), volume_form_span on
+  // the complete one; degree 0 keeps the vertices with mass.
+  auto basis = [&](int j) {
+    if (j == 0) {
+      std::vector<Eigen::Triplet<double>> t;
+      for (int v = 0; v < mesh.n_vertices(); ++v)
+        if (lumped[v] > 0) t.emplace_back(v, int(t.size()), 1.0);
+      SpMat R(mesh.n_vertices(), long(t.size()));
+      R.setFromTriplets(t.begin(), t.end());
+      return R;
+    }
+    if (on_mesh) {
+      SpMat R(dec.star[j].rows(), dec.star[j].rows());
+      R.setIdentity();
+      return R;
+    }
+    return volume_form_span(dec, mesh, ref, j).R;
+  };
+  const SpMat Rk = basis(degree), Rm = basis(degree - 1);
+  const SpMat& star = dec.star[degree];
+  const SpMat& d_in = dec.d[degree - 1];  // d_{k-1}
+  const SpMat B = Rk.transpose() * star * Rk;
+  const SpMat A = degree < 3 ? SpMat(Rk.transpose() * dec.d[degree].transpose() * dec.star[degree + 1] *
+                                     dec.d[degree] * Rk)
+                             : SpMat(B.rows(), B.cols());
+  const SpMat C = Rk.transpose() * star * d_in * Rm;
+  SpMat M;
+  if (degree == 1 && options.lumped_mass) {
+    const Eigen::VectorXd m = Rm.transpose() * lumped;
+    M = SpMat(m.asDiagonal());
+  } else {
+    M = Rm.transpose() * dec.star[degree - 1] * Rm;
+  }
+
+  FormSpectrum out;
+  out.degree = degree;
+  out.shift = -options.shift_factor / scale;
+  out.rank = int(B.rows());
+  const int n = out.rank;
+  if (options.k < 1 || options.k >= n)
+    throw std::invalid_argument(fmt::format("volume form spectrum: k = {} must lie in [1, {})", options.k, n));
+  const int ncv = options.krylov_size > 0 ? std::clamp(options.krylov_size, options.k + 1, n)
+                                          : spectrum_krylov_size(options.k, n);
+  const std::string name = fmt::format("[d{0}^T star{1} d{0} - sigma star{2}, star{2} d{3}; d{3}^T star{2}, -star{3}]",
+                                       degree, degree + 1, degree, degree - 1);
+  mixed_shift_invert_detail::MixedShiftInvert op(A, B, C, M, name);
+  op.set_shift(out.shift);
+  const complete_eigs_detail::Pairs pairs = complete_eigs_detail::smallest_pairs(
+      op, B, options.k, ncv, out.shift, options.max_iterations, options.tolerance, "volume form spectrum");
+  out.n_converged = pairs.n_converged;
+  out.n_solves = pairs.n_solves;
+  out.method = "Spectra SymGEigsShiftSolver + quasi-definite SimplicialLDLT";
+  out.eigenvalues = pairs.values;
+  out.eigenvectors = Rk * pairs.vectors;
+  if (!options.decompose) return out;
+
+  const int k = options.k;
+  out.exact = Eigen::MatrixXd::Zero(out.eigenvectors.rows(), k);
+  out.coexact = out.exact;
+  out.harmonic = out.exact;
+  out.norm_exact.resize(k);
+  out.norm_coexact.resize(k);
+  out.norm_harmonic.resize(k);
+  out.kinds.resize(size_t(k));
+  const double zero = 1e-8 / scale;
+  const SparseCholesky solve_M(M, fmt::format("the {}-form mass", degree - 1));
+  const std::unique_ptr<SparseCholesky> solve_B =
+      degree < 3 ? std::make_unique<SparseCholesky>(B, fmt::format("star{}", degree)) : nullptr;
+  auto norm = [&](const Eigen::VectorXd& x) { return std::sqrt(std::max(0.0, x.dot(star * x))); };
+  for (int i = 0; i < k; ++i) {
+    const double lambda = out.eigenvalues[i];
+    const Eigen::VectorXd y = pairs.vectors.col(i);
+    if (std::abs(lambda) > zero) {
+      out.exact.col(i) = d_in * (Rm * solve_M.solve(Eigen::VectorXd(C.transpose() * y))) / lambda;
+      if (solve_B) out.coexact.col(i) = Rk * solve_B->solve(Eigen::VectorXd(A * y)) / lambda;
+    }
+    out.harmonic.col(i) = out.eigenvectors.col(i) - out.exact.col(i) - out.coexact.col(i);
+    out.norm_exact[i] = norm(out.exact.col(i));
+    out.norm_coexact[i] = norm(out.coexact.col(i));
+    out.norm_harmonic[i] = norm(out.harmonic.col(i));
+    const double e = out.norm_exact[i], c = out.norm_coexact[i], h = out.norm_harmonic[i];
+    out.kinds[size_t(i)] = h >= e && h >= c ? FormKind::Harmonic : e >= c ? FormKind::Exact : FormKind::Coexact;
+  }
+  return out;
 }
 
 }  // namespace polydec

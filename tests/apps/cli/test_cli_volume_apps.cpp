@@ -1,7 +1,10 @@
-// tests/apps/cli/test_cli_volume_apps.cpp — `polydec poisson --volume` and `polydec volume-spectrum`: their
-// JSON against the library's numbers, the shared-cube branch, and refused options.
+// tests/apps/cli/test_cli_volume_apps.cpp — `polydec poisson --volume`, `polydec volume-spectrum` and
+// `polydec spectrum --form K` on a volume file: their JSON against the library's numbers, the
+// shared-cube branch, the files written, and refused options.
 #include <sys/wait.h>
 #include <unistd.h>
+
+#include <fmt/format.h>
 
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -98,6 +101,38 @@ TEST_CASE("polydec volume-spectrum on a hexahedral ball", "[volume-apps][cli]") 
   CHECK(t.out.find("(absolute)") != std::string::npos);
   CHECK(run("volume-spectrum --ball 1").code == 2);
   CHECK(run("volume-spectrum --k 0").code == 2);
+}
+
+TEST_CASE("polydec spectrum --form 1|2|3 on a volume mesh", "[volume-apps][volume-form-spectrum][cli]") {
+  const test::ScratchDir scratch("cli_volform");
+  const std::string path = (scratch.dir / "grid.ovm").string();
+  write_volume_mesh(hex_grid_volume(2, 2, 3, {0.2, 83}), path);
+  const VolumeMesh mesh = read_volume_mesh(path);
+  for (int degree = 1; degree <= 3; ++degree)
+    for (const char* complex : {"mesh", "complete"}) {
+      INFO("--form " << degree << " --complex " << complex);
+      const std::string out = (scratch.dir / fmt::format("out{}{}", degree, complex)).string();
+      const Run r = test::run_cli_in(scratch.dir, fmt::format("spectrum '{}' --form {} --complex {} --k 5 --json --out '{}'",
+                                                              path, degree, complex, out));
+      INFO(r.err);
+      REQUIRE(r.code == 0);
+      const auto j = nlohmann::json::parse(r.out);
+      FormSpectrumOptions o;
+      o.degree = degree;
+      o.k = 5;
+      o.complex = std::string(complex) == "mesh" ? DecComplex::Mesh : DecComplex::Complete;
+      const FormSpectrum s = volume_form_spectrum(mesh, o);
+      REQUIRE(j["eigenvalues"].size() == 5);
+      for (int i = 0; i < 5; ++i) CHECK(j["eigenvalues"][i].get<double>() == Approx(s.eigenvalues[i]).epsilon(1e-8));
+      CHECK(j["k_cells"].get<long>() == s.eigenvectors.rows());
+      const int counts[4] = {mesh.n_vertices(), mesh.n_edges(), mesh.n_faces(), mesh.n_cells()};
+      if (o.complex == DecComplex::Mesh) CHECK(j["k_cells"].get<long>() == counts[degree]);
+      for (const auto& file : j["files"]) CHECK(fs::exists(fs::path(out) / file.get<std::string>()));
+    }
+  const std::string base = "spectrum '" + path + "' --k 4 ";
+  CHECK(test::run_cli_in(scratch.dir, base + "--form 4").code == 2);
+  CHECK(test::run_cli_in(scratch.dir, base + "--form 1 --png x.png").code == 2);
+  CHECK(test::run_cli_in(scratch.dir, base + "--form 1 --complex other").code == 2);
 }
 
 }  // namespace test_cli_volume_apps

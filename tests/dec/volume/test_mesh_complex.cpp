@@ -307,3 +307,103 @@ TEST_CASE("volume mesh complex: sub-tetrahedra flagged degenerate add nothing to
 }
 
 }  // namespace test_volume_mesh_complex
+
+namespace test_volume_mesh_complex {
+namespace {
+
+// A and B with the same pattern (outer and inner arrays) and bitwise equal values.
+bool identical(const SparseMatrix& A, const SparseMatrix& B) {
+  if (A.rows() != B.rows() || A.cols() != B.cols() || A.nonZeros() != B.nonZeros()) return false;
+  if (!A.isCompressed() || !B.isCompressed()) return false;
+  for (Eigen::Index j = 0; j <= A.outerSize(); ++j)
+    if (A.outerIndexPtr()[j] != B.outerIndexPtr()[j]) return false;
+  for (Eigen::Index p = 0; p < A.nonZeros(); ++p)
+    if (A.innerIndexPtr()[p] != B.innerIndexPtr()[p] || A.valuePtr()[p] != B.valuePtr()[p]) return false;
+  return true;
+}
+
+// The straightforward assembly of the cells' shares (volume_mesh_cell): every local entry as a
+// triplet, summed by setFromTriplets; a refined simplex's P row from the first cell that has it.
+VolumeMeshDec triplet_assembly(const VolumeMesh& mesh, const VolumeRefinement& R, const SimplexComplex3& refined,
+                               int max_degree) {
+  std::vector<Eigen::Triplet<double>> st[4], pt[4];
+  std::vector<char> done[4];
+  for (int k = 1; k <= max_degree; ++k) done[k].assign(size_t(refined.n_simplices(k)), 0);
+  for (int c = 0; c < mesh.n_cells(); ++c) {
+    const VolumeMeshCell cell = volume_mesh_cell(mesh, R, refined, c, max_degree);
+    const std::vector<int>* ids[4] = {&cell.vertices, &cell.edges, &cell.faces, nullptr};
+    const std::vector<int> self{c};
+    ids[3] = &self;
+    for (int k = 0; k <= std::min(max_degree, 2); ++k) {
+      const int n = int(ids[k]->size());
+      REQUIRE(cell.star[k].rows() == n);
+      for (int b = 0; b < n; ++b)
+        for (int a = 0; a < n; ++a) st[k].emplace_back((*ids[k])[size_t(a)], (*ids[k])[size_t(b)], cell.star[k](a, b));
+    }
+    if (max_degree >= 3) st[3].emplace_back(c, c, cell.star3);
+    for (int k = 1; k <= max_degree; ++k) {
+      REQUIRE(cell.P[k].rows() == Eigen::Index(cell.rows[k].size()));
+      REQUIRE(cell.P[k].cols() == Eigen::Index(ids[k]->size()));
+      for (size_t i = 0; i < cell.rows[k].size(); ++i) {
+        const int row = cell.rows[k][i];
+        if (done[k][size_t(row)]) continue;
+        done[k][size_t(row)] = 1;
+        for (Eigen::Index j = 0; j < cell.P[k].cols(); ++j)
+          if (cell.P[k](Eigen::Index(i), j) != 0.0) pt[k].emplace_back(row, (*ids[k])[size_t(j)], cell.P[k](Eigen::Index(i), j));
+      }
+    }
+  }
+  const int sizes[4] = {mesh.n_vertices(), mesh.n_edges(), mesh.n_faces(), mesh.n_cells()};
+  VolumeMeshDec out;
+  for (int k = 0; k <= max_degree; ++k) {
+    out.star[k].resize(sizes[k], sizes[k]);
+    out.star[k].setFromTriplets(st[k].begin(), st[k].end());
+    if (k == 0) continue;
+    out.P[k].resize(refined.n_simplices(k), sizes[k]);
+    out.P[k].setFromTriplets(pt[k].begin(), pt[k].end());
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("volume mesh complex: the assembly into slots equals a triplet assembly of the cells' shares",
+          "[volume][volume-dec][volume-mesh-complex]") {
+  std::vector<Case> cases;
+  cases.push_back({"jittered hexahedra", hex_grid_volume(3, 3, 2, {0.25, 41})});
+  cases.push_back({"jittered tetrahedra", tet_grid_volume(2, 2, 2, {0.2, 43})});
+  cases.push_back({"jittered pyramids", pyramid_grid_volume(2, 2, 2, {0.2, 47})});
+  cases.push_back({"truncated octahedra", truncated_octahedra_volume(3, {0.15, 53})});
+  cases.push_back({"Voronoi-like merged truncated octahedra",
+                   test::merge_neighbour_cells(truncated_octahedra_volume(3, {0.15, 59}), 30)});
+  cases.push_back({"prism over a 100-gon", test::prism_volume(100)});
+  // Last: every 5th sub-tetrahedron flagged degenerate (zero contributions keep their entries).
+  cases.push_back({"hexahedra with flagged sub-tetrahedra", hex_grid_volume(2, 2, 2, {0.2, 61})});
+  for (size_t i = 0; i < cases.size(); ++i) {
+    const Case& cs = cases[i];
+    INFO(cs.name);
+    VolumeRefinement R = refine_volume(cs.mesh);
+    if (i + 1 == cases.size())
+      for (size_t t = 0; t < R.tets.size(); t += 5) R.tets[t] = SubTet::Degenerate;
+    const SimplexComplex3 refined = volume_refined_complex(cs.mesh, R);
+    for (int degree : {3, 1}) {
+      INFO("max_degree " << degree);
+      const VolumeMeshDec D = volume_mesh_dec(cs.mesh, R, refined, degree);
+      const VolumeMeshDec T = triplet_assembly(cs.mesh, R, refined, degree);
+      for (int k = 0; k <= degree; ++k) {
+        INFO("k = " << k);
+        CHECK(identical(D.star[k], T.star[k]));
+        if (k > 0) CHECK(identical(D.P[k], T.P[k]));
+      }
+      const std::array<SparseMatrix, 4> stars = volume_mesh_stars(cs.mesh, R, degree);
+      for (int k = 0; k <= degree; ++k) CHECK(identical(stars[size_t(k)], T.star[k]));
+      for (int k = 1; k <= degree; ++k) CHECK(identical(volume_mesh_prolongation(cs.mesh, R, refined, k), T.P[k]));
+    }
+  }
+  // The cell's share refuses a cell out of range.
+  const VolumeMesh hexes = hex_grid_volume(1, 1, 1);
+  const VolumeRefinement Rh = refine_volume(hexes);
+  CHECK_THROWS_AS(volume_mesh_cell(hexes, Rh, volume_refined_complex(hexes, Rh), 1), std::invalid_argument);
+}
+
+}  // namespace test_volume_mesh_complex
