@@ -342,9 +342,14 @@ VolumeLaplacian assemble_volume_laplacian(const VolumeMesh& mesh, const VolumeRe
     std::vector<CellWorkspace> ws(T);
     for (int c0 = 0; c0 < nC; c0 += block) {
       const int c1 = std::min(nC, c0 + block);
+      // The block's vertex range, which the threads split for the scatter: splitting all of
+      // [0, nV) would hand a block of neighbouring cells (vertices of nearby numbers) to one thread.
+      int vlo = nV, vhi = 0;
       for (int c = c0; c < c1; ++c) {
-        const size_t m = mesh.cell_vertices(c).size();
+        const auto verts = mesh.cell_vertices(c);
+        const size_t m = verts.size();
         offset[c - c0 + 1] = offset[c - c0] + 2 * m * m;
+        for (int v : verts) vlo = std::min(vlo, v), vhi = std::max(vhi, v + 1);
       }
       run_on_threads(T, [&](int t) {
         Eigen::MatrixXd Sc, Mc;
@@ -356,7 +361,7 @@ VolumeLaplacian assemble_volume_laplacian(const VolumeMesh& mesh, const VolumeRe
         }
       });
       run_on_threads(T, [&](int t) {
-        const int v0 = int(long(nV) * t / T), v1 = int(long(nV) * (t + 1) / T);
+        const int v0 = vlo + int(long(vhi - vlo) * t / T), v1 = vlo + int(long(vhi - vlo) * (t + 1) / T);
         for (int c = c0; c < c1; ++c) {
           const size_t m = mesh.cell_vertices(c).size();
           const double* in = local.data() + offset[c - c0];

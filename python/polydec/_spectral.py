@@ -1,7 +1,8 @@
-"""polydec._spectral — spectra of Whitney 1- and 2-forms on polygon meshes (form_spectrum,
-docs/spectral.md) and the spectral shape tools computed from 0-form eigenpairs (heat and wave
-kernel signatures, biharmonic and diffusion distances, low-pass filter), which take the
-(evals, evecs) of polydec.spectrum or polydec.volume_spectrum. Imported into polydec."""
+"""polydec._spectral — spectra of Whitney 1- and 2-forms on polygon meshes and of 1-, 2- and 3-forms
+on volume meshes (form_spectrum, docs/spectral.md, docs/volumes.md) and the spectral shape tools
+computed from 0-form eigenpairs (heat and wave kernel signatures, biharmonic and diffusion
+distances, low-pass filter), which take the (evals, evecs) of polydec.spectrum or
+polydec.volume_spectrum. Imported into polydec."""
 
 import numpy as np
 
@@ -22,13 +23,24 @@ def form_spectrum(V, F=None, k=None, degree=1, mass="lumped", tolerance=1e-10, m
     complex="mesh": on the mesh's own edges (degree 1) or faces (degree 2), positive definite stars
     (surface_dec(V, F, "mesh")); the eigenvectors are then (|E|, k) or (|F|, k).
     form_spectrum(mesh, k, ...) or form_spectrum(V, F, k, ...).
+    A polydec.VolumeMesh: degree 1, 2 or 3, K_k = star_k d_{k-1} M^-1 d_{k-1}^T star_k +
+    d_k^T star_{k+1} d_k on volume_dec(mesh, complex=complex) (docs/volumes.md); eigenvectors on the
+    mesh's edges, faces, cells (complex="mesh") or the complete complex's pairs, triples, quads.
 
     >>> s = polydec.form_spectrum(polydec.torus(12, 8), 3, complex="mesh")
     >>> s["kinds"][:2]
     ['harmonic', 'harmonic']
     """
     from ._mesh import handle, shift
+    from ._volume import VolumeMesh
 
+    if isinstance(V, VolumeMesh):
+        if F is not None:
+            if k is not None:
+                raise TypeError("form_spectrum(volume_mesh, k, ...): no faces argument for a volume mesh")
+            k = F
+        return _polydec.volume_form_spectrum(V._m, int(degree), _convert.size(k, "k", 1), _convert.lumped_flag(mass),
+                                             float(tolerance), int(max_iterations), bool(decompose), str(complex))
     V, F, k = shift(V, F, k)
     return _polydec.form_spectrum(handle(V, F), int(degree), _convert.size(k, "k", 1), _convert.lumped_flag(mass),
                                   float(tolerance), int(max_iterations), bool(decompose), str(complex),

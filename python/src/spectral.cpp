@@ -1,10 +1,12 @@
 // python/src/spectral.cpp — bindings of the spectral tools: eigenpairs of the Hodge Laplacian on
-// Whitney 1- and 2-forms (apps/applications/form_spectrum.h) and the kernel signatures, spectral
+// Whitney 1- and 2-forms (apps/applications/form_spectrum.h) and on volume 1-, 2- and 3-forms
+// (apps/applications/volume/spectrum.h), and the kernel signatures, spectral
 // distances and low-pass filter computed from 0-form eigenpairs (apps/applications/spectral_tools.h),
 // which take (eigenvalues, eigenvectors) as `spectrum` or `volume_spectrum` return them.
 #include "bindings.h"
 #include "polydec/apps/applications/form_spectrum.h"
 #include "polydec/apps/applications/spectral_tools.h"
+#include "polydec/apps/applications/volume/spectrum.h"
 
 namespace polydec::python {
 namespace {
@@ -21,6 +23,31 @@ Spectrum spectrum_of(const Eigen::VectorXd& evals, const Eigen::MatrixXd& evecs)
   s.eigenvalues = evals;
   s.eigenvectors = evecs;
   return s;
+}
+
+// The dict form_spectrum returns (with the GIL held).
+py::dict form_spectrum_dict(const FormSpectrum& s, bool decompose) {
+  py::dict d;
+  d["eigenvalues"] = s.eigenvalues;
+  d["eigenvectors"] = s.eigenvectors;
+  if (decompose) {
+    d["exact"] = s.exact;
+    d["coexact"] = s.coexact;
+    d["harmonic"] = s.harmonic;
+    d["norm_exact"] = s.norm_exact;
+    d["norm_coexact"] = s.norm_coexact;
+    d["norm_harmonic"] = s.norm_harmonic;
+    py::list kinds;
+    for (FormKind kind : s.kinds) kinds.append(form_kind_name(kind));
+    d["kinds"] = kinds;
+  }
+  d["rank"] = s.rank;
+  d["shift"] = s.shift;
+  d["n_converged"] = s.n_converged;
+  d["n_solves"] = s.n_solves;
+  d["method"] = s.method;
+  d["degenerate_fan_triangles"] = s.quality.n_degenerate;
+  return d;
 }
 
 }  // namespace
@@ -43,27 +70,24 @@ void register_spectral(py::module_& m) {
       options.decompose = decompose;
       s = form_spectrum(mesh, options);
     }
-    py::dict d;
-    d["eigenvalues"] = s.eigenvalues;
-    d["eigenvectors"] = s.eigenvectors;
-    if (decompose) {
-      d["exact"] = s.exact;
-      d["coexact"] = s.coexact;
-      d["harmonic"] = s.harmonic;
-      d["norm_exact"] = s.norm_exact;
-      d["norm_coexact"] = s.norm_coexact;
-      d["norm_harmonic"] = s.norm_harmonic;
-      py::list kinds;
-      for (FormKind kind : s.kinds) kinds.append(form_kind_name(kind));
-      d["kinds"] = kinds;
+    return form_spectrum_dict(s, decompose);
+  });
+  m.def("volume_form_spectrum", [](const VolumeMesh& mesh, int degree, int k, bool lumped_mass, double tolerance,
+                                   int max_iterations, bool decompose, const std::string& complex) {
+    FormSpectrum s;
+    {
+      FormSpectrumOptions options;
+      options.complex = parse_dec_complex(complex);
+      py::gil_scoped_release release;
+      options.degree = degree;
+      options.k = k;
+      options.lumped_mass = lumped_mass;
+      options.tolerance = tolerance;
+      options.max_iterations = max_iterations;
+      options.decompose = decompose;
+      s = volume_form_spectrum(mesh, options);
     }
-    d["rank"] = s.rank;
-    d["shift"] = s.shift;
-    d["n_converged"] = s.n_converged;
-    d["n_solves"] = s.n_solves;
-    d["method"] = s.method;
-    d["degenerate_fan_triangles"] = s.quality.n_degenerate;
-    return d;
+    return form_spectrum_dict(s, decompose);
   });
 
   m.def("hks_times", [](const Eigen::VectorXd& evals, const Eigen::MatrixXd& evecs, int n) {

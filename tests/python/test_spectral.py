@@ -46,6 +46,29 @@ def test_form_spectrum_rejects_a_bad_degree():
         polydec.form_spectrum(*polydec.quad_grid(3, 3), 2, degree=3)
 
 
+@pytest.mark.parametrize("degree", [1, 2, 3])
+def test_form_spectrum_on_a_volume_mesh(degree):
+    # A hexahedral solid torus: b1 = 1, b2 = b3 = 0; eigenvectors star-orthonormal on the mesh's
+    # edges, faces or cells, and d0 maps the function eigenpairs to 1-form ones.
+    mesh = polydec.hex_torus_volume(8, 2)
+    r = polydec.form_spectrum(mesh, 8, degree=degree, complex="mesh")
+    D = polydec.volume_dec(mesh, complex="mesh")
+    star = D["star"][degree]
+    W = r["eigenvectors"]
+    assert W.shape == (star.shape[0], 8) and r["rank"] == star.shape[0]
+    assert np.abs(W.T @ star @ W - np.eye(8)).max() <= 1e-8
+    ev = r["eigenvalues"]
+    n_zero = int(np.sum(ev <= 1e-8 * ev[-1]))
+    assert n_zero == (1 if degree == 1 else 0)
+    if degree == 1:
+        evals, _ = polydec.volume_spectrum(mesh, 4)
+        for lam in evals[1:]:
+            if lam < ev[-1] * (1 - 1e-6):
+                assert np.min(np.abs(ev - lam)) <= 1e-8 * lam
+    with pytest.raises(ValueError, match="degree"):
+        polydec.form_spectrum(mesh, 2, degree=4)
+
+
 @pytest.fixture(scope="module")
 def sphere_spectrum():
     V, F = polydec.cube_sphere(4)
