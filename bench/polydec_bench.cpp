@@ -353,10 +353,10 @@ void bench_geodesics(const std::string& name, const Mesh& mesh, int n_sources) {
                     median(t), n_sources, ops_ms)};
   add(r);
   // The face-wise gradient-normalization-divergence pass against the route through G and D, with
-  // the same factors (an operator set under another name keeps the matrices), interleaved.
+  // the same factors (an operator set without its refinement keeps the matrices), interleaved.
   {
     OperatorSet named = build_operators(mesh, parse_laplacian("ours"));
-    named.name = "ours through G and D";
+    named.refinement.reset();
     const HeatGeodesics by_matrices(std::move(named), mesh.mean_edge_length());
     std::vector<double> tm, tf;
     double diff = 0, dmax = 0;
@@ -373,6 +373,39 @@ void bench_geodesics(const std::string& name, const Mesh& mesh, int n_sources) {
          fmt::format("median of {}, interleaved, same factors; max |difference| {:.1e} (distances up to {:.3g}); "
                      "thread CPU time",
                      n_sources, diff, dmax)});
+  }
+  // The heat step's solve for one source: the dense right-hand side against the sparse one (the
+  // forward solve over the source's reach only), on the heat matrix factored as HeatGeodesics does.
+  {
+    const OperatorSet o = build_operators(mesh, parse_laplacian("ours"), false);
+    const double h = mesh.mean_edge_length();
+    SparseMatrix Ml(o.M_lumped.size(), o.M_lumped.size());
+    Ml.setIdentity();
+    Ml.diagonal() = o.M_lumped;
+    CholeskyOptions copt;
+    copt.relaxed_supernodes = false;
+    copt.ordering = CholeskyOrdering::BestFill;
+    const SparseCholesky chol(SparseMatrix(Ml - h * h * o.S), "M - t S", copt);
+    std::vector<double> td, ts;
+    double diff = 0, xmax = 0;
+    for (int i = 0; i < n_sources; ++i) {
+      const int s = int((long(i) * 7919 * 104729) % mesh.n_vertices());
+      Eigen::VectorXd b = Eigen::VectorXd::Zero(o.M_lumped.size()), xd, xs;
+      b[s] = o.M_lumped[s];
+      const std::vector<int> rows{s};
+      const std::vector<double> values{o.M_lumped[s]};
+      if (i == 0) (void)chol.solve_sparse(rows, values);  // its simplicial copy, made once
+      td.push_back(time_ms([&] { xd = chol.solve(b); }));
+      ts.push_back(time_ms([&] { xs = chol.solve_sparse(rows, values); }));
+      diff = std::max(diff, (xs - xd).cwiseAbs().maxCoeff());
+      xmax = std::max(xmax, xd.cwiseAbs().maxCoeff());
+    }
+    add({"heat step, one source: sparse right-hand side", name, "dense solve", "solve_sparse", median(td), median(ts),
+         0, 0,
+         fmt::format("median of {}, interleaved, one factor (nnz(L) {:.2f}M); forward solve over the source's reach, "
+                     "backward solve over the whole factor; max |difference| {:.1e} (solution up to {:.3g}); "
+                     "thread CPU time",
+                     n_sources, chol.factor_nonzeros() / 1e6, diff, xmax)});
   }
   // One field per source for 64 sources at once (blocks of right-hand sides), against the single
   // source median above, re-timed interleaved with it. Target: at most a quarter per source.

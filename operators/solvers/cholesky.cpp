@@ -91,12 +91,32 @@ struct SparseCholesky::Impl {
   mutable cholmod_dense* X = nullptr;
   mutable cholmod_dense* Y = nullptr;
   mutable cholmod_dense* E = nullptr;
+  // solve_sparse: a simplicial copy of L (made on its first call, dropped by refactor), the
+  // dense right-hand side (zero between calls), Bset, Xset and the forward solve's workspace.
+  mutable cholmod_factor* Ls = nullptr;
+  mutable cholmod_dense* Bs = nullptr;
+  mutable cholmod_sparse* Bset = nullptr;
+  mutable cholmod_sparse* Xset = nullptr;
+  mutable cholmod_dense* Xs = nullptr;
+  mutable cholmod_dense* Ys = nullptr;
+  mutable cholmod_dense* Es = nullptr;
+  mutable std::vector<int> iperm;  // row -> position in the factor's ordering
   bool started = false;
+  void drop_simplicial() const {
+    if (Ls) cholmod_free_factor(&Ls, &c);
+  }
   ~Impl() {
     if (started) {
       if (X) cholmod_free_dense(&X, &c);
       if (Y) cholmod_free_dense(&Y, &c);
       if (E) cholmod_free_dense(&E, &c);
+      drop_simplicial();
+      if (Bs) cholmod_free_dense(&Bs, &c);
+      if (Bset) cholmod_free_sparse(&Bset, &c);
+      if (Xset) cholmod_free_sparse(&Xset, &c);
+      if (Xs) cholmod_free_dense(&Xs, &c);
+      if (Ys) cholmod_free_dense(&Ys, &c);
+      if (Es) cholmod_free_dense(&Es, &c);
       if (L) cholmod_free_factor(&L, &c);
       cholmod_finish(&c);
     }
@@ -186,6 +206,7 @@ void SparseCholesky::refactor(const Eigen::SparseMatrix<double>& A_in) {
     return;
   }
 #ifdef POLYDEC_HAVE_CHOLMOD
+  impl_->drop_simplicial();  // solve_sparse's copy holds the old values
   const SpMat A = A_in.isCompressed() ? SpMat() : SpMat(A_in);
   cholmod_sparse s = view_lower(A_in.isCompressed() ? A_in : A);
   cholmod_common& c = impl_->c;
@@ -277,6 +298,74 @@ void SparseCholesky::solve(const double* B, double* X, int n_columns) const {
     throw SolverError("solve with " + name_ + " failed (CHOLMOD status " + std::to_string(impl_->c.status) + ")");
   std::copy_n(static_cast<const double*>(impl_->X->x), size_t(rows_) * n_columns, X);
 #endif
+}
+
+Eigen::VectorXd SparseCholesky::solve_sparse(std::span<const int> rows, std::span<const double> values) const {
+  if (rows.size() != values.size())
+    throw std::invalid_argument("solve_sparse with " + name_ + ": rows and values differ in length");
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(rows_);
+  for (size_t k = 0; k < rows.size(); ++k) {
+    if (rows[k] < 0 || rows[k] >= rows_ || b[rows[k]] != 0)
+      throw std::invalid_argument("solve_sparse with " + name_ + ": row " + std::to_string(rows[k]) +
+                                  " out of range or repeated");
+    b[rows[k]] = values[k];
+  }
+  if (!impl_->use_cholmod || rows.empty()) return solve(b);
+  Eigen::VectorXd x(rows_);
+#ifdef POLYDEC_HAVE_CHOLMOD
+  Impl& m = *impl_;
+  cholmod_common& c = m.c;
+  const size_t n = size_t(rows_);
+  auto fail = [&](const char* what) {
+    throw SolverError("sparse solve with " + name_ + " failed (" + what + ", CHOLMOD status " +
+                      std::to_string(c.status) + ")");
+  };
+  if (!m.Ls) {
+    m.Ls = cholmod_copy_factor(m.L, &c);
+    // Simplicial LL^T with the same values and permutation (no refactorization).
+    if (!m.Ls || !cholmod_change_factor(CHOLMOD_REAL, 1, 0, 0, 0, m.Ls, &c)) fail("simplicial copy");
+    const int* perm = static_cast<const int*>(m.L->Perm);
+    m.iperm.resize(n);
+    for (int k = 0; k < rows_; ++k) m.iperm[size_t(perm ? perm[k] : k)] = k;
+  }
+  if (!m.Bs) m.Bs = cholmod_zeros(n, 1, CHOLMOD_REAL, &c);
+  if (!m.Bset) m.Bset = cholmod_allocate_sparse(n, 1, n, 0, 1, 0, CHOLMOD_PATTERN, &c);
+  if (!m.Bs || !m.Bset) fail("workspace");
+  // The forward solve L y = P b on the permuted rows (the system CHOLMOD_L applies no permutation).
+  const int* perm = static_cast<const int*>(m.L->Perm);
+  std::vector<int> position(rows.size());
+  for (size_t k = 0; k < rows.size(); ++k) position[k] = m.iperm[size_t(rows[k])];
+  double* bs = static_cast<double*>(m.Bs->x);
+  int* bset_p = static_cast<int*>(m.Bset->p);
+  int* bset_i = static_cast<int*>(m.Bset->i);
+  bset_p[0] = 0;
+  bset_p[1] = int(rows.size());
+  for (size_t k = 0; k < rows.size(); ++k) {
+    bs[position[k]] = values[k];
+    bset_i[k] = position[k];
+  }
+  const int ok = cholmod_solve2(CHOLMOD_L, m.Ls, m.Bs, m.Bset, &m.Xs, &m.Xset, &m.Ys, &m.Es, &c);
+  for (size_t k = 0; k < rows.size(); ++k) bs[position[k]] = 0;
+  if (!ok) fail("forward solve");
+  // y: the forward solution on its reach (Xset), zero elsewhere; then L^T z = y on the supernodal factor.
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(rows_);
+  const int* xset_i = static_cast<const int*>(m.Xset->i);
+  const int n_reach = static_cast<const int*>(m.Xset->p)[1];
+  const double* xs = static_cast<const double*>(m.Xs->x);
+  for (int p = 0; p < n_reach; ++p) y[xset_i[p]] = xs[xset_i[p]];
+  cholmod_dense yd{};
+  yd.nrow = n;
+  yd.ncol = 1;
+  yd.nzmax = n;
+  yd.d = n;
+  yd.x = y.data();
+  yd.xtype = CHOLMOD_REAL;
+  yd.dtype = CHOLMOD_DOUBLE;
+  if (!cholmod_solve2(CHOLMOD_Lt, m.L, &yd, nullptr, &m.X, nullptr, &m.Y, &m.E, &c)) fail("backward solve");
+  const double* z = static_cast<const double*>(m.X->x);
+  for (int k = 0; k < rows_; ++k) x[perm ? perm[k] : k] = z[k];
+#endif
+  return x;
 }
 
 std::string SparseCholesky::backend() const {

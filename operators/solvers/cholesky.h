@@ -7,6 +7,7 @@
 
 #include <Eigen/Sparse>
 #include <memory>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -102,6 +103,12 @@ class SparseCholesky {
   Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
   // The same on raw column-major storage: B and X are rows() x n_columns (they may alias).
   void solve(const double* B, double* X, int n_columns) const;
+  // Solves A x = b for a right-hand side with few non-zeros, b(rows[i]) = values[i] (rows distinct,
+  // in [0, rows()); std::invalid_argument otherwise), zero elsewhere. With CHOLMOD the forward solve
+  // runs over the rows' reach in the elimination tree only (cholmod_solve2 with Bset, on a
+  // simplicial copy of the factor made on the first call: the factor's memory again), the backward
+  // solve over the whole supernodal factor; equal to solve() up to round-off. Eigen: solve().
+  Eigen::VectorXd solve_sparse(std::span<const int> rows, std::span<const double> values) const;
 
   int rows() const { return rows_; }
   const std::string& name() const { return name_; }

@@ -238,4 +238,39 @@ TEST_CASE("Cholesky: the better of AMD and METIS by fill, one analysis for two m
   CHECK(x2[3] == Approx(b[3]).epsilon(1e-13));
 }
 
+TEST_CASE("Cholesky: a sparse right-hand side solves as the dense one, after refactor too",
+          "[robust][numerics][cholesky]") {
+  const Mesh mesh = add_noise(hex_sphere(3), 0.1, 5);
+  const Refinement r = refine(mesh);
+  const SparseMatrix S = stiffness(mesh, r), M = mass(mesh, r);
+  const SparseMatrix A = M - 0.01 * S;
+  const int n = int(A.rows());
+  for (CholeskyOrdering ordering : {CholeskyOrdering::Amd, CholeskyOrdering::BestFill}) {
+    CholeskyOptions o;
+    o.ordering = ordering;
+    o.relaxed_supernodes = false;
+    SparseCholesky chol(A, "A", o);
+    auto check = [&](const std::vector<int>& rows, const std::vector<double>& values) {
+      Eigen::VectorXd b = Eigen::VectorXd::Zero(n);
+      for (size_t k = 0; k < rows.size(); ++k) b[rows[k]] = values[k];
+      const Eigen::VectorXd dense = chol.solve(b), sparse = chol.solve_sparse(rows, values);
+      INFO(rows.size() << " rows");
+      CHECK((sparse - dense).norm() <= 1e-12 * dense.norm());
+      CHECK(sparse.cwiseAbs().minCoeff() > 0);  // the whole solution, not only the reach
+    };
+    check({7}, {1.0});
+    check({n - 1, 0, n / 2}, {0.5, -2.0, 3.0});
+    check({11}, {2.5});  // the workspace is clean between calls
+    // New values: the solves follow the new factor (its sparse copy is remade).
+    chol.refactor(SparseMatrix(2.0 * M - 0.5 * S));
+    Eigen::VectorXd b = Eigen::VectorXd::Zero(n);
+    b[7] = 1.0;
+    const Eigen::VectorXd dense = chol.solve(b), sparse = chol.solve_sparse(std::vector<int>{7}, std::vector<double>{1.0});
+    CHECK((sparse - dense).norm() <= 1e-12 * dense.norm());
+    CHECK(chol.solve_sparse(std::vector<int>{}, std::vector<double>{}).norm() == 0.0);
+    CHECK_THROWS_AS(chol.solve_sparse(std::vector<int>{3, 3}, std::vector<double>{1.0, 1.0}), std::invalid_argument);
+    CHECK_THROWS_AS(chol.solve_sparse(std::vector<int>{n}, std::vector<double>{1.0}), std::invalid_argument);
+  }
+}
+
 }  // namespace test_numerics
