@@ -15,7 +15,8 @@ command -v "$CXX" >/dev/null || { echo "fuzz/run.sh: $CXX not found" >&2; exit 2
 
 EIGEN=$(pkg-config --cflags-only-I eigen3 2>/dev/null || echo -I/usr/include/eigen3)
 # -include mirrors the main build's precompiled headers (some sources rely on them for Eigen/Geometry).
-CFLAGS=(-std=c++20 -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all
+# UBSan without object-size and pointer-overflow, as the sanitizer build (CMakeLists.txt says why).
+CFLAGS=(-std=c++20 -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize=object-size,pointer-overflow -fno-sanitize-recover=all
         -I"$ROOT" -I"$OUT/include" ${EIGEN//-I/-isystem } -include Eigen/Dense -include Eigen/Sparse)
 mkdir -p "$OUT/objects" "$OUT/artifacts" "$OUT/include/polydec"
 # The installed include layout <polydec/dec/...> (one root for every layer): links to the source folders.
