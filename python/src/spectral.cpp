@@ -50,6 +50,21 @@ py::dict form_spectrum_dict(const FormSpectrum& s, bool decompose) {
   return d;
 }
 
+// The options of form_spectrum and volume_form_spectrum from the Python arguments (with the GIL held:
+// parse_dec_complex may throw).
+FormSpectrumOptions form_spectrum_options(int degree, int k, bool lumped_mass, double tolerance, int max_iterations,
+                                          bool decompose, const std::string& complex) {
+  FormSpectrumOptions options;
+  options.complex = parse_dec_complex(complex);
+  options.degree = degree;
+  options.k = k;
+  options.lumped_mass = lumped_mass;
+  options.tolerance = tolerance;
+  options.max_iterations = max_iterations;
+  options.decompose = decompose;
+  return options;
+}
+
 }  // namespace
 
 void register_spectral(py::module_& m) {
@@ -57,34 +72,22 @@ void register_spectral(py::module_& m) {
                             int k, bool lumped_mass, double tolerance, int max_iterations, bool decompose,
                             const std::string& complex, double planarity) {
     const Mesh mesh = h.with_planarity(planarity);
+    const FormSpectrumOptions options =
+        form_spectrum_options(degree, k, lumped_mass, tolerance, max_iterations, decompose, complex);
     FormSpectrum s;
     {
-      FormSpectrumOptions options;
-      options.complex = parse_dec_complex(complex);
       py::gil_scoped_release release;
-      options.degree = degree;
-      options.k = k;
-      options.lumped_mass = lumped_mass;
-      options.tolerance = tolerance;
-      options.max_iterations = max_iterations;
-      options.decompose = decompose;
       s = form_spectrum(mesh, options);
     }
     return form_spectrum_dict(s, decompose);
   });
   m.def("volume_form_spectrum", [](const VolumeMesh& mesh, int degree, int k, bool lumped_mass, double tolerance,
                                    int max_iterations, bool decompose, const std::string& complex) {
+    const FormSpectrumOptions options =
+        form_spectrum_options(degree, k, lumped_mass, tolerance, max_iterations, decompose, complex);
     FormSpectrum s;
     {
-      FormSpectrumOptions options;
-      options.complex = parse_dec_complex(complex);
       py::gil_scoped_release release;
-      options.degree = degree;
-      options.k = k;
-      options.lumped_mass = lumped_mass;
-      options.tolerance = tolerance;
-      options.max_iterations = max_iterations;
-      options.decompose = decompose;
       s = volume_form_spectrum(mesh, options);
     }
     return form_spectrum_dict(s, decompose);
