@@ -10,8 +10,7 @@
 #include <memory>
 #include <stdexcept>
 
-#include "polydec/apps/applications/detail/complete_eigs.h"
-#include "polydec/apps/applications/detail/mixed_shift_invert.h"
+#include "polydec/apps/applications/detail/form_pencil.h"
 #include "polydec/apps/applications/hodge_decomposition.h"
 #include "polydec/apps/applications/spectrum.h"
 #include "polydec/dec/surface/complex.h"
@@ -26,8 +25,6 @@ namespace form_spectrum_detail {
 namespace {
 
 using SpMat = Eigen::SparseMatrix<double>;
-
-using mixed_shift_invert_detail::MixedShiftInvert;
 
 SpMat diagonal_matrix(const Eigen::VectorXd& d) {
   SpMat D(d.size(), d.size());
@@ -125,32 +122,10 @@ FormSpectrum form_spectrum(const Mesh& mesh, const FormSpectrumOptions& options)
     D = B1;
     name = "[-sigma star2, star2 d1; d1^T star2, -star1]";
   }
-  out.rank = int(B.rows());
-  const int n = out.rank;
-  if (options.k < 1 || options.k >= n)
-    throw std::invalid_argument(fmt::format("form spectrum: k = {} must lie in [1, {})", options.k, n));
-  const int ncv = options.krylov_size > 0 ? std::clamp(options.krylov_size, options.k + 1, n)
-                                          : spectrum_krylov_size(options.k, n);
-  MixedShiftInvert op(A, B, C, D, name);
-  op.set_shift(out.shift);
-  // Complete in the copies of multiple eigenvalues (complete_eigs.h).
-  const complete_eigs_detail::Pairs pairs = complete_eigs_detail::smallest_pairs(
-      op, B, options.k, ncv, out.shift, options.max_iterations, options.tolerance, "form spectrum");
-  out.n_converged = pairs.n_converged;
-  out.n_solves = pairs.n_solves;
-  out.method = "Spectra SymGEigsShiftSolver + quasi-definite SimplicialLDLT";
-  out.eigenvalues = pairs.values;
-  out.eigenvectors = R * pairs.vectors;
+  form_pencil_detail::solve(A, B, C, D, R, name, options, "form spectrum", out);
   if (!options.decompose) return out;
 
   const int k = options.k;
-  out.exact = Eigen::MatrixXd::Zero(out.eigenvectors.rows(), k);
-  out.coexact = out.exact;
-  out.harmonic = out.exact;
-  out.norm_exact.resize(k);
-  out.norm_coexact.resize(k);
-  out.norm_harmonic.resize(k);
-  out.kinds.resize(size_t(k));
   // Eigenvalues below this (relative to the first nonzero scale 1 / area) count as zero.
   const double zero = 1e-8 / area;
   if (options.degree == 1) {
@@ -186,12 +161,7 @@ FormSpectrum form_spectrum(const Mesh& mesh, const FormSpectrumOptions& options)
       out.norm_harmonic[i] = star_norm(H.star2, out.harmonic.col(i));
     }
   }
-  for (int i = 0; i < k; ++i) {
-    const double e = out.norm_exact[i], c = out.norm_coexact[i], h = out.norm_harmonic[i];
-    out.kinds[size_t(i)] = h >= e && h >= c ? FormKind::Harmonic
-                           : e >= c         ? FormKind::Exact
-                                            : FormKind::Coexact;
-  }
+  form_pencil_detail::classify(out);
   return out;
 }
 

@@ -218,6 +218,45 @@ void report(const Options& o, const LazyMesh& mesh, const std::string& laplacian
                o.out);
 }
 
+
+// The eigenpairs of a form spectrum as JSON: index, eigenvalue, kind and the Hodge parts' norms.
+nlohmann::json form_eigenpairs_json(const FormSpectrum& sp) {
+  nlohmann::json pairs = nlohmann::json::array();
+  for (Eigen::Index i = 0; i < sp.eigenvalues.size(); ++i)
+    pairs.push_back({{"index", i},
+                     {"eigenvalue", sp.eigenvalues[i]},
+                     {"kind", form_kind_name(sp.kinds[size_t(i)])},
+                     {"norm_exact", sp.norm_exact[i]},
+                     {"norm_coexact", sp.norm_coexact[i]},
+                     {"norm_harmonic", sp.norm_harmonic[i]}});
+  return pairs;
+}
+
+// eigenvalues.txt (eigenvalue, kind, the parts' norms a line) and the eigen-cochains with their
+// Hodge parts (eigenvectors.mtx, exact.mtx, coexact.mtx, harmonic.mtx) into `dir`.
+void write_form_spectrum_files(const std::string& dir, const FormSpectrum& sp) {
+  std::filesystem::create_directories(dir);
+  const std::string p = dir + "/eigenvalues.txt";
+  std::ofstream f(p);
+  if (!f) throw FileError(p, 0, -1, "cannot open file for writing");
+  for (Eigen::Index i = 0; i < sp.eigenvalues.size(); ++i)
+    f << fmt::format("{:.17g} {} {:.6g} {:.6g} {:.6g}\n", sp.eigenvalues[i], form_kind_name(sp.kinds[size_t(i)]),
+                     sp.norm_exact[i], sp.norm_coexact[i], sp.norm_harmonic[i]);
+  write_dense_matrix_market(dir + "/eigenvectors.mtx", sp.eigenvectors);
+  write_dense_matrix_market(dir + "/exact.mtx", sp.exact);
+  write_dense_matrix_market(dir + "/coexact.mtx", sp.coexact);
+  write_dense_matrix_market(dir + "/harmonic.mtx", sp.harmonic);
+}
+
+// The eigenvalues with their kinds and the parts' norms, one line each, on standard output.
+void print_form_eigenpairs(const FormSpectrum& sp) {
+  fmt::print("{} smallest eigenvalues of the Hodge Laplacian (norms of the exact, co-exact, harmonic parts):\n",
+             sp.eigenvalues.size());
+  for (Eigen::Index i = 0; i < sp.eigenvalues.size(); ++i)
+    fmt::print("  {:4d}  {:.10g}  {:<9} {:.3g} {:.3g} {:.3g}\n", i, sp.eigenvalues[i],
+               form_kind_name(sp.kinds[size_t(i)]), sp.norm_exact[i], sp.norm_coexact[i], sp.norm_harmonic[i]);
+}
+
 void run_form(const Options& o) {
   if (o.form != 1 && o.form != 2) throw UsageError("--form must be 0, 1 or 2");
   if (o.engine.engine != "serial") throw UsageError("--form: only the serial engine computes form spectra");
@@ -246,14 +285,7 @@ void run_form(const Options& o) {
                                : (o.form == 1 ? cx.n_pairs() : cx.n_triples());
   const char* cell_file = on_mesh ? (o.form == 1 ? "edges.txt" : "faces.txt") : (o.form == 1 ? "pairs.txt" : "triples.txt");
   std::vector<double> ev(sp.eigenvalues.data(), sp.eigenvalues.data() + sp.eigenvalues.size());
-  nlohmann::json pairs = nlohmann::json::array();
-  for (int i = 0; i < o.k; ++i)
-    pairs.push_back({{"index", i},
-                     {"eigenvalue", ev[size_t(i)]},
-                     {"kind", form_kind_name(sp.kinds[size_t(i)])},
-                     {"norm_exact", sp.norm_exact[i]},
-                     {"norm_coexact", sp.norm_coexact[i]},
-                     {"norm_harmonic", sp.norm_harmonic[i]}});
+  const nlohmann::json pairs = form_eigenpairs_json(sp);
   nlohmann::json j = {{"mesh", o.mesh},          {"form", o.form},
                       {"mass", o.mass},          {"vertices", mesh.n_vertices()},
                       {"faces", mesh.n_faces()}, {"complex", to_string(complex)}, {"cells", n_cells},
@@ -263,20 +295,7 @@ void run_form(const Options& o) {
                       {"fan_degenerate", sp.quality.n_degenerate}};
   const auto t_write = PhaseTimer::Clock::now();
   if (!o.out.empty()) {
-    std::filesystem::create_directories(o.out);
-    {
-      const std::string p = o.out + "/eigenvalues.txt";
-      std::ofstream f(p);
-      if (!f) throw FileError(p, 0, -1, "cannot open file for writing");
-      for (int i = 0; i < o.k; ++i)
-        f << fmt::format("{:.17g} {} {:.6g} {:.6g} {:.6g}\n", ev[size_t(i)],
-                         form_kind_name(sp.kinds[size_t(i)]), sp.norm_exact[i], sp.norm_coexact[i],
-                         sp.norm_harmonic[i]);
-    }
-    write_dense_matrix_market(o.out + "/eigenvectors.mtx", sp.eigenvectors);
-    write_dense_matrix_market(o.out + "/exact.mtx", sp.exact);
-    write_dense_matrix_market(o.out + "/coexact.mtx", sp.coexact);
-    write_dense_matrix_market(o.out + "/harmonic.mtx", sp.harmonic);
+    write_form_spectrum_files(o.out, sp);
     {
       const std::string p = o.out + "/" + cell_file;
       std::ofstream f(p);
@@ -333,13 +352,7 @@ void run_form(const Options& o) {
   }
   fmt::print("{}: {} vertices, {} faces; Whitney {}-forms on the {} complex: {} cells, rank {}; shift {:.6g}\n",
              o.mesh, mesh.n_vertices(), mesh.n_faces(), o.form, to_string(complex), n_cells, sp.rank, sp.shift);
-  fmt::print(
-      "{} smallest eigenvalues of the Hodge Laplacian (norms of the exact, co-exact, harmonic parts):\n",
-      o.k);
-  for (int i = 0; i < o.k; ++i)
-    fmt::print("  {:4d}  {:.10g}  {:<9} {:.3g} {:.3g} {:.3g}\n", i, ev[size_t(i)],
-               form_kind_name(sp.kinds[size_t(i)]), sp.norm_exact[i], sp.norm_coexact[i],
-               sp.norm_harmonic[i]);
+  print_form_eigenpairs(sp);
   if (!o.png.empty()) fmt::print("wrote {}\n", o.png);
   if (!o.out.empty())
     fmt::print(
@@ -360,25 +373,19 @@ void run_volume_form(const Options& o) {
   if (o.k < 1) throw UsageError("--k must be positive");
   const DecComplex complex = parse_option(parse_dec_complex, o.complex);
   const bool on_mesh = complex == DecComplex::Mesh;
-  const VolumeMesh mesh = load_volume_mesh(o.mesh);
+  PhaseTimer timer;
+  const VolumeMesh mesh = timer.time("read", [&] { return load_volume_mesh(o.mesh); });
   FormSpectrumOptions fo;
   fo.complex = complex;
   fo.degree = o.form;
   fo.k = o.k;
   fo.lumped_mass = o.mass == "lumped";
-  const FormSpectrum sp = volume_form_spectrum(mesh, fo);
+  const FormSpectrum sp = timer.time("solve", [&] { return volume_form_spectrum(mesh, fo); });
   static const char* const mesh_files[4] = {"", "edges.txt", "faces.txt", "cells.txt"};
   static const char* const complete_files[4] = {"", "pairs.txt", "triples.txt", "quadruples.txt"};
   const char* cell_file = on_mesh ? mesh_files[o.form] : complete_files[o.form];
   std::vector<double> ev(sp.eigenvalues.data(), sp.eigenvalues.data() + sp.eigenvalues.size());
-  nlohmann::json pairs = nlohmann::json::array();
-  for (int i = 0; i < o.k; ++i)
-    pairs.push_back({{"index", i},
-                     {"eigenvalue", ev[size_t(i)]},
-                     {"kind", form_kind_name(sp.kinds[size_t(i)])},
-                     {"norm_exact", sp.norm_exact[i]},
-                     {"norm_coexact", sp.norm_coexact[i]},
-                     {"norm_harmonic", sp.norm_harmonic[i]}});
+  const nlohmann::json pairs = form_eigenpairs_json(sp);
   nlohmann::json j = {{"mesh", o.mesh},          {"form", o.form},
                       {"mass", o.mass},          {"vertices", mesh.n_vertices()},
                       {"cells", mesh.n_cells()}, {"complex", to_string(complex)},
@@ -386,20 +393,9 @@ void run_volume_form(const Options& o) {
                       {"k", o.k},                {"shift", sp.shift},
                       {"method", sp.method},     {"eigenvalues", ev},
                       {"eigenpairs", pairs}};
+  const auto t_write = PhaseTimer::Clock::now();
   if (!o.out.empty()) {
-    std::filesystem::create_directories(o.out);
-    {
-      const std::string p = o.out + "/eigenvalues.txt";
-      std::ofstream f(p);
-      if (!f) throw FileError(p, 0, -1, "cannot open file for writing");
-      for (int i = 0; i < o.k; ++i)
-        f << fmt::format("{:.17g} {} {:.6g} {:.6g} {:.6g}\n", ev[size_t(i)], form_kind_name(sp.kinds[size_t(i)]),
-                         sp.norm_exact[i], sp.norm_coexact[i], sp.norm_harmonic[i]);
-    }
-    write_dense_matrix_market(o.out + "/eigenvectors.mtx", sp.eigenvectors);
-    write_dense_matrix_market(o.out + "/exact.mtx", sp.exact);
-    write_dense_matrix_market(o.out + "/coexact.mtx", sp.coexact);
-    write_dense_matrix_market(o.out + "/harmonic.mtx", sp.harmonic);
+    write_form_spectrum_files(o.out, sp);
     {
       const std::string p = o.out + "/" + cell_file;
       std::ofstream f(p);
@@ -428,6 +424,8 @@ void run_volume_form(const Options& o) {
     j["files"] = {"eigenvalues.txt", "eigenvectors.mtx", "exact.mtx", "coexact.mtx", "harmonic.mtx", cell_file,
                   "spectrum.json"};
   }
+  timer.add("write", t_write);
+  j["times_ms"] = timer.json();
   if (o.json) {
     print_json(j);
     return;
@@ -435,10 +433,7 @@ void run_volume_form(const Options& o) {
   fmt::print("{}: {} vertices, {} cells (volume); Whitney {}-forms on the {} complex: {} k-cells, rank {}; shift {:.6g}\n",
              o.mesh, mesh.n_vertices(), mesh.n_cells(), o.form, to_string(complex), sp.eigenvectors.rows(), sp.rank,
              sp.shift);
-  fmt::print("{} smallest eigenvalues of the Hodge Laplacian (norms of the exact, co-exact, harmonic parts):\n", o.k);
-  for (int i = 0; i < o.k; ++i)
-    fmt::print("  {:4d}  {:.10g}  {:<9} {:.3g} {:.3g} {:.3g}\n", i, ev[size_t(i)], form_kind_name(sp.kinds[size_t(i)]),
-               sp.norm_exact[i], sp.norm_coexact[i], sp.norm_harmonic[i]);
+  print_form_eigenpairs(sp);
   if (!o.out.empty())
     fmt::print("wrote eigenvalues.txt, eigenvectors.mtx (k-cells x k), exact/coexact/harmonic.mtx, {} and spectrum.json to {}\n",
                cell_file, o.out);

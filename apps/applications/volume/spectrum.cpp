@@ -9,8 +9,7 @@
 #include <memory>
 #include <stdexcept>
 
-#include "polydec/apps/applications/detail/complete_eigs.h"
-#include "polydec/apps/applications/detail/mixed_shift_invert.h"
+#include "polydec/apps/applications/detail/form_pencil.h"
 #include "polydec/apps/applications/volume/poisson.h"
 #include "polydec/dec/volume/hodge_star.h"
 #include "polydec/dec/mesh/volume_generators.h"
@@ -218,33 +217,12 @@ FormSpectrum volume_form_spectrum(const VolumeMesh& mesh, const FormSpectrumOpti
   FormSpectrum out;
   out.degree = degree;
   out.shift = -options.shift_factor / scale;
-  out.rank = int(B.rows());
-  const int n = out.rank;
-  if (options.k < 1 || options.k >= n)
-    throw std::invalid_argument(fmt::format("volume form spectrum: k = {} must lie in [1, {})", options.k, n));
-  const int ncv = options.krylov_size > 0 ? std::clamp(options.krylov_size, options.k + 1, n)
-                                          : spectrum_krylov_size(options.k, n);
   const std::string name = fmt::format("[d{0}^T star{1} d{0} - sigma star{2}, star{2} d{3}; d{3}^T star{2}, -star{3}]",
                                        degree, degree + 1, degree, degree - 1);
-  mixed_shift_invert_detail::MixedShiftInvert op(A, B, C, M, name);
-  op.set_shift(out.shift);
-  const complete_eigs_detail::Pairs pairs = complete_eigs_detail::smallest_pairs(
-      op, B, options.k, ncv, out.shift, options.max_iterations, options.tolerance, "volume form spectrum");
-  out.n_converged = pairs.n_converged;
-  out.n_solves = pairs.n_solves;
-  out.method = "Spectra SymGEigsShiftSolver + quasi-definite SimplicialLDLT";
-  out.eigenvalues = pairs.values;
-  out.eigenvectors = Rk * pairs.vectors;
+  const Eigen::MatrixXd Y = form_pencil_detail::solve(A, B, C, M, Rk, name, options, "volume form spectrum", out);
   if (!options.decompose) return out;
 
   const int k = options.k;
-  out.exact = Eigen::MatrixXd::Zero(out.eigenvectors.rows(), k);
-  out.coexact = out.exact;
-  out.harmonic = out.exact;
-  out.norm_exact.resize(k);
-  out.norm_coexact.resize(k);
-  out.norm_harmonic.resize(k);
-  out.kinds.resize(size_t(k));
   const double zero = 1e-8 / scale;
   const SparseCholesky solve_M(M, fmt::format("the {}-form mass", degree - 1));
   const std::unique_ptr<SparseCholesky> solve_B =
@@ -252,7 +230,7 @@ FormSpectrum volume_form_spectrum(const VolumeMesh& mesh, const FormSpectrumOpti
   auto norm = [&](const Eigen::VectorXd& x) { return std::sqrt(std::max(0.0, x.dot(star * x))); };
   for (int i = 0; i < k; ++i) {
     const double lambda = out.eigenvalues[i];
-    const Eigen::VectorXd y = pairs.vectors.col(i);
+    const Eigen::VectorXd y = Y.col(i);
     if (std::abs(lambda) > zero) {
       out.exact.col(i) = d_in * (Rm * solve_M.solve(Eigen::VectorXd(C.transpose() * y))) / lambda;
       if (solve_B) out.coexact.col(i) = Rk * solve_B->solve(Eigen::VectorXd(A * y)) / lambda;
@@ -261,9 +239,8 @@ FormSpectrum volume_form_spectrum(const VolumeMesh& mesh, const FormSpectrumOpti
     out.norm_exact[i] = norm(out.exact.col(i));
     out.norm_coexact[i] = norm(out.coexact.col(i));
     out.norm_harmonic[i] = norm(out.harmonic.col(i));
-    const double e = out.norm_exact[i], c = out.norm_coexact[i], h = out.norm_harmonic[i];
-    out.kinds[size_t(i)] = h >= e && h >= c ? FormKind::Harmonic : e >= c ? FormKind::Exact : FormKind::Coexact;
   }
+  form_pencil_detail::classify(out);
   return out;
 }
 
