@@ -14,11 +14,23 @@ CXX=${POLYDEC_FUZZ_CXX:-clang++}
 command -v "$CXX" >/dev/null || { echo "fuzz/run.sh: $CXX not found" >&2; exit 2; }
 
 EIGEN=$(pkg-config --cflags-only-I eigen3 2>/dev/null || echo -I/usr/include/eigen3)
-# -include mirrors the main build's precompiled headers (some sources rely on them for Eigen/Geometry).
 # UBSan without object-size and pointer-overflow, as the sanitizer build (CMakeLists.txt says why).
 CFLAGS=(-std=c++20 -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize=object-size,pointer-overflow -fno-sanitize-recover=all
-        -I"$ROOT" -I"$OUT/include" ${EIGEN//-I/-isystem } -include Eigen/Dense -include Eigen/Sparse)
+        -I"$ROOT" -I"$OUT/include" ${EIGEN//-I/-isystem })
 mkdir -p "$OUT/objects" "$OUT/artifacts" "$OUT/include/polydec"
+
+# Eigen/Dense and Eigen/Sparse precompiled, as the main build's precompiled headers (some sources
+# rely on them for Eigen/Geometry): one for the library's objects (coverage instrumentation only,
+# fuzzer-no-link) and one for the targets (fuzzer), since clang refuses a header precompiled with
+# other instrumentation. ~4 s of compile saved per source.
+printf '#include <Eigen/Dense>\n#include <Eigen/Sparse>\n' >"$OUT/eigen.h"
+for kind in fuzzer-no-link fuzzer; do
+  pch="$OUT/eigen-$kind.pch"
+  if [[ ! -f $pch || ${BASH_SOURCE[0]} -nt $pch ]]; then
+    "$CXX" "${CFLAGS[@]}" -fsanitize="$kind" -fpch-instantiate-templates -x c++-header "$OUT/eigen.h" -o "$pch"
+    rm -rf "$OUT/objects" && mkdir -p "$OUT/objects"
+  fi
+done
 # The installed include layout <polydec/dec/...> (one root for every layer): links to the source folders.
 for part in dec operators apps; do ln -sfn "$ROOT/$part" "$OUT/include/polydec/$part"; done
 
@@ -39,20 +51,24 @@ for rel in "${SOURCES[@]}"; do
 done
 t0=$(date +%s)
 if ((${#stale[@]})); then
-  printf '%s\n' "${stale[@]}" | xargs -P 2 -I{} bash -c 'src=${1%%:*}; obj=${1#*:}; shift; "$@" -fsanitize=fuzzer-no-link -c "$src" -o "$obj"' _ {} "$CXX" "${CFLAGS[@]}"
+  printf '%s\n' "${stale[@]}" | xargs -P 2 -I{} bash -c 'src=${1%%:*}; obj=${1#*:}; shift; "$@" -c "$src" -o "$obj"' _ {} "$CXX" "${CFLAGS[@]}" -fsanitize=fuzzer-no-link -include-pch "$OUT/eigen-fuzzer-no-link.pch"
   rm -f "$OUT/libpolydec_fuzz.a"
 fi
 [[ -f $OUT/libpolydec_fuzz.a ]] || ar rcs "$OUT/libpolydec_fuzz.a" "$OUT"/objects/*.o
 
 TARGETS=(obj off ply assemble mtx ovm vtk medit msh meshb virtual_positions vtu)
+# The targets, two compiles at a time (a failed compile fails the script).
+stale_targets=()
 for t in "${TARGETS[@]}"; do
   bin="$OUT/fuzz_$t"
   src="$ROOT/fuzz/fuzz_$t.cpp"
   if [[ ! -f $bin || $src -nt $bin || $ROOT/fuzz/fuzz_common.h -nt $bin || $ROOT/fuzz/fuzz_volume.h -nt $bin ||
-        $OUT/libpolydec_fuzz.a -nt $bin ]]; then
-    "$CXX" "${CFLAGS[@]}" -fsanitize=fuzzer "$src" "$OUT/libpolydec_fuzz.a" -lfmt -lexpat -lz -llz4 -llzma -o "$bin"
-  fi
+        $OUT/libpolydec_fuzz.a -nt $bin ]]; then stale_targets+=("$t"); fi
 done
+if ((${#stale_targets[@]})); then
+  printf '%s\n' "${stale_targets[@]}" | xargs -P 2 -I{} "$CXX" "${CFLAGS[@]}" -fsanitize=fuzzer -include-pch "$OUT/eigen-fuzzer.pch" \
+    "$ROOT/fuzz/fuzz_{}.cpp" "$OUT/libpolydec_fuzz.a" -lfmt -lexpat -lz -llz4 -llzma -o "$OUT/fuzz_{}"
+fi
 echo "fuzz/run.sh: build took $(( $(date +%s) - t0 )) s"
 
 # One target: its run's exit status goes to $OUT/fuzz_$t.status, its output to $OUT/fuzz_$t.log.
