@@ -46,10 +46,14 @@ done
 
 # The three examples, each its own CMake project using only find_package(polydec).
 export LD_LIBRARY_PATH="$prefix/lib:${LD_LIBRARY_PATH:-}"
+# (configured and built side by side; a failed one fails the script at its wait)
+pids=()
 for ex in hodge_laplacian geodesics eigenpairs; do
-  cmake -S "$root/examples/$ex" -B "$work/$ex" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$prefix" >/dev/null
-  ninja -C "$work/$ex" >/dev/null
+  (cmake -S "$root/examples/$ex" -B "$work/$ex" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$prefix" >/dev/null &&
+     ninja -C "$work/$ex" >/dev/null) &
+  pids+=($!)
 done
+for pid in "${pids[@]}"; do wait "$pid"; done
 "$work/hodge_laplacian/hodge_laplacian"
 "$prefix/bin/polydec" convert --help >/dev/null
 "$work/eigenpairs/eigenpairs" - 9 "$work/eigenpairs.txt"
