@@ -6,8 +6,11 @@
 // precomputation. Prints a Markdown table on stdout.
 //
 //   polydec_bench [--big N] [--no-big] [--quick] [--reps K] [--blas-threads N] [--no-big-geodesics]
-//                 [--only spectrum|feec|geodesics|cholesky|form-spectrum|volume]   (one section on FINE SPHERE;
+//                 [--only spectrum|feec|geodesics|cholesky|form-spectrum|volume|dec]   (one section on FINE SPHERE;
 //                 form-spectrum: a 100k-face quad sphere)
+//   polydec_bench --only dec [--no-big]   (DEC bundles, each in a child process: HEX SPHERE on both
+//                 complexes; the mesh complex on a 1M-quad sphere, a jittered 32^3 hex grid, BCC Voronoi
+//                 cells and the 100^3 grid)
 //   polydec_bench --only volume [--volume-big N]   (volume S + M against the plain volume reference:
 //                 cube_hexahedron_4, hex_grid_volume(16^3) and hex_grid_volume(N^3), default N = 100)
 //   polydec_bench --only blas-load [--cli PATH]   (not part of the default run: `polydec geodesics` on
@@ -881,7 +884,7 @@ int main(int argc, char** argv) {
     else if (a == "--reps" && i + 1 < argc) reps = std::stoi(argv[++i]);
     else {
       std::fprintf(stderr, "usage: polydec_bench [--big N] [--no-big] [--quick] [--reps K] [--blas-threads N] [--no-big-geodesics] [--only SECTION] [--volume-big N] [--cli PATH]\n"
-                           "  SECTION: spectrum|form-spectrum|feec|geodesics|cholesky|volume|blas-load (blas-load runs only when asked for)\n");
+                           "  SECTION: spectrum|form-spectrum|feec|geodesics|cholesky|volume|dec|blas-load (blas-load runs only when asked for)\n");
       return 2;
     }
   }
