@@ -252,7 +252,7 @@ TEST_CASE("each command reads a .msh or .vtu file as what it holds; a broken one
   const std::string bad = dir.path("bad.msh");
   std::ofstream(bad, std::ios::binary) << bytes;
   const std::string expected = fmt::format("{}:{}: bad node coordinate 'x'", bad, line);
-  for (const std::string command :
+  for (const std::string& command :
        {"info '" + bad + "'", "operators '" + bad + "' --out '" + dir.path("o") + "'", "spectrum '" + bad + "' --k 2",
         "geodesics '" + bad + "' --source 0", "dec '" + bad + "' --out '" + dir.path("d") + "'", "hodge '" + bad + "'",
         "render '" + bad + "' --png '" + dir.path("p.png") + "'", "convert '" + bad + "' '" + dir.path("x.obj") + "'"}) {
