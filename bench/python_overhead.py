@@ -8,11 +8,11 @@ validated once, the extension call for the same three matrices with the refineme
 call (the C++ call's work: target under 1.5x) and with it cached (the Mesh's normal second call),
 then polydec.laplacian(mesh, mass="galerkin") (S and M, public, cached refinement) and
 polydec.laplacian(V, F, ...) from arrays (conversion and validation every call), all medians of N.
-The extension hands the matrices to scipy without copying them. Run it also with
-MALLOC_TRIM_THRESHOLD_ and MALLOC_MMAP_THRESHOLD_ set high (glibc then keeps freed memory instead of
-returning it to the system: no fresh pages to fault in on the next call; the CLI inherits the
-setting): see docs/benchmarks.md.
-Usage: PYTHONPATH=build/python /usr/bin/python3 bench/python_overhead.py build/polydec [N]"""
+The extension hands the matrices to scipy without copying them. With --keep-freed-memory the Python
+process first calls polydec.keep_freed_memory() (the explicit opt-in: glibc keeps freed memory for
+reuse instead of returning it to the system, so a call faults no fresh pages in; the CLI runs with
+glibc's defaults); see docs/benchmarks.md.
+Usage: PYTHONPATH=build/python /usr/bin/python3 bench/python_overhead.py build/polydec [N] [--keep-freed-memory]"""
 
 import json
 import os
@@ -35,8 +35,12 @@ def seconds(fn):
 
 
 def main():
-    cli = sys.argv[1]
-    n = int(sys.argv[2]) if len(sys.argv) > 2 else 10
+    args = [a for a in sys.argv[1:] if a != "--keep-freed-memory"]
+    keep = len(args) < len(sys.argv) - 1
+    cli = args[0]
+    n = int(args[1]) if len(args) > 1 else 10
+    if keep and not polydec.keep_freed_memory():
+        sys.exit("keep_freed_memory: not available (not glibc)")
     data = pathlib.Path(__file__).resolve().parents[2] / "shared" / "data" / "unit-sphere.off"
     if data.exists():
         name = "FINE SPHERE"
@@ -67,7 +71,8 @@ def main():
             rows["warm"].append(seconds(lambda: polydec._polydec.operators(h, "ours", parts, 1, -1.0)))
             rows["public"].append(seconds(lambda: polydec.laplacian(mesh, mass="galerkin")))
             rows["arrays"].append(seconds(lambda: polydec.laplacian(V, F, mass="galerkin")))
-    glibc = " (MALLOC_TRIM/MMAP_THRESHOLD_ set)" if os.environ.get("MALLOC_TRIM_THRESHOLD_") else ""
+    glibc = (" (polydec.keep_freed_memory() in Python)" if keep else
+             " (MALLOC_TRIM/MMAP_THRESHOLD_ set)" if os.environ.get("MALLOC_TRIM_THRESHOLD_") else "")
     print(f"{name}: {mesh.n_vertices} vertices, {mesh.n_faces} faces; medians of {n} interleaved rounds{glibc}; "
           f"load average {os.getloadavg()[0]:.1f}; wall time, and CPU time of the calling thread (robust to a "
           "busy machine)")

@@ -8,6 +8,7 @@
 #include <iterator>
 #include <stdexcept>
 
+#include "polydec/dec/io/mesh_groups.h"
 #include "polydec/dec/io/mesh_io.h"
 #include "polydec/dec/io/volume_io.h"
 #include "polydec/dec/mesh/repair.h"
@@ -33,32 +34,65 @@ AnyMesh with_global_options(AnyMesh mesh) {
 
 }  // namespace load_detail
 
-Mesh load_mesh(const std::string& path, bool repair_first, std::vector<int>* vertex_map) {
-  global_options().last_input = path;
-  if (!repair_first) {
-    const Mesh mesh = load_detail::with_global_options(read_mesh(path));
-    if (vertex_map) {
-      vertex_map->resize(mesh.n_vertices());
-      for (int v = 0; v < mesh.n_vertices(); ++v) (*vertex_map)[v] = v;
-    }
-    return mesh;
-  }
-  PolygonSoup soup = read_polygon_soup(path);
+namespace load_detail {
+
+// The mesh of a file's polygons after the opt-in repair steps (load_mesh).
+Mesh repaired(const std::string& path, PolygonSoup soup, std::vector<int>* vertex_map) {
   RepairOptions options;
   options.merge_vertices = true;  // exactly coincident vertices only (tolerance 0)
   const RepairReport report = repair(soup, options);
   for (const std::string& line : report.summary()) fmt::print(stderr, "polydec: --repair {}: {}\n", path, line);
   if (vertex_map) *vertex_map = report.vertex_map;
   try {
-    return load_detail::with_global_options(Mesh(std::move(soup)));
+    return with_global_options(Mesh(std::move(soup)));
   } catch (const InvalidMeshError& e) {
     throw InvalidMeshError(e.element, e.index, fmt::format("{}: still invalid after --repair: {}", path, e.what()));
   }
 }
 
+// 0, 1, ..., n - 1.
+std::vector<int> identity_map(int n) {
+  std::vector<int> map(static_cast<size_t>(n));
+  for (int v = 0; v < n; ++v) map[size_t(v)] = v;
+  return map;
+}
+
+}  // namespace load_detail
+
+Mesh load_mesh(const std::string& path, bool repair_first, std::vector<int>* vertex_map) {
+  global_options().last_input = path;
+  if (!repair_first) {
+    const Mesh mesh = load_detail::with_global_options(read_mesh(path));
+    if (vertex_map) *vertex_map = load_detail::identity_map(mesh.n_vertices());
+    return mesh;
+  }
+  return load_detail::repaired(path, read_polygon_soup(path), vertex_map);
+}
+
 VolumeMesh load_volume_mesh(const std::string& path, VolumeReadNotes* notes) {
   global_options().last_input = path;
   return load_detail::with_global_options(read_volume_mesh(path, notes));
+}
+
+InputMesh load_input_mesh(const std::string& path, bool volume, bool repair_first, bool groups) {
+  global_options().last_input = path;
+  MeshFileOptions options;
+  options.volume = volume;
+  options.validate_surface = !repair_first;
+  options.groups = groups;
+  MeshFile file = read_mesh_file(path, options);
+  InputMesh in;
+  in.groups = std::move(file.groups);
+  in.notes = std::move(file.notes);
+  if (file.volume) {
+    in.volume = load_detail::with_global_options(std::move(*file.volume));
+  } else if (file.soup) {
+    in.surface = load_detail::repaired(path, std::move(*file.soup), &in.vertex_map);
+  } else {
+    in.surface = load_detail::with_global_options(std::move(*file.surface));
+    in.vertex_map = load_detail::identity_map(in.surface->n_vertices());
+  }
+  return in;
 }
 
 void PhaseTimer::check_phase(const char* phase) {

@@ -6,11 +6,13 @@
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <functional>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "polydec/dec/io/mesh_groups.h"
 #include "polydec/dec/io/volume_io.h"
 #include "polydec/dec/mesh/mesh.h"
 #include "polydec/dec/mesh/volume_mesh.h"
@@ -49,6 +51,19 @@ Mesh load_mesh(const std::string& path, bool repair_first, std::vector<int>* ver
 // the global --planarity-tolerance as its precision's planarity_tolerance when one is given; `notes`
 // receives what the reader skipped. Throws FileError (exit code 3) for an unreadable or invalid file.
 VolumeMesh load_volume_mesh(const std::string& path, VolumeReadNotes* notes = nullptr);
+
+// A command's input mesh, read and parsed once (read_mesh_file, dec/io/mesh_groups.h): a volume mesh
+// (with `volume`, or when the file's name or content says so: is_volume_mesh_path) as load_volume_mesh
+// reads it, else a surface as load_mesh reads it (with `repair_first`, repaired; vertex_map: file vertex
+// -> mesh vertex, -1 when removed). With `groups`, the file's groups (gmsh, MEDIT) are read too.
+struct InputMesh {
+  std::optional<Mesh> surface;
+  std::optional<VolumeMesh> volume;
+  MeshGroups groups;
+  VolumeReadNotes notes;
+  std::vector<int> vertex_map;
+};
+InputMesh load_input_mesh(const std::string& path, bool volume, bool repair_first, bool groups = false);
 
 // Options given before (or, by fall-through, after) the subcommand, for every command.
 struct GlobalOptions {

@@ -66,14 +66,12 @@ bool is_either_kind(const std::string& path) {
   return ext == ".msh" || ext == ".vtu";
 }
 
-void run_volume(const Options& o) {
+void run_volume(const Options& o, const VolumeMesh& m, PhaseTimer& timer) {
   if (o.dual || o.subdivide != 0 || o.unit_sphere || o.repair)
     throw UsageError("--dual, --subdivide, --unit-sphere and --repair apply to surface meshes only");
-  PhaseTimer timer;
-  const VolumeMesh m = timer.time("read", [&] { return load_volume_mesh(o.in); });
   nlohmann::json j = {{"in", o.in}, {"out", o.out}};
   if (o.boundary) {
-    if (is_volume_mesh_path(o.out) && !is_either_kind(o.out))
+    if (!is_either_kind(o.out) && is_volume_mesh_path(o.out))
       throw UsageError(fmt::format("--boundary writes a surface mesh ({})", kSurfaceFormats));
     const Mesh b = m.boundary_surface();
     timer.time("write", [&] { write_out(o, b); });
@@ -84,7 +82,7 @@ void run_volume(const Options& o) {
       fmt::print("wrote {}: boundary surface, {} vertices ({} interior ones unreferenced), {} faces\n", o.out,
                  b.n_vertices(), b.n_unreferenced_vertices(), b.n_faces());
   } else {
-    if (!is_volume_mesh_path(o.out) && !is_either_kind(o.out))
+    if (!is_either_kind(o.out) && !is_volume_mesh_path(o.out))
       throw UsageError(fmt::format(
           "{}: a volume mesh is written as .ovm, .vtk, .vtu, .mesh, .meshb or .msh (or use --boundary)", o.out));
     timer.time("write", [&] { write_out(o, m); });
@@ -100,15 +98,13 @@ void run_volume(const Options& o) {
 }
 
 void run(const Options& o) {
-  if (o.volume || is_volume_mesh_path(o.in)) {
-    run_volume(o);
-    return;
-  }
+  PhaseTimer timer;
+  InputMesh in = timer.time("read", [&] { return load_input_mesh(o.in, o.volume, o.repair); });
+  if (in.volume) return run_volume(o, *in.volume, timer);
   if (o.boundary)
     throw UsageError(fmt::format("--boundary applies to volume meshes ({}, or --volume)", kVolumeFormats));
   if (o.subdivide < 0) throw UsageError("--subdivide takes a non-negative count");
-  PhaseTimer timer;
-  Mesh mesh = timer.time("read", [&] { return load_mesh(o.in, o.repair); });
+  Mesh mesh = std::move(*in.surface);
   auto project = [&](Mesh m) { return o.unit_sphere ? project_to_unit_sphere(m) : m; };
   if (o.dual) mesh = project(dual(mesh));
   for (int k = 0; k < o.subdivide; ++k) mesh = project(catmull_clark(mesh));

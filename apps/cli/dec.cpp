@@ -181,10 +181,7 @@ void run_volume_mesh_complex(const Options& o, const VolumeMesh& mesh, const Vol
   fmt::print("wrote {} to {}\n", fmt::join(files, " "), o.out);
 }
 
-void run_volume(const Options& o) {
-  const DecComplex complex = parse_option(parse_dec_complex, o.complex);
-  PhaseTimer timer;
-  const VolumeMesh mesh = timer.time("read", [&] { return load_volume_mesh(o.mesh); });
+void run_volume(const Options& o, DecComplex complex, const VolumeMesh& mesh, PhaseTimer& timer) {
   VolumeRefinementOptions ropt;
   try {
     ropt.cell_rule = parse_cell_point_rule(o.cell_rule);
@@ -276,13 +273,11 @@ void run_volume(const Options& o) {
 }
 
 void run(const Options& o) {
-  if (o.volume || is_volume_mesh_path(o.mesh)) {
-    run_volume(o);
-    return;
-  }
   const DecComplex complex = parse_option(parse_dec_complex, o.complex);
   PhaseTimer timer;
-  const Mesh mesh = timer.time("read", [&] { return load_mesh(o.mesh, o.repair); });
+  InputMesh in = timer.time("read", [&] { return load_input_mesh(o.mesh, o.volume, o.repair); });
+  if (in.volume) return run_volume(o, complex, *in.volume, timer);
+  const Mesh& mesh = *in.surface;
   if (complex == DecComplex::Mesh) {
     RefinementOptions ropt;
     ropt.rule = parse_virtual_vertex_rule(o.rule);

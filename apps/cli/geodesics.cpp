@@ -135,15 +135,11 @@ void run_per_source(const Options& o, const HeatGeodesics& heat, const std::vect
 }
 
 // A volume mesh: the volume operators, VTK point data, a picture of a cut through the centre.
-void run_volume(const Options& o) {
-  if (o.engine.engine != "serial")
-    throw UsageError("--engine petsc: volume meshes run on the serial engine only");
+void run_volume(const Options& o, const VolumeMesh& mesh, PhaseTimer& timer) {
   if (o.repair) throw UsageError("--repair applies to surface meshes only");
   if (o.mass != "lumped" && o.mass != "unlumped") throw UsageError("--mass must be lumped or unlumped");
   if (o.time_step_edges != "input")
     throw UsageError("--time-step-edges: volume meshes use the input's edges only");
-  PhaseTimer timer;
-  const VolumeMesh mesh = timer.time("read", [&] { return load_volume_mesh(o.mesh); });
   for (int s : o.sources)
     if (s < 0 || s >= mesh.n_vertices())
       throw std::out_of_range(
@@ -206,20 +202,38 @@ void run_volume(const Options& o) {
   if (!o.png.empty()) fmt::print("wrote {}\n", o.png);
 }
 
-void run(const Options& o) {
-  if (o.per_source) {
-    if (o.volume || is_volume_mesh_path(o.mesh) || o.engine.engine != "serial")
+std::vector<int> all_sources(const Options& o, const MeshGroups& groups);
+
+// The file read once (its groups with --source-group); the distributed engine reads it itself, so
+// there only its kind is judged here.
+void run(const Options& given) {
+  if (given.per_source) {
+    if (given.volume || given.engine.engine != "serial")
       throw UsageError("--per-source: surface meshes on the serial engine");
-    if (o.out.size() < 4 || o.out.substr(o.out.size() - 4) != ".mtx")
+    if (given.out.size() < 4 || given.out.substr(given.out.size() - 4) != ".mtx")
       throw UsageError("--per-source writes a Matrix Market file: --out FILE.mtx");
-    if (!o.png.empty() || o.euclidean) throw UsageError("--per-source: no --png or --euclidean");
+    if (!given.png.empty() || given.euclidean) throw UsageError("--per-source: no --png or --euclidean");
   }
-  if (o.volume || is_volume_mesh_path(o.mesh)) return run_volume(o);
-  if (o.engine.engine == "petsc") return run_petsc(o);
-  if (o.engine.engine != "serial") throw UsageError("--engine must be serial or petsc");
-  std::vector<int> vertex_map;
+  if (given.sources.empty() && given.source_groups.empty())
+    throw UsageError("geodesics needs --source V or --source-group NAME");
+  Options o = given;
+  if (o.engine.engine != "serial") {
+    if (o.volume || is_volume_mesh_path(o.mesh))
+      throw UsageError("--engine petsc: volume meshes run on the serial engine only");
+    if (o.engine.engine != "petsc") throw UsageError("--engine must be serial or petsc");
+    o.sources = all_sources(given, o.source_groups.empty() ? MeshGroups{} : read_mesh_groups(o.mesh));
+    return run_petsc(o);
+  }
   PhaseTimer timer;
-  const Mesh mesh = timer.time("read", [&] { return load_mesh(o.mesh, o.repair, &vertex_map); });
+  const InputMesh in =
+      timer.time("read", [&] { return load_input_mesh(o.mesh, o.volume, o.repair, !o.source_groups.empty()); });
+  o.sources = all_sources(given, in.groups);
+  if (in.volume) {
+    if (o.per_source) throw UsageError("--per-source: surface meshes on the serial engine");
+    return run_volume(o, *in.volume, timer);
+  }
+  const Mesh& mesh = *in.surface;
+  const std::vector<int>& vertex_map = in.vertex_map;
   // Sources are file vertices; --repair may renumber or remove them.
   std::vector<int> sources = o.sources;
   for (int& s : sources) {
@@ -301,10 +315,9 @@ void report(const Options& o, const LazyMesh& mesh, const std::vector<int>& sour
 
 // --source and the vertices of every --source-group (the file's named vertex sets, e.g. gmsh
 // physical groups; dec/io/mesh_groups.h), file vertex indices.
-std::vector<int> all_sources(const Options& o) {
+std::vector<int> all_sources(const Options& o, const MeshGroups& groups) {
   std::vector<int> sources = o.sources;
   if (!o.source_groups.empty()) {
-    const MeshGroups groups = read_mesh_groups(o.mesh);
     for (const std::string& name : o.source_groups) {
       const auto it = groups.vertices.find(name);
       if (it == groups.vertices.end()) {
@@ -355,11 +368,7 @@ const RegisterCommand reg("geodesics", "Geodesic distances by the heat method (p
   app.add_flag("--json", o->json, "print one JSON object instead of text (with the phases' times, times_ms)");
   add_repair_flag(app, o->repair);
   add_engine_options(app, o->engine);
-  app.callback([o] {
-    Options with_groups = *o;
-    with_groups.sources = all_sources(*o);
-    run(with_groups);
-  });
+  app.callback([o] { run(*o); });
 });
 
 }  // namespace

@@ -110,16 +110,17 @@ void run(const Options& o) {
   if (!(o.noise >= 0) || !std::isfinite(o.noise)) throw UsageError("--noise must be a finite number >= 0");
   const DecComplex complex = parse_option(parse_dec_complex, o.complex);
   const bool on_mesh = complex == DecComplex::Mesh;
-  const bool volume = o.volume || is_volume_mesh_path(o.mesh);
   PhaseTimer timer;
+  InputMesh in = timer.time("read", [&] { return load_input_mesh(o.mesh, o.volume, o.repair); });
+  const bool volume = in.volume.has_value();
   Decomposed r;
   if (volume) {
     if (o.repair) throw UsageError("--repair applies to surface meshes only");
-    const VolumeMesh mesh = timer.time("read", [&] { return load_volume_mesh(o.mesh); });
+    const VolumeMesh& mesh = *in.volume;
     r = decompose<VolumeMesh, VolumeHodgeDecomposer>(o, mesh, complex, timer);
     r.counts = fmt::format("{} vertices, {} faces, {} cells", mesh.n_vertices(), mesh.n_faces(), mesh.n_cells());
   } else {
-    const Mesh mesh = timer.time("read", [&] { return load_mesh(o.mesh, o.repair); });
+    const Mesh& mesh = *in.surface;
     if (!on_mesh && mesh.max_face_size() > kHighValence)
       std::cerr << fmt::format("polydec: warning: faces with up to {} corners: star1 grows as n^4 per face\n",
                                mesh.max_face_size());

@@ -49,8 +49,7 @@ double face_nonplanarity(const VolumeMesh& m, int f, double& diameter_out) {
 // The file's groups ("groups": name -> vertex and element counts) and skipped elements
 // ("skipped_elements": kind -> count) added to j when it has any; their text lines are printed by
 // print_groups. `elements` is "faces" or "cells".
-void add_groups(const std::string& path, const char* elements, nlohmann::json& j) {
-  const MeshGroups g = read_mesh_groups(path);
+void add_groups(const MeshGroups& g, const char* elements, nlohmann::json& j) {
   if (!g.skipped.empty()) j["skipped_elements"] = g.skipped;
   if (g.vertices.empty()) return;
   nlohmann::json groups = nlohmann::json::object();
@@ -75,10 +74,10 @@ void print_groups(const nlohmann::json& j, const char* elements) {
   }
 }
 
-void run_volume(const Options& o) {
+void run_volume(const Options& o, const InputMesh& in) {
   if (o.repair) throw UsageError("--repair applies to surface meshes only");
-  VolumeReadNotes notes;
-  const VolumeMesh m = load_volume_mesh(o.mesh, &notes);
+  const VolumeReadNotes& notes = in.notes;
+  const VolumeMesh& m = *in.volume;
   std::map<std::string, int> shapes{
       {"tetrahedron", 0}, {"pyramid", 0}, {"wedge", 0}, {"hexahedron", 0}, {"other", 0}};
   double min_volume = m.n_cells() ? 1e308 : 0.0, max_volume = m.n_cells() ? -1e308 : 0.0;
@@ -149,7 +148,7 @@ void run_volume(const Options& o) {
                             {"max_nonplanarity", max_np},
                             {"mean_nonplanarity", m.n_faces() ? sum_np / m.n_faces() : 0.0},
                             {"skipped_cells", notes.skipped_cells}};
-  add_groups(o.mesh, "cells", j);
+  add_groups(in.groups, "cells", j);
   if (o.json) {
     print_json(j);
     return;
@@ -182,11 +181,9 @@ void run_volume(const Options& o) {
 }
 
 void run(const Options& o) {
-  if (o.volume || is_volume_mesh_path(o.mesh)) {
-    run_volume(o);
-    return;
-  }
-  const Mesh mesh = load_mesh(o.mesh, o.repair);
+  const InputMesh in = load_input_mesh(o.mesh, o.volume, o.repair, true);
+  if (in.volume) return run_volume(o, in);
+  const Mesh& mesh = *in.surface;
   const MeshStatistics s = mesh_statistics(mesh);
   nlohmann::json hist = nlohmann::json::object();
   for (const auto& [n, c] : s.valence_histogram) hist[std::to_string(n)] = c;
@@ -213,7 +210,7 @@ void run(const Options& o) {
                             {"fan_degenerate", s.fan.n_degenerate},
                             {"fan_inverted", s.fan.n_inverted},
                             {"fan_faces_affected", s.fan.n_faces_affected}};
-  add_groups(o.mesh, "faces", j);
+  add_groups(in.groups, "faces", j);
   if (o.json) {
     print_json(j);
     return;

@@ -94,10 +94,8 @@ void run_timing(const Options& o, const Mesh& mesh, const RefinementOptions& rop
 }
 
 // Volume meshes: S, M, M_lumped, P of the polyhedral refinement, or --repeat N timings.
-void run_volume(const Options& o) {
+void run_volume(const Options& o, const VolumeMesh& mesh, PhaseTimer& timer) {
   using Clock = std::chrono::steady_clock;
-  PhaseTimer timer;
-  const VolumeMesh mesh = timer.time("read", [&] { return load_volume_mesh(o.mesh); });
   VolumeRefinementOptions ropt;
   ropt.threads = resolve_threads(o.threads);
   try {
@@ -218,19 +216,18 @@ void run_quadratic(const Options& o, const Mesh& mesh, const Refinement& r, Phas
 void run(const Options& o) {
   if (o.order != 1 && o.order != 2) throw UsageError("--order must be 1 or 2");
   if (o.order == 2 && o.repeat > 0) throw UsageError("--repeat times the order 1 assembly only");
-  if (o.order == 2 && (o.volume || is_volume_mesh_path(o.mesh)))
-    throw UsageError("--order 2: surface meshes only (volumes: docs/extensions.md)");
   if (o.repeat < 0) throw UsageError("--repeat must be positive");
   if (o.threads < 0) throw UsageError("--threads must be at least 0 (0: all hardware threads)");
   if (o.repeat == 0 && o.out.empty()) throw UsageError("--out DIR is required (or --repeat N to time the assembly)");
-  if (o.volume || is_volume_mesh_path(o.mesh)) {
+  PhaseTimer timer;
+  InputMesh in = timer.time("read", [&] { return load_input_mesh(o.mesh, o.volume, o.repair); });
+  if (in.volume) {
+    if (o.order == 2) throw UsageError("--order 2: surface meshes only (volumes: docs/extensions.md)");
     if (o.lift.lift != "none" || !o.lift.positions.empty())
       throw UsageError("--virtual-lift and --virtual-positions apply to surface meshes only");
-    run_volume(o);
-    return;
+    return run_volume(o, *in.volume, timer);
   }
-  PhaseTimer timer;
-  const Mesh mesh = timer.time("read", [&] { return load_mesh(o.mesh, o.repair); });
+  const Mesh mesh = std::move(*in.surface);
   if (o.rule == "split") {
     if (o.order != 1 || o.repeat > 0 || o.lift.lift != "none" || !o.lift.positions.empty())
       throw UsageError("--virtual-vertex split: order 1 files only (no --order 2, --repeat, --virtual-lift)");

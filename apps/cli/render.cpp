@@ -66,9 +66,8 @@ void finish_options(const Options& o, RenderOptions& r) {
 }
 
 // A volume mesh: the solid behind the cut plane, the scalar on the section and the boundary.
-void run_volume(const Options& o) {
+void run_volume(const Options& o, const VolumeMesh& mesh) {
   if (o.repair) throw UsageError("--repair applies to surface meshes only");
-  const VolumeMesh mesh = load_volume_mesh(o.mesh);
   RenderOptions r = picture_options(o);
   CutPlane plane;
   if (!o.cut_plane.empty()) {
@@ -112,8 +111,9 @@ void run_volume(const Options& o) {
 }
 
 void run(const Options& o) {
-  if (o.volume || is_volume_mesh_path(o.mesh)) return run_volume(o);
-  const Mesh mesh = load_mesh(o.mesh, o.repair);
+  const InputMesh in = load_input_mesh(o.mesh, o.volume, o.repair);
+  if (in.volume) return run_volume(o, *in.volume);
+  const Mesh& mesh = *in.surface;
   RenderOptions r = picture_options(o);
   Eigen::VectorXd s;
   if (o.source >= 0) {

@@ -46,8 +46,11 @@ struct Options {
 void report(const Options& o, const LazyMesh& mesh, const std::string& laplacian, int n_in, const Spectrum& sp,
             const nlohmann::json* engine, PhaseTimer& timer);
 
-void run_form(const Options& o);
-void run_volume_form(const Options& o);
+void check_form(const Options& o);
+void run_form(const Options& o, const Mesh& mesh, PhaseTimer& timer);
+void check_volume_form(const Options& o);
+void run_volume_form(const Options& o, const VolumeMesh& mesh, PhaseTimer& timer);
+void run_serial(const Options& o, const Mesh& mesh, PhaseTimer& timer);
 
 // Picture options of eigenfunction --png-index (surfaces add smooth shading).
 RenderOptions eigenfunction_picture(const Options& o, const std::vector<double>& ev,
@@ -69,17 +72,17 @@ void write_eigenvalues(const std::string& path, const std::vector<double>& ev) {
   for (double e : ev) f << fmt::format("{:.17g}\n", e);
 }
 
-// A volume mesh: Neumann eigenpairs of the volume operators, files and picture as described in
-// docs/volumes.md.
-void run_volume(const Options& o) {
-  if (o.form != 0) return run_volume_form(o);
+// The usage errors of a volume mesh's function spectrum.
+void check_volume(const Options& o) {
   if (o.engine.engine != "serial")
     throw UsageError("--engine petsc: volume meshes run on the serial engine only");
   if (o.repair) throw UsageError("--repair applies to surface meshes only");
   if (!o.png.empty() && (o.png_index < 0 || o.png_index >= o.k))
     throw UsageError("--png-index must lie in [0, k)");
-  PhaseTimer timer;
-  const VolumeMesh mesh = timer.time("read", [&] { return load_volume_mesh(o.mesh); });
+}
+// A volume mesh: Neumann eigenpairs of the volume operators, files and picture as described in
+// docs/volumes.md.
+void run_volume(const Options& o, const VolumeMesh& mesh, PhaseTimer& timer) {
   // The operators keep their refinement for the picture (only with --png).
   const OperatorSet ops = timer.time("operators", [&] {
     return build_volume_operators(mesh, parse_volume_laplacian(o.laplacian),
@@ -132,19 +135,38 @@ void run_volume(const Options& o) {
 void run(const Options& o) {
   if (o.mass != "lumped" && o.mass != "unlumped") throw UsageError("--mass must be lumped or unlumped");
   const bool lifted = o.lift.lift != "none" || !o.lift.positions.empty();
-  if (lifted && (o.volume || is_volume_mesh_path(o.mesh) || o.form != 0 || o.engine.engine != "serial"))
-    throw UsageError("--virtual-lift and --virtual-positions apply to the serial surface spectrum only");
+  const char* const lift_usage = "--virtual-lift and --virtual-positions apply to the serial surface spectrum only";
+  const char* const order_usage =
+      "--order 2: function spectra of surface meshes on the serial engine (no --form, --laplacian, --virtual-lift)";
+  if (lifted && (o.volume || o.form != 0 || o.engine.engine != "serial")) throw UsageError(lift_usage);
   if (o.order != 1 && o.order != 2) throw UsageError("--order must be 1 or 2");
-  if (o.order == 2 && (o.volume || is_volume_mesh_path(o.mesh) || o.form != 0 || o.engine.engine != "serial" ||
-                       o.laplacian != "ours" || lifted))
-    throw UsageError(
-        "--order 2: function spectra of surface meshes on the serial engine (no --form, --laplacian, --virtual-lift)");
-  if (o.volume || is_volume_mesh_path(o.mesh)) return run_volume(o);
+  if (o.order == 2 && (o.volume || o.form != 0 || o.engine.engine != "serial" || o.laplacian != "ours" || lifted))
+    throw UsageError(order_usage);
   PhaseTimer timer;  // the PETSc engine's phases are its own (engine.per_rank); total and write here
-  if (o.form != 0) {
-    run_form(o);
-    return;
+  if (o.engine.engine == "serial") {
+    const InputMesh in = timer.time("read", [&] { return load_input_mesh(o.mesh, o.volume, o.repair); });
+    if (in.volume) {
+      if (lifted) throw UsageError(lift_usage);
+      if (o.order == 2) throw UsageError(order_usage);
+      if (o.form != 0) {
+        check_volume_form(o);
+        return run_volume_form(o, *in.volume, timer);
+      }
+      check_volume(o);
+      return run_volume(o, *in.volume, timer);
+    }
+    if (o.form != 0) {
+      check_form(o);
+      return run_form(o, *in.surface, timer);
+    }
+    return run_serial(o, *in.surface, timer);
   }
+  // The distributed engine reads the file itself: only its kind is judged here.
+  if (o.volume || is_volume_mesh_path(o.mesh)) {
+    if (o.form != 0) check_volume_form(o);
+    check_volume(o);
+  }
+  if (o.form != 0) check_form(o);
   if (o.engine.engine == "petsc") {
     // The distributed run (apps/cli/engine.h); rank 0 reports as the serial run does.
     if (o.laplacian != "ours") throw UsageError("--engine petsc computes the paper's Laplacian only (--laplacian ours)");
@@ -159,8 +181,11 @@ void run(const Options& o) {
     throw UsageError("--engine petsc: this polydec was built without PETSc (configure with -DPOLYDEC_WITH_PETSC=ON)");
 #endif
   }
-  if (o.engine.engine != "serial") throw UsageError("--engine must be serial or petsc");
-  const Mesh mesh = timer.time("read", [&] { return load_mesh(o.mesh, o.repair); });
+  throw UsageError("--engine must be serial or petsc");
+}
+
+// The serial function spectrum of a surface.
+void run_serial(const Options& o, const Mesh& mesh, PhaseTimer& timer) {
   OperatorOptions oopt;
   oopt.with_gradient = false;
   oopt.lift = virtual_lift(o.lift, mesh);
@@ -257,7 +282,8 @@ void print_form_eigenpairs(const FormSpectrum& sp) {
                form_kind_name(sp.kinds[size_t(i)]), sp.norm_exact[i], sp.norm_coexact[i], sp.norm_harmonic[i]);
 }
 
-void run_form(const Options& o) {
+// The usage errors of a surface form spectrum.
+void check_form(const Options& o) {
   if (o.form != 1 && o.form != 2) throw UsageError("--form must be 0, 1 or 2");
   if (o.engine.engine != "serial") throw UsageError("--form: only the serial engine computes form spectra");
   if (o.laplacian != "ours")
@@ -265,10 +291,11 @@ void run_form(const Options& o) {
   if (o.k < 1) throw UsageError("--k must be positive");
   if (!o.png.empty() && (o.png_index < 0 || o.png_index >= o.k))
     throw UsageError("--png-index must lie in [0, k)");
+  parse_option(parse_dec_complex, o.complex);
+}
+void run_form(const Options& o, const Mesh& mesh, PhaseTimer& timer) {
   const DecComplex complex = parse_option(parse_dec_complex, o.complex);
   const bool on_mesh = complex == DecComplex::Mesh;
-  PhaseTimer timer;
-  const Mesh mesh = timer.time("read", [&] { return load_mesh(o.mesh, o.repair); });
   FormSpectrumOptions fo;
   fo.complex = complex;
   fo.degree = o.form;
@@ -361,9 +388,8 @@ void run_form(const Options& o) {
         cell_file, o.out);
 }
 
-// Volume k-forms (k = 1, 2, 3): eigenvalues with their Hodge parts, the eigen-cochains on the
-// k-cells, the cell list; no picture.
-void run_volume_form(const Options& o) {
+// The usage errors of a volume form spectrum.
+void check_volume_form(const Options& o) {
   if (o.form < 1 || o.form > 3) throw UsageError("--form must be 0, 1, 2 or 3 on volume meshes");
   if (o.engine.engine != "serial") throw UsageError("--form: only the serial engine computes form spectra");
   if (o.repair) throw UsageError("--repair applies to surface meshes only");
@@ -371,10 +397,13 @@ void run_volume_form(const Options& o) {
     throw UsageError("--form: the Hodge Laplacian is built from the paper's stars (--laplacian ours)");
   if (!o.png.empty()) throw UsageError("--png: volume form spectra have no picture");
   if (o.k < 1) throw UsageError("--k must be positive");
+  parse_option(parse_dec_complex, o.complex);
+}
+// Volume k-forms (k = 1, 2, 3): eigenvalues with their Hodge parts, the eigen-cochains on the
+// k-cells, the cell list; no picture.
+void run_volume_form(const Options& o, const VolumeMesh& mesh, PhaseTimer& timer) {
   const DecComplex complex = parse_option(parse_dec_complex, o.complex);
   const bool on_mesh = complex == DecComplex::Mesh;
-  PhaseTimer timer;
-  const VolumeMesh mesh = timer.time("read", [&] { return load_volume_mesh(o.mesh); });
   FormSpectrumOptions fo;
   fo.complex = complex;
   fo.degree = o.form;

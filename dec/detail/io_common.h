@@ -16,6 +16,10 @@
 
 #include "polydec/dec/io/mesh_io.h"
 
+namespace polydec {
+struct MeshGroups;
+}
+
 namespace polydec::io_detail {
 
 // A reader's result: the soup plus where each vertex and face came from, so that a validation
@@ -32,6 +36,13 @@ SoupRead read_off(std::string_view bytes, const std::string& name);
 SoupRead read_ply(std::string_view bytes, const std::string& name);
 // The triangles, quads, pixels and polygons of a .vtu file without volume cells (dec/io/vtu.cpp).
 SoupRead read_vtu_surface(std::string_view bytes, const std::string& name);
+
+// A surface file (format by extension, else by content as read_mesh) read but not validated;
+// `groups` (if given) receives a .msh file's groups. Throws FileError.
+SoupRead read_surface_file(const std::string& path, MeshGroups* groups);
+// Mesh(r.soup), an InvalidMeshError about a vertex or face reported as a FileError naming its line or
+// byte offset.
+Mesh validate_surface(SoupRead r, const std::string& name);
 
 std::string write_obj(const Mesh& mesh);
 std::string write_off(const Mesh& mesh, bool binary);

@@ -4,9 +4,11 @@
 #pragma once
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "polydec/dec/io/volume_io.h"
 #include "polydec/dec/mesh/mesh.h"
 #include "polydec/dec/mesh/volume_mesh.h"
 
@@ -32,6 +34,29 @@ struct MeshGroups {
 // skipped elements in `groups`. Throws FileError.
 Mesh read_mesh_with_groups(const std::string& path, MeshGroups& groups);
 VolumeMesh read_volume_mesh_with_groups(const std::string& path, MeshGroups& groups);
+
+// A mesh file of either kind, read and parsed once (read_mesh_file): exactly one of surface, soup
+// and volume is set.
+struct MeshFile {
+  std::optional<Mesh> surface;
+  std::optional<PolygonSoup> soup;  // a surface's polygons, not validated (MeshFileOptions::validate_surface)
+  std::optional<VolumeMesh> volume;
+  MeshGroups groups;      // as read_mesh_groups, with MeshFileOptions::groups
+  VolumeReadNotes notes;  // a volume's skipped VTK cells, as read_volume_mesh
+  bool is_volume() const { return volume.has_value(); }
+};
+struct MeshFileOptions {
+  bool volume = false;           // read as a volume mesh whatever the file's name
+  bool validate_surface = true;  // false: a surface comes back as its polygon soup (to repair it first)
+  bool groups = false;           // also read the file's groups and skipped elements into MeshFile::groups
+};
+// Reads `path` as the kind is_volume_mesh_path (dec/io/volume_io.h) decides, parsing the file once:
+// a volume for .ovm, .vtk, .mesh, .meshb (or options.volume), a surface for .obj, .off, .ply and
+// other names (recognized by content as read_mesh does), and for .msh and .vtu what the file holds
+// (a volume when it has 3-D cells; a .vtu without cells and a .msh that does not start like one are
+// read as volumes, so that the error says why). Results and FileErrors are those of
+// read_mesh_with_groups or read_volume_mesh (with its notes and read_volume_mesh_with_groups' groups).
+MeshFile read_mesh_file(const std::string& path, const MeshFileOptions& options = {});
 
 // The groups of a surface or volume mesh file (a gmsh .msh file's physical groups, a MEDIT file's
 // references), without validating its mesh; empty for the other formats. Throws FileError.

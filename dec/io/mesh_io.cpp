@@ -113,6 +113,18 @@ Mesh validate(SoupRead r, const std::string& name) {
 }  // namespace mesh_io_detail
 
 
+namespace io_detail {
+
+SoupRead read_surface_file(const std::string& path, MeshGroups* groups) {
+  const auto [bytes, format] = mesh_io_detail::read_file(path);
+  if (format == "msh") return read_msh_surface(bytes, path, groups);
+  return mesh_io_detail::read_any(bytes, format, path);
+}
+
+Mesh validate_surface(SoupRead r, const std::string& name) { return mesh_io_detail::validate(std::move(r), name); }
+
+}  // namespace io_detail
+
 PolygonSoup read_polygon_soup(const std::string& path) {
   const auto [bytes, format] = mesh_io_detail::read_file(path);
   return mesh_io_detail::read_any(bytes, format, path).soup;

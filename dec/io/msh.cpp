@@ -551,8 +551,10 @@ MeshGroups read_msh_groups(std::string_view bytes, const std::string& name) {
   return groups_of(p, top_dimension(p));
 }
 
-SoupRead read_msh_surface(std::string_view bytes, const std::string& name, MeshGroups* groups) {
-  Parsed p = parse(bytes, name);
+namespace {
+
+// The surface of a parsed file (its triangles and quadrangles).
+SoupRead surface_of(Parsed p, const std::string& name, MeshGroups* groups) {
   const int top = top_dimension(p);
   if (top == 3)
     throw FileError(name, 0, -1, fmt::format("the file holds 3-D elements ({}): read it as a volume mesh (--volume)",
@@ -572,8 +574,8 @@ SoupRead read_msh_surface(std::string_view bytes, const std::string& name, MeshG
   return r;
 }
 
-PolyhedronRead read_msh_volume(std::string_view bytes, const std::string& name, MeshGroups* groups) {
-  Parsed p = parse(bytes, name);
+// The volume of a parsed file (its tetrahedra, hexahedra, prisms and pyramids).
+PolyhedronRead volume_of(Parsed p, const std::string& name, MeshGroups* groups) {
   const int top = top_dimension(p);
   if (top < 3)
     throw FileError(name, 0, -1,
@@ -603,6 +605,27 @@ PolyhedronRead read_msh_volume(std::string_view bytes, const std::string& name, 
   }
   r.soup = builder.take();
   r.soup.precision = precision;
+  return r;
+}
+
+}  // namespace
+
+SoupRead read_msh_surface(std::string_view bytes, const std::string& name, MeshGroups* groups) {
+  return surface_of(parse(bytes, name), name, groups);
+}
+
+PolyhedronRead read_msh_volume(std::string_view bytes, const std::string& name, MeshGroups* groups) {
+  return volume_of(parse(bytes, name), name, groups);
+}
+
+MshRead read_msh_either(std::string_view bytes, const std::string& name, MeshGroups* groups) {
+  Parsed p = parse(bytes, name);
+  MshRead r;
+  r.volume = top_dimension(p) == 3;
+  if (r.volume)
+    r.cells = volume_of(std::move(p), name, groups);
+  else
+    r.surface = surface_of(std::move(p), name, groups);
   return r;
 }
 

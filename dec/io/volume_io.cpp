@@ -12,6 +12,7 @@
 #include "polydec/dec/detail/io_common.h"
 #include "polydec/dec/detail/msh_io.h"
 #include "polydec/dec/detail/volume_io_common.h"
+#include "polydec/dec/io/mesh_groups.h"
 #include "polydec/dec/io/vtu.h"
 
 namespace polydec {
@@ -96,10 +97,56 @@ VolumeMesh validate(PolyhedronRead r, const std::string& name, VolumeReadNotes* 
   }
 }
 
+// The bytes read as a volume in `format`, with the groups of a gmsh or MEDIT file (when `groups` is given).
+VolumeMesh read_volume_bytes(std::string_view bytes, const std::string& format, const std::string& path,
+                             MeshGroups* groups, VolumeReadNotes* notes) {
+  if (groups) *groups = {};
+  if (groups && format == "msh") return validate(read_msh_volume(bytes, path, groups), path, notes);
+  if (groups && format == "meshb") return validate(read_meshb(bytes, path, groups), path, notes);
+  if (groups && format == "mesh") return validate(read_medit(bytes, path, groups), path, notes);
+  return validate(read_any(bytes, format, path), path, notes);
+}
+
 }  // namespace
 }  // namespace io_volume_detail
 
 using namespace io_volume_detail;
+
+MeshFile read_mesh_file(const std::string& path, const MeshFileOptions& options) {
+  const std::string ext = extension(path);
+  MeshFile file;
+  MeshGroups* groups = options.groups ? &file.groups : nullptr;
+  const auto surface = [&](SoupRead r) {
+    if (options.validate_surface)
+      file.surface = validate_surface(std::move(r), path);
+    else
+      file.soup = std::move(r.soup);
+  };
+  if (options.volume || (known(ext) && ext != "msh" && ext != "vtu")) {
+    const std::string bytes = slurp(path);
+    file.volume = read_volume_bytes(bytes, checked_format(path, bytes), path, groups, &file.notes);
+  } else if (ext == "msh" || ext == "vtu") {
+    const std::string bytes = slurp(path);
+    if (ext == "vtu") {
+      VtuRead r = read_vtu_either(bytes, path);
+      if (r.volume)
+        file.volume = validate(std::move(r.cells), path, &file.notes);
+      else
+        surface(std::move(r.surface));
+    } else if (!looks_like_msh(bytes)) {
+      file.volume = read_volume_bytes(bytes, ext, path, groups, &file.notes);
+    } else {
+      MshRead r = read_msh_either(bytes, path, groups);
+      if (r.volume)
+        file.volume = validate(std::move(r.cells), path, &file.notes);
+      else
+        surface(std::move(r.surface));
+    }
+  } else {
+    surface(read_surface_file(path, groups));
+  }
+  return file;
+}
 
 bool is_volume_mesh_path(const std::string& path) {
   const std::string ext = extension(path);
@@ -131,12 +178,7 @@ VolumeMesh read_volume_mesh(const std::string& path, VolumeReadNotes* notes) {
 
 VolumeMesh read_volume_mesh_with_groups(const std::string& path, MeshGroups& groups) {
   const std::string bytes = slurp(path);
-  const std::string format = checked_format(path, bytes);
-  groups = {};
-  if (format == "msh") return validate(read_msh_volume(bytes, path, &groups), path);
-  if (format == "meshb") return validate(read_meshb(bytes, path, &groups), path);
-  if (format == "mesh") return validate(read_medit(bytes, path, &groups), path);
-  return validate(read_any(bytes, format, path), path);
+  return read_volume_bytes(bytes, checked_format(path, bytes), path, &groups, nullptr);
 }
 
 MeshGroups read_mesh_groups(const std::string& path) {

@@ -930,9 +930,13 @@ void write_file(const std::string& path, const std::string& data) {
 
 namespace io_detail {
 
-PolyhedronRead read_vtu(std::string_view bytes, const std::string& name) {
+namespace {
+
+using io_vtu_detail::Grid;
+
+// The volume cells of a grid (its lower-dimensional cells skipped and counted).
+PolyhedronRead volume_of(Grid g, const std::string& name) {
   using namespace io_vtu_detail;
-  Grid g = read_grid(bytes, name);
   PolyhedronRead r;
   const long nv = long(g.points.rows());
   r.vertex_where = std::move(g.vertex_line);
@@ -960,9 +964,9 @@ PolyhedronRead read_vtu(std::string_view bytes, const std::string& name) {
   return r;
 }
 
-SoupRead read_vtu_surface(std::string_view bytes, const std::string& name) {
+// The polygons of a grid without volume cells.
+SoupRead surface_of(Grid g, const std::string& name) {
   using namespace io_vtu_detail;
-  Grid g = read_grid(bytes, name);
   SoupRead r;
   r.soup.positions = std::move(g.points);
   r.soup.precision = g.precision;
@@ -990,6 +994,28 @@ SoupRead read_vtu_surface(std::string_view bytes, const std::string& name) {
   }
   if (r.soup.n_faces() == 0 && !g.types.empty())
     throw FileError(name, g.cells_line, -1, "no polygon cells (only vertex and line cells)");
+  return r;
+}
+
+}  // namespace
+
+PolyhedronRead read_vtu(std::string_view bytes, const std::string& name) {
+  return volume_of(io_vtu_detail::read_grid(bytes, name), name);
+}
+
+SoupRead read_vtu_surface(std::string_view bytes, const std::string& name) {
+  return surface_of(io_vtu_detail::read_grid(bytes, name), name);
+}
+
+VtuRead read_vtu_either(std::string_view bytes, const std::string& name) {
+  Grid g = io_vtu_detail::read_grid(bytes, name);
+  VtuRead r;
+  r.volume = g.types.empty() ||
+             std::any_of(g.types.begin(), g.types.end(), [](int t) { return vtk_cell_dimension(t) == 3; });
+  if (r.volume)
+    r.cells = volume_of(std::move(g), name);
+  else
+    r.surface = surface_of(std::move(g), name);
   return r;
 }
 

@@ -96,10 +96,12 @@ OperatorSet volume_diamond_operators(const VolumeMesh& mesh, const VolumeOperato
   ops.name = "diamond (volume)";
   ops.n_input_vertices = mesh.n_vertices();
   ops.mean_edge_length = mesh.mean_edge_length();
-  VolumeRefinement R = refine_volume(mesh);
+  VolumeRefinement own;
+  if (!options.refinement) own = refine_volume(mesh);
+  const VolumeRefinement& R = options.refinement ? *options.refinement : own;
   ops.sub_tet_quality = R.quality;
   fill_diamond_operators(volume_diamonds(mesh, R), volume_prolongation(mesh, R), options.with_gradient, ops);
-  if (options.keep_refinement) ops.volume_refinement = std::move(R);
+  if (options.keep_refinement) ops.volume_refinement = options.refinement ? R : std::move(own);
   return ops;
 }
 

@@ -27,7 +27,7 @@ FineDiamonds volume_diamonds(const VolumeMesh& mesh, const VolumeRefinement& ref
 // S, M, M_lumped of the volume Diamond Laplacian for a refinement (quality: the refinement's).
 VolumeLaplacian assemble_volume_diamond(const VolumeMesh& mesh, const VolumeRefinement& refinement);
 
-// The same with the default refinement as an OperatorSet (name "diamond (volume)", no surface
+// The same with the default refinement (or options.refinement) as an OperatorSet (name "diamond (volume)", no surface
 // domain, n_input_vertices = |V|, mean_edge_length of the volume mesh, sub_tet_quality the
 // refinement's sub-tetrahedron counts); options.with_gradient adds G (3 rows per sub-diamond) and D,
 // options.keep_refinement the refinement (volume_refinement); options.threads is not used.

@@ -16,10 +16,14 @@ namespace {
 
 OperatorSet refined_operators(const VolumeMesh& mesh, CellPointRule rule,
                               const VolumeOperatorOptions& options) {
-  VolumeRefinementOptions ropt;
-  ropt.cell_rule = rule;
-  ropt.threads = options.threads;
-  VolumeRefinement r = refine_volume(mesh, ropt);
+  VolumeRefinement own;
+  if (!options.refinement) {
+    VolumeRefinementOptions ropt;
+    ropt.cell_rule = rule;
+    ropt.threads = options.threads;
+    own = refine_volume(mesh, ropt);
+  }
+  const VolumeRefinement& r = options.refinement ? *options.refinement : own;
   VolumeLaplacian L = assemble_volume_laplacian(mesh, r, nullptr, options.threads);
   OperatorSet ops;
   ops.S.swap(L.S);
@@ -31,7 +35,7 @@ OperatorSet refined_operators(const VolumeMesh& mesh, CellPointRule rule,
     ops.D = volume_divergence(ops.G, volumes);
   }
   ops.sub_tet_quality = r.quality;
-  if (options.keep_refinement) ops.volume_refinement = std::move(r);
+  if (options.keep_refinement) ops.volume_refinement = options.refinement ? r : std::move(own);
   return ops;
 }
 
@@ -84,6 +88,19 @@ OperatorSet build_volume_operators(const VolumeMesh& mesh, const LaplacianChoice
     throw std::invalid_argument(fmt::format("unknown volume Laplacian '{}' (known: {})",
                                             choice.canonical_name(),
                                             fmt::join(volume_laplacian_names(), ", ")));
+  if (options.refinement) {
+    const CellPointRule rule = choice.method == "polylaplace" ? CellPointRule::PolyLaplace : CellPointRule::SquaredVolume;
+    const VolumeRefinementOptions& given = options.refinement->options;
+    const VolumeRefinementOptions defaults;
+    if (given.cell_rule != rule || given.degenerate_tolerance != defaults.degenerate_tolerance ||
+        given.planarity_tolerance != defaults.planarity_tolerance)
+      throw std::invalid_argument(fmt::format(
+          "build_volume_operators: method '{}' needs a refinement with the {} cell point and the default "
+          "tolerances, got {} (degenerate tolerance {:g}, planarity tolerance {:g})",
+          choice.method, to_string(rule), to_string(given.cell_rule), given.degenerate_tolerance,
+          given.planarity_tolerance));
+    check_refinement(mesh, *options.refinement, "build_volume_operators");
+  }
   OperatorSet ops = m->build(mesh, options);
   ops.name = m->name;
   ops.n_input_vertices = mesh.n_vertices();

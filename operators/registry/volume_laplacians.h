@@ -43,6 +43,12 @@ struct VolumeOperatorOptions {
   int threads = 1;               // refinement and assembly threads of "ours" and "polylaplace" (0: all
                                  // hardware threads); the results do not depend on it
   bool keep_refinement = false;  // OperatorSet::volume_refinement receives the refinement used
+  // A refinement of the mesh (refine_volume) to use instead of building one, e.g. a caller's cached
+  // one; its cell-point rule must be the method's (ours and diamond: squared-volume, polylaplace:
+  // polylaplace) and its tolerances the defaults, else std::invalid_argument, as for a refinement of
+  // another mesh (check_refinement).
+  // The operators equal those built from a fresh refinement with the same rule, bit for bit.
+  const VolumeRefinement* refinement = nullptr;
 };
 
 // Builds the operator set of `choice` on `mesh`, e.g.

@@ -61,7 +61,7 @@ __all__ = [
     "volume_lumped_mass", "volume_laplacian", "volume_gradient", "volume_divergence", "volume_dec_max_degree",
     "volume_dec", "VolumeHeatGeodesics", "volume_spectrum", "ball_eigenvalues", "volume_poisson",
     "volume_franke_poisson", "VolumeHodgeDecomposer", "lifted_laplacian", "quadratic_operators",
-    "read_mesh_groups",
+    "read_mesh_groups", "keep_freed_memory",
 ]
 
 
@@ -745,6 +745,22 @@ def conformal_distortion(V, F=None, uv=None):
     """
     V, F, uv = _shift(V, F, uv)
     return _polydec.conformal_distortion(_handle(V, F), np.asarray(uv, dtype=np.float64))
+
+
+def keep_freed_memory(max_bytes=1 << 30):
+    """Opt-in, process-wide: asks the C library's allocator (glibc, mallopt) to keep up to max_bytes of
+    freed memory for reuse instead of returning it to the system, and to serve blocks of up to 32 MB
+    from that reserve (M_TRIM_THRESHOLD = max_bytes, M_MMAP_THRESHOLD = 32 MB). Without it glibc hands
+    the matrices and work arrays of a call on a large mesh back to the system once they are freed,
+    and the next call faults every page in afresh (~13 us per 4 KB page measured here:
+    docs/benchmarks.md, "Python call overhead"). It applies to every library in the process, holds
+    up to max_bytes that other processes cannot use, and cannot be undone (glibc's adaptive default
+    is then off); polydec never calls it by itself. -> True when applied (glibc), False elsewhere.
+
+    >>> polydec.keep_freed_memory(256 << 20) in (True, False)
+    True
+    """
+    return bool(_polydec.keep_freed_memory(_convert.size(max_bytes, "max_bytes", 0)))
 
 
 from ._meshio import from_meshio, to_meshio  # noqa: E402

@@ -61,6 +61,14 @@ class VolumeMesh:
     face_cells (|F|, 2) (-1 where none), edges (|E|, 2) (i < j, lexicographic), boundary_vertices
     (bool |V|), cell_volumes (|C|,), volume, mean_edge_length, bounding_box_diagonal.
 
+    The mesh is validated once, when built. Its refinement (dec/volume/refinement.h: face points,
+    cell points, sub-tetrahedra) is built on the first operator call that needs it, one per
+    cell-point rule ("squared-volume" for the Laplacians "ours" and "diamond", "polylaplace"), and
+    kept for the next calls: volume_operators and the functions built on it (volume_stiffness, ...),
+    volume_dec, VolumeHeatGeodesics, volume_spectrum and volume_poisson. The results are bitwise
+    those of a fresh refinement. n_cached_refinements tells how many are held, clear_refinements()
+    drops them; a pickled mesh leaves them out (rebuilt after unpickling on first use).
+
     >>> m = polydec.VolumeMesh([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]],
     ...                        [[[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]]])
     >>> m.n_cells, m.n_faces, round(m.volume, 12)
@@ -189,6 +197,31 @@ class VolumeMesh:
             out.append(f if h % 2 == 0 else f[::-1])
         return out
 
+    def _refinements(self):
+        """The extension's refinement cache of this mesh (created on first use)."""
+        r = self.__dict__.get("_r")
+        if r is None:
+            r = self._r = _polydec.VolumeRefinements(self._m)
+        return r
+
+    @property
+    def n_cached_refinements(self):
+        """How many refinements the mesh holds (one per cell-point rule used).
+
+        >>> m = polydec.hex_grid_volume(2, 2, 2)
+        >>> S = polydec.volume_stiffness(m); M = polydec.volume_mass(m)
+        >>> m.n_cached_refinements
+        1
+        """
+        r = self.__dict__.get("_r")
+        return 0 if r is None else r.n_cached
+
+    def clear_refinements(self):
+        """Drops the cached refinements (the next operator call builds its refinement again)."""
+        r = self.__dict__.get("_r")
+        if r is not None:
+            r.clear()
+
     def __getattr__(self, name):
         if name in ("n_vertices", "n_edges", "n_faces", "n_cells", "n_unreferenced_vertices", "positions",
                     "cells", "face_cells", "edges", "boundary_vertices", "cell_volumes", "volume",
@@ -253,6 +286,11 @@ def _mesh(mesh):
     if not isinstance(mesh, VolumeMesh):
         raise TypeError(f"a polydec.VolumeMesh is needed, got {type(mesh).__name__}")
     return mesh._m
+
+
+def _cached(mesh):
+    """(the extension's mesh, its refinement cache)."""
+    return _mesh(mesh), mesh._refinements()
 
 
 def read_volume_mesh(path):
@@ -397,7 +435,8 @@ def volume_operators(mesh, laplacian="ours", parts=("S", "M", "M_lumped", "G", "
     >>> d["S"].shape, round(d["M_lumped"].sum(), 12)
     ((27, 27), 1.0)
     """
-    return _polydec.volume_operators(_mesh(mesh), str(laplacian), set(parts), _convert.threads(threads))
+    m, cache = _cached(mesh)
+    return _polydec.volume_operators(m, str(laplacian), set(parts), _convert.threads(threads), cache)
 
 
 def volume_stiffness(mesh, laplacian="ours", threads=1):
@@ -498,7 +537,8 @@ def volume_dec(mesh, max_degree=None, cell_point="squared-volume", complex="comp
     k = -1 if max_degree is None else int(max_degree)
     if max_degree is not None and not 0 <= k <= 3:
         raise ValueError(f"max_degree must be 0..3, got {max_degree}")
-    return _polydec.volume_dec(_mesh(mesh), k, str(cell_point), str(complex), str(spoke_rule))
+    m, cache = _cached(mesh)
+    return _polydec.volume_dec(m, k, str(cell_point), str(complex), str(spoke_rule), cache)
 
 
 # ---------------------------------------------------------------------------------------- solvers
@@ -517,11 +557,11 @@ class VolumeHeatGeodesics:
     """
 
     def __init__(self, mesh, laplacian="ours", time_step_factor=1.0, mass="lumped", mass_weighted_source=True):
-        m = _mesh(mesh)
+        m, cache = _cached(mesh)
         self._n = m.n_vertices
         self._solver = _polydec.volume_heat_geodesics(m, str(laplacian),
                                                       _convert.positive(time_step_factor, "time_step_factor"),
-                                                      _convert.lumped_flag(mass), bool(mass_weighted_source))
+                                                      _convert.lumped_flag(mass), bool(mass_weighted_source), cache)
 
     def distance(self, sources, return_diagnostics=False):
         """Distances from a vertex index or a sequence of them -> (|V|,) float64; with
@@ -551,8 +591,10 @@ def volume_spectrum(mesh, k, laplacian="ours", boundary="neumann", mass="lumped"
     """
     if boundary not in ("neumann", "dirichlet"):
         raise ValueError(f"boundary must be 'neumann' or 'dirichlet', got {boundary!r}")
-    evals, evecs, info = _polydec.volume_spectrum(_mesh(mesh), int(k), str(laplacian), boundary == "dirichlet",
-                                                  _convert.lumped_flag(mass), float(tolerance), int(max_iterations))
+    m, cache = _cached(mesh)
+    evals, evecs, info = _polydec.volume_spectrum(m, int(k), str(laplacian), boundary == "dirichlet",
+                                                  _convert.lumped_flag(mass), float(tolerance), int(max_iterations),
+                                                  cache)
     return (evals, evecs, info) if return_info else (evals, evecs)
 
 
@@ -592,11 +634,11 @@ def volume_poisson(mesh, exact, laplacian_of_exact, laplacian="ours", mass="gale
     >>> bool(r["rms_error"] < 1e-12)
     True
     """
-    m = _mesh(mesh)
+    m, cache = _cached(mesh)
     X = m.positions
     return _polydec.volume_poisson(m, _vertex_values(exact, X, "exact"),
                                    _vertex_values(laplacian_of_exact, X, "laplacian_of_exact"), str(laplacian),
-                                   _convert.lumped_flag(mass))
+                                   _convert.lumped_flag(mass), cache)
 
 
 def volume_franke_poisson(mesh, laplacian="ours", mass="galerkin"):

@@ -1,9 +1,16 @@
 // python/src/module.cpp — the extension module polydec._polydec: the exception types
 // (FileError is both OSError and ValueError; InvalidMeshError a ValueError naming the element;
-// SolverError a RuntimeError), the array <-> mesh helpers and the registration of the bindings.
+// SolverError a RuntimeError), the array <-> mesh helpers, the allocator opt-in keep_freed_memory and
+// the registration of the bindings.
+#include <climits>
+
 #include "bindings.h"
 #include "polydec/dec/io/mesh_io.h"
 #include "polydec/operators/solvers/cholesky.h"
+
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 
 namespace polydec::python {
 
@@ -113,6 +120,18 @@ PYBIND11_MODULE(_polydec, m) {
     } catch (const polydec::SolverError& e) {
       PyErr_SetString(solver_error, e.what());
     }
+  });
+
+  // polydec.keep_freed_memory: glibc keeps up to max_bytes of freed memory at the top of its heap and
+  // serves blocks up to 32 MB from the heap (process-wide, on the user's explicit request).
+  m.def("keep_freed_memory", [](long long max_bytes) {
+    if (max_bytes < 0) throw std::invalid_argument("max_bytes must be at least 0");
+#if defined(__GLIBC__)
+    const int trim = int(std::min<long long>(max_bytes, INT_MAX));
+    return mallopt(M_MMAP_THRESHOLD, 32 << 20) == 1 && mallopt(M_TRIM_THRESHOLD, trim) == 1;
+#else
+    return false;
+#endif
   });
 
   register_mesh_handle(m);

@@ -4,6 +4,8 @@
 // (heat geodesics, spectrum, Poisson, Hodge decomposition). The Python package (polydec/_volume.py)
 // checks the array inputs and carries the docstrings.
 #include <algorithm>
+#include <memory>
+#include <mutex>
 #include <set>
 
 #include "bindings.h"
@@ -53,10 +55,65 @@ py::tuple cell_arrays(const VolumeMesh& mesh) {
                         py::array_t<int>(long(off.size()), off.data()));
 }
 
+// A VolumeMesh's refinements (dec/volume/refinement.h, default tolerances), built on first use per
+// cell-point rule and kept: the Python VolumeMesh holds one beside its mesh, which the binding keeps
+// alive as long as the cache. Thread-safe (the bindings release the GIL).
+class VolumeRefinements {
+ public:
+  explicit VolumeRefinements(const VolumeMesh& mesh) : mesh_(mesh) {}
+  // The refinement with `rule`, built on the first call (with `threads`) and cached.
+  std::shared_ptr<const VolumeRefinement> get(CellPointRule rule, int threads) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto& r = cached_[int(rule)];
+    if (!r) {
+      VolumeRefinementOptions options;
+      options.cell_rule = rule;
+      options.threads = threads;
+      r = std::make_shared<const VolumeRefinement>(refine_volume(mesh_, options));
+    }
+    return r;
+  }
+  // get(rule, threads) for `mesh`: std::invalid_argument when this cache belongs to another mesh.
+  std::shared_ptr<const VolumeRefinement> for_rule(const VolumeMesh& mesh, CellPointRule rule, int threads) {
+    if (&mesh != &mesh_) throw std::invalid_argument("the refinement cache belongs to another volume mesh");
+    return get(rule, threads);
+  }
+  // The refinement of a volume method (ours and diamond: squared-volume, polylaplace: polylaplace).
+  std::shared_ptr<const VolumeRefinement> for_method(const VolumeMesh& mesh, const LaplacianChoice& choice,
+                                                     int threads) {
+    return for_rule(mesh, choice.method == "polylaplace" ? CellPointRule::PolyLaplace : CellPointRule::SquaredVolume,
+                    threads);
+  }
+  int n_cached() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return int(std::count_if(std::begin(cached_), std::end(cached_), [](const auto& r) { return bool(r); }));
+  }
+  void clear() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (auto& r : cached_) r.reset();
+  }
+
+ private:
+  const VolumeMesh& mesh_;
+  mutable std::mutex mutex_;
+  std::shared_ptr<const VolumeRefinement> cached_[2];  // by CellPointRule
+};
+
+// build_volume_operators on the cache's refinement (when a cache is given).
+OperatorSet cached_operators(const VolumeMesh& mesh, const LaplacianChoice& choice, VolumeOperatorOptions options,
+                             VolumeRefinements* cache) {
+  std::shared_ptr<const VolumeRefinement> r;
+  if (cache) {
+    r = cache->for_method(mesh, choice, options.threads);
+    options.refinement = r.get();
+  }
+  return build_volume_operators(mesh, choice, options);
+}
+
 const char* kParts[] = {"S", "M", "M_lumped", "G", "D"};
 
 py::dict volume_operator_dict(const VolumeMesh& mesh, const std::string& spec,
-                              const std::set<std::string>& parts, int threads) {
+                              const std::set<std::string>& parts, int threads, VolumeRefinements* cache) {
   if (threads < 0) throw std::invalid_argument("threads must be at least 0 (0: all hardware threads)");
   for (const auto& p : parts)
     if (std::find(std::begin(kParts), std::end(kParts), p) == std::end(kParts))
@@ -68,7 +125,7 @@ py::dict volume_operator_dict(const VolumeMesh& mesh, const std::string& spec,
     VolumeOperatorOptions options;
     options.with_gradient = parts.count("G") || parts.count("D");
     options.threads = threads;
-    ops = build_volume_operators(mesh, choice, options);
+    ops = cached_operators(mesh, choice, options, cache);
   }
   const SubTetQuality& q = ops.sub_tet_quality;
   py::dict d;
@@ -278,11 +335,16 @@ void register_volumes(py::module_& m) {
   });
 
   m.def("volume_laplacian_names", &volume_laplacian_names);
-  m.def("volume_operators", &volume_operator_dict);
+  py::class_<VolumeRefinements>(m, "VolumeRefinements")
+      .def(py::init<const VolumeMesh&>(), py::keep_alive<1, 2>())
+      .def_property_readonly("n_cached", &VolumeRefinements::n_cached)
+      .def("clear", &VolumeRefinements::clear);
+  m.def("volume_operators", &volume_operator_dict, py::arg("mesh"), py::arg("laplacian"), py::arg("parts"),
+        py::arg("threads"), py::arg("cache") = nullptr);
 
   m.def("volume_dec_max_degree", &volume_dec_max_degree);
   m.def("volume_dec", [](const VolumeMesh& mesh, int max_degree, const std::string& cell_point,
-                         const std::string& complex, const std::string& spoke_rule) {
+                         const std::string& complex, const std::string& spoke_rule, VolumeRefinements* cache) {
     const VolumeRefinementOptions ropt = refinement_options(cell_point);
     VolumeDecOptions options;
     options.complex = parse_dec_complex(complex);
@@ -292,7 +354,11 @@ void register_volumes(py::module_& m) {
       py::gil_scoped_release release;
       if (max_degree < 0) max_degree = options.complex == DecComplex::Mesh ? 3 : volume_dec_max_degree(mesh);
       options.max_degree = max_degree;
-      D = volume_dec(mesh, refine_volume(mesh, ropt), options);
+      if (cache) {
+        D = volume_dec(mesh, *cache->for_rule(mesh, ropt.cell_rule, 1), options);
+      } else {
+        D = volume_dec(mesh, refine_volume(mesh, ropt), options);
+      }
     }
     py::dict d;
     d["max_degree"] = D.max_degree;
@@ -330,22 +396,22 @@ void register_volumes(py::module_& m) {
   });
 
   m.def("volume_heat_geodesics", [](const VolumeMesh& mesh, const std::string& spec, double time_step_factor,
-                                    bool lumped_mass, bool mass_weighted_source) {
+                                    bool lumped_mass, bool mass_weighted_source, VolumeRefinements* cache) {
     const LaplacianChoice choice = parse_volume_laplacian(spec);
     py::gil_scoped_release release;
     HeatGeodesicsOptions options;
     options.time_step_factor = time_step_factor;
     options.lumped_mass = lumped_mass;
     options.mass_weighted_source = mass_weighted_source;
-    return std::make_unique<HeatGeodesics>(build_volume_operators(mesh, choice), mesh.mean_edge_length(),
+    return std::make_unique<HeatGeodesics>(cached_operators(mesh, choice, {}, cache), mesh.mean_edge_length(),
                                            options);
   });
 
   m.def("volume_spectrum", [](const VolumeMesh& mesh, int k, const std::string& spec, bool dirichlet,
-                              bool lumped_mass, double tolerance, int max_iterations) {
+                              bool lumped_mass, double tolerance, int max_iterations, VolumeRefinements* cache) {
     const LaplacianChoice choice = parse_volume_laplacian(spec);
     return spectrum_released(k, lumped_mass, tolerance, max_iterations, [&](const SpectrumOptions& options) {
-      return volume_laplacian_spectrum(build_volume_operators(mesh, choice, {.with_gradient = false}), mesh,
+      return volume_laplacian_spectrum(cached_operators(mesh, choice, {.with_gradient = false}, cache), mesh,
                                        dirichlet, options);
     });
   });
@@ -362,12 +428,13 @@ void register_volumes(py::module_& m) {
   });
 
   m.def("volume_poisson", [](const VolumeMesh& mesh, const Eigen::VectorXd& exact,
-                             const Eigen::VectorXd& laplacian, const std::string& spec, bool lumped_mass) {
+                             const Eigen::VectorXd& laplacian, const std::string& spec, bool lumped_mass,
+                             VolumeRefinements* cache) {
     const LaplacianChoice choice = parse_volume_laplacian(spec);
     VolumePoissonError e;
     {
       py::gil_scoped_release release;
-      e = volume_dirichlet_poisson(build_volume_operators(mesh, choice, {.with_gradient = false}), mesh,
+      e = volume_dirichlet_poisson(cached_operators(mesh, choice, {.with_gradient = false}, cache), mesh,
                                    exact, laplacian, lumped_mass);
     }
     return poisson_dict(e);

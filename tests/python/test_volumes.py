@@ -4,8 +4,10 @@ relative; S symmetric, S 1 = 0, linear precision at the interior vertices of jit
 S = D G = -d0^T star1 d0, d1 d0 = d2 d1 = 0 exactly; the Neumann spectrum's 0 with a constant
 vector; heat geodesics equal to the CLI's; Poisson exact on linear functions; the Hodge
 decomposition's harmonic dimension (0 on a cube, 1 on a solid torus); meshes from arrays, files
-and errors naming the file, cell or face."""
+and errors naming the file, cell or face; the refinement a VolumeMesh keeps gives bitwise the
+results of a fresh one and is not pickled."""
 
+import pickle
 import re
 
 import numpy as np
@@ -376,6 +378,7 @@ def test_volume_operators_threads_give_identical_results():
     mesh = polydec.hex_grid_volume(16, 16, 17, jitter=0.2, seed=3)
     one = polydec.volume_operators(mesh, "ours", {"S", "M", "M_lumped", "G"}, threads=1)
     for threads in (2, 0):
+        mesh.clear_refinements()  # the refinement too is built on `threads` threads
         many = polydec.volume_operators(mesh, "ours", {"S", "M", "M_lumped", "G"}, threads=threads)
         for part in ("S", "M", "G"):
             assert (one[part] != many[part]).nnz == 0
@@ -383,3 +386,70 @@ def test_volume_operators_threads_give_identical_results():
         assert np.array_equal(one["M_lumped"], many["M_lumped"])
     with pytest.raises(ValueError):
         polydec.volume_operators(mesh, "ours", {"S"}, threads=-1)
+
+
+def bitwise_equal(A, B):
+    """Same sparsity pattern and the same doubles, bit for bit (or equal dense arrays)."""
+    if not scipy.sparse.issparse(A):
+        return np.array_equal(np.asarray(A), np.asarray(B))
+    return (A.shape == B.shape and np.array_equal(A.indptr, B.indptr) and np.array_equal(A.indices, B.indices)
+            and np.array_equal(A.data.view(np.int64), B.data.view(np.int64)))
+
+
+@pytest.mark.parametrize("method", METHODS)
+def test_kept_refinement_gives_bitwise_the_results_of_a_fresh_one(method):
+    # Polyhedra with non-planar faces, so that face and cell points matter; a pickled copy holds no
+    # refinement, so its first call is the uncached route (a fresh refinement per call).
+    mesh = polydec.truncated_octahedra_volume(2, jitter=0.2, seed=5)
+    parts = {"S", "M", "M_lumped", "G", "D"}
+    assert mesh.n_cached_refinements == 0
+    first = polydec.volume_operators(mesh, method, parts)
+    assert mesh.n_cached_refinements == 1
+    again = polydec.volume_operators(mesh, method, parts)
+    S, M = polydec.volume_laplacian(mesh, method, mass="galerkin")
+    assert mesh.n_cached_refinements == 1
+    fresh = pickle.loads(pickle.dumps(mesh))
+    assert fresh.n_cached_refinements == 0
+    reference = polydec.volume_operators(fresh, method, parts)
+    for part in ("S", "M", "M_lumped", "G", "D"):
+        assert bitwise_equal(first[part], reference[part]), part
+        assert bitwise_equal(again[part], reference[part]), part
+    assert bitwise_equal(S, reference["S"]) and bitwise_equal(M, reference["M"])
+    # The solvers on the kept refinement equal theirs on fresh meshes.
+    fresh = lambda: pickle.loads(pickle.dumps(mesh))  # noqa: E731
+    d = polydec.VolumeHeatGeodesics(mesh, method).distance([0, 5])
+    assert bitwise_equal(d, polydec.VolumeHeatGeodesics(fresh(), method).distance([0, 5]))
+    evals, evecs = polydec.volume_spectrum(mesh, 4, method)
+    evals_f, evecs_f = polydec.volume_spectrum(fresh(), 4, method)
+    assert bitwise_equal(evals, evals_f) and bitwise_equal(evecs, evecs_f)
+    linear = lambda X: X[:, 0] - 2 * X[:, 2]  # noqa: E731
+    zero = lambda X: np.zeros(len(X))  # noqa: E731
+    p = polydec.volume_poisson(mesh, linear, zero, method)
+    assert bitwise_equal(p["solution"], polydec.volume_poisson(fresh(), linear, zero, method)["solution"])
+    assert mesh.n_cached_refinements == 1
+
+
+def test_kept_refinements_one_per_cell_point_rule_and_not_pickled():
+    mesh = polydec.cuboctahedra_volume(2, jitter=0.2)
+    size = len(pickle.dumps(mesh))
+    polydec.volume_stiffness(mesh, "ours")
+    polydec.volume_stiffness(mesh, "diamond")  # the same squared-volume refinement
+    assert mesh.n_cached_refinements == 1
+    polydec.volume_mass(mesh, "polylaplace")
+    assert mesh.n_cached_refinements == 2
+    D = polydec.volume_dec(mesh, cell_point="polylaplace")
+    assert mesh.n_cached_refinements == 2
+    reference = polydec.volume_dec(pickle.loads(pickle.dumps(mesh)), cell_point="polylaplace")
+    assert D["max_degree"] == reference["max_degree"] >= 1
+    for key in reference:
+        if scipy.sparse.issparse(reference[key]):
+            assert bitwise_equal(D[key], reference[key]), key
+    assert len(pickle.dumps(mesh)) == size  # the refinements stay out of the pickle
+    back = pickle.loads(pickle.dumps(mesh))
+    assert back.n_cached_refinements == 0
+    assert bitwise_equal(polydec.volume_stiffness(back), polydec.volume_stiffness(mesh))
+    mesh.clear_refinements()
+    assert mesh.n_cached_refinements == 0
+    # A cache serves only its own mesh.
+    with pytest.raises(ValueError, match="another volume mesh"):
+        polydec._polydec.volume_operators(back._m, "ours", {"S"}, 1, mesh._refinements())

@@ -1,11 +1,14 @@
 // tests/apps/cli/test_cli_volume.cpp — `polydec info` and `polydec convert` on volume meshes:
 // the JSON report against the mesh's own numbers, conversions between the volume formats and
 // to the boundary surface, usage and bad-input exit codes; gmsh files (groups and skipped elements
-// in `info`, `geodesics --source-group`, `convert` to .msh and back).
+// in `info`, `geodesics --source-group`, `convert` to .msh and back; each command reads a .msh or
+// .vtu file as the kind it holds, and names a broken one's file and line).
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <catch2/catch.hpp>
+#include <fmt/format.h>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -16,6 +19,7 @@
 #include "polydec/dec/io/mesh_io.h"
 #include "polydec/dec/io/mesh_groups.h"
 #include "polydec/dec/io/volume_io.h"
+#include "polydec/dec/mesh/generators.h"
 #include "polydec/dec/mesh/volume_generators.h"
 #include "tests/apps/cli/cli_run.h"
 #include "tests/support/support.h"
@@ -199,6 +203,64 @@ TEST_CASE("polydec info, geodesics --source-group and convert on gmsh files", "[
   r = test::run_cli_in(dir.dir, "info '" + out + "' --json");
   REQUIRE(r.code == 0);
   CHECK(nlohmann::json::parse(r.out)["faces"] == 14);
+}
+
+TEST_CASE("each command reads a .msh or .vtu file as what it holds, a broken one is named by file and line",
+          "[cli][msh]") {
+  test::ScratchDir dir("cli_msh_kind");
+  write_volume_mesh(hex_grid_volume(2, 2, 2, {0.2, 3}), dir.path("v.vtu"));
+  write_mesh(dir.path("s.vtu"), quad_grid(3, 3));
+  const std::string tet = msh_fixture("tet_41_ascii.msh"), tri = msh_fixture("tri_22_binary.msh");
+  struct Input {
+    std::string path;
+    bool volume;
+    int vertices;
+  };
+  const Input inputs[] = {{tet, true, 44}, {tri, false, 13}, {dir.path("v.vtu"), true, 27}, {dir.path("s.vtu"), false, 16}};
+  for (const Input& in : inputs) {
+    INFO(in.path);
+    test::CliRun r = test::run_cli_in(dir.dir, "info '" + in.path + "' --json");
+    REQUIRE(r.code == 0);
+    nlohmann::json j = nlohmann::json::parse(r.out);
+    CHECK(j["vertices"] == in.vertices);
+    CHECK(j.contains("cells") == in.volume);
+    r = test::run_cli_in(dir.dir, "operators '" + in.path + "' --out '" + dir.path("ops") + "' --json");
+    REQUIRE(r.code == 0);
+    CHECK(read_matrix_market(dir.path("ops") + "/S.mtx").rows() == in.vertices);
+    r = test::run_cli_in(dir.dir, "spectrum '" + in.path + "' --k 3 --json");
+    REQUIRE(r.code == 0);
+    j = nlohmann::json::parse(r.out);
+    CHECK(j.contains("cells") == in.volume);
+    CHECK(std::abs(j["eigenvalues"][0].get<double>()) < 1e-8);
+    r = test::run_cli_in(dir.dir, "geodesics '" + in.path + "' --source 0 --json");
+    REQUIRE(r.code == 0);
+    r = test::run_cli_in(dir.dir, "convert '" + in.path + "' '" + dir.path(in.volume ? "c.ovm" : "c.obj") + "'");
+    REQUIRE(r.code == 0);
+    CHECK((in.volume ? read_volume_mesh(dir.path("c.ovm")).n_vertices() : read_mesh(dir.path("c.obj")).n_vertices()) ==
+          in.vertices);
+    // A surface for --order 2, a volume refused with the usage error.
+    r = test::run_cli_in(dir.dir, "operators '" + in.path + "' --order 2 --out '" + dir.path("q") + "'");
+    CHECK(r.code == (in.volume ? 2 : 0));
+  }
+  // A broken surface .msh: every command names the file and the line of the bad token.
+  std::ifstream good(msh_fixture("tri_41_ascii.msh"), std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(good)), {});
+  const size_t at = bytes.find("\n2 0 0\n") + 1;
+  REQUIRE(at != std::string::npos + 1);
+  bytes.replace(at, 5, "2 x 0");
+  const long line = 1 + long(std::count(bytes.begin(), bytes.begin() + long(at), '\n'));
+  const std::string bad = dir.path("bad.msh");
+  std::ofstream(bad, std::ios::binary) << bytes;
+  const std::string expected = fmt::format("{}:{}: bad node coordinate 'x'", bad, line);
+  for (const std::string& command :
+       {"info '" + bad + "'", "operators '" + bad + "' --out '" + dir.path("o") + "'", "spectrum '" + bad + "' --k 2",
+        "geodesics '" + bad + "' --source 0", "dec '" + bad + "' --out '" + dir.path("d") + "'", "hodge '" + bad + "'",
+        "render '" + bad + "' --png '" + dir.path("p.png") + "'", "convert '" + bad + "' '" + dir.path("x.obj") + "'"}) {
+    INFO(command);
+    const test::CliRun r = test::run_cli_in(dir.dir, command);
+    CHECK(r.code == 3);
+    CHECK(r.err.find(expected) != std::string::npos);
+  }
 }
 
 }  // namespace test_cli_volume

@@ -554,4 +554,82 @@ TEST_CASE("unknown formats: both messages list every format", "[io][msh]") {
   }
 }
 
+TEST_CASE("read_mesh_file: one parse, the kind by content, the two readers' meshes, groups and errors", "[io][msh]") {
+  // The same message from both routes (file, line or byte offset, reason).
+  auto same_error = [](auto&& reference, const std::string& path, MeshFileOptions options = {}) {
+    std::string expected;
+    try {
+      reference();
+    } catch (const FileError& e) {
+      expected = e.what();
+    }
+    REQUIRE(!expected.empty());
+    CHECK_THROWS_WITH(read_mesh_file(path, options), expected);
+  };
+  MeshFileOptions with_groups;
+  with_groups.groups = true;
+  for (const char* encoding : kEncodings) {
+    for (const std::string kind : {"tri", "quad", "tet", "hex", "prism", "pyramid"}) {
+      const std::string path = fixture(kind + "_" + encoding + ".msh");
+      INFO(path);
+      const MeshFile f = read_mesh_file(path, with_groups);
+      REQUIRE(f.is_volume() == is_volume_mesh_path(path));
+      CHECK(f.is_volume() == (kind != "tri" && kind != "quad"));
+      MeshGroups g;
+      if (f.is_volume()) {
+        check_same(read_volume_mesh_with_groups(path, g), *f.volume);
+        CHECK(!f.surface);
+      } else {
+        check_same(read_mesh_with_groups(path, g), *f.surface);
+        CHECK(!f.volume);
+      }
+      CHECK(f.groups.vertices == g.vertices);
+      CHECK(f.groups.elements == g.elements);
+      CHECK(f.groups.skipped == g.skipped);
+      CHECK(read_mesh_file(path).groups.vertices.empty());  // groups only when asked for
+    }
+  }
+  test::ScratchDir dir("mesh_file");
+  // .vtu of both kinds, by content; the other extensions by name.
+  const VolumeMesh hex = hex_grid_volume(2, 2, 3, {0.2, 3});
+  const Mesh quads = quad_grid(3, 2);
+  write_volume_mesh(hex, dir.path("v.vtu"));
+  write_mesh(dir.path("s.vtu"), quads);
+  write_volume_mesh(hex, dir.path("v.vtk"));
+  write_mesh(dir.path("s.off"), quads);
+  for (const char* name : {"v.vtu", "v.vtk"}) {
+    const MeshFile f = read_mesh_file(dir.path(name));
+    REQUIRE(f.is_volume());
+    check_same(read_volume_mesh(dir.path(name)), *f.volume);
+  }
+  for (const char* name : {"s.vtu", "s.off"}) {
+    const MeshFile f = read_mesh_file(dir.path(name));
+    REQUIRE(f.surface);
+    check_same(read_mesh(dir.path(name)), *f.surface);
+  }
+  // Unvalidated surfaces (for --repair) and a surface read as a volume on request.
+  MeshFileOptions soup;
+  soup.validate_surface = false;
+  const MeshFile s = read_mesh_file(fixture("quad_41_binary.msh"), soup);
+  REQUIRE(s.soup);
+  CHECK(s.soup->n_faces() == 11);
+  CHECK(!s.surface);
+  MeshFileOptions volume;
+  volume.volume = true;
+  same_error([&] { read_volume_mesh(dir.path("s.vtu")); }, dir.path("s.vtu"), volume);
+  same_error([&] { read_volume_mesh(fixture("tri_41_ascii.msh")); }, fixture("tri_41_ascii.msh"), volume);
+  // Broken files: the message of the reader of the kind is_volume_mesh_path chose.
+  const std::string tri = bytes_of(fixture("tri_41_ascii.msh"));
+  std::ofstream(dir.path("bad_token.msh"), std::ios::binary) << replace(tri, "\n2 0 0\n", "\n2 x 0\n");
+  CHECK(!is_volume_mesh_path(dir.path("bad_token.msh")));
+  same_error([&] { read_mesh(dir.path("bad_token.msh")); }, dir.path("bad_token.msh"));
+  CHECK_THROWS_WITH(read_mesh_file(dir.path("bad_token.msh")),
+                    Catch::Matches(".*bad_token\\.msh:[0-9]+: bad node coordinate 'x'.*"));
+  std::ofstream(dir.path("not_gmsh.msh")) << "hello\n";
+  same_error([&] { read_volume_mesh(dir.path("not_gmsh.msh")); }, dir.path("not_gmsh.msh"));
+  same_error([&] { read_volume_mesh(dir.path("missing.msh")); }, dir.path("missing.msh"));
+  std::ofstream(dir.path("empty.vtu")) << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\">\n";
+  same_error([&] { read_volume_mesh(dir.path("empty.vtu")); }, dir.path("empty.vtu"));
+}
+
 }  // namespace test_msh

@@ -1,8 +1,11 @@
 // tests/operators/registry/test_volume_laplacians.cpp — the volume method registry and the volume gradient
 // and divergence ([volume-gradient]): S = D G exactly, G exact on linear functions (one constant
 // vector on every sub-tetrahedron), D 1-orthogonality (the divergence of any field sums to zero),
-// both cell-point rules, and the registry's names and errors.
+// both cell-point rules, and the registry's names and errors; operators on a caller's refinement
+// bitwise equal to those on a fresh one.
+#include <algorithm>
 #include <catch2/catch.hpp>
+#include <cstring>
 #include <random>
 
 #include "polydec/dec/io/volume_io.h"
@@ -109,6 +112,44 @@ TEST_CASE("volume gradient on the shared cubes: S = D G", "[volume-gradient]") {
       const OperatorSet ops = build_volume_operators(mesh, parse_volume_laplacian(method));
       CHECK(test::relative_difference(SparseMatrix(ops.D * ops.G), ops.S) < 1e-12);
     }
+  }
+}
+
+TEST_CASE("volume operators on a given refinement: bitwise the fresh one's, another rule or mesh refused",
+          "[volume-gradient]") {
+  const VolumeMesh mesh = truncated_octahedra_volume(2, {0.2, 5});
+  auto same = [](const SparseMatrix& a, const SparseMatrix& b) {
+    return a.rows() == b.rows() && a.nonZeros() == b.nonZeros() &&
+           std::equal(a.innerIndexPtr(), a.innerIndexPtr() + a.nonZeros(), b.innerIndexPtr()) &&
+           std::equal(a.valuePtr(), a.valuePtr() + a.nonZeros(), b.valuePtr(),
+                      [](double x, double y) { return std::memcmp(&x, &y, sizeof x) == 0; });
+  };
+  for (const std::string method : {"ours", "polylaplace", "diamond"}) {
+    INFO(method);
+    VolumeRefinementOptions ro;
+    ro.cell_rule = method == "polylaplace" ? CellPointRule::PolyLaplace : CellPointRule::SquaredVolume;
+    const VolumeRefinement r = refine_volume(mesh, ro);
+    VolumeOperatorOptions given;
+    given.refinement = &r;
+    given.keep_refinement = true;
+    const OperatorSet a = build_volume_operators(mesh, parse_volume_laplacian(method), given);
+    const OperatorSet b = build_volume_operators(mesh, parse_volume_laplacian(method));
+    CHECK(same(a.S, b.S));
+    CHECK(same(a.M, b.M));
+    CHECK(same(a.G, b.G));
+    CHECK(same(a.D, b.D));
+    CHECK(a.M_lumped == b.M_lumped);
+    REQUIRE(a.volume_refinement);
+    CHECK(a.volume_refinement->cell_points == r.cell_points);
+    // The other cell-point rule, or a refinement of another mesh, is refused.
+    VolumeRefinementOptions other = ro;
+    other.cell_rule = method == "polylaplace" ? CellPointRule::SquaredVolume : CellPointRule::PolyLaplace;
+    const VolumeRefinement wrong = refine_volume(mesh, other);
+    given.refinement = &wrong;
+    CHECK_THROWS_AS(build_volume_operators(mesh, parse_volume_laplacian(method), given), std::invalid_argument);
+    const VolumeRefinement foreign = refine_volume(hex_grid_volume(2, 2, 2), ro);
+    given.refinement = &foreign;
+    CHECK_THROWS_AS(build_volume_operators(mesh, parse_volume_laplacian(method), given), std::invalid_argument);
   }
 }
 
