@@ -26,14 +26,9 @@ bool msh_holds_volume(std::string_view bytes, const std::string& name);
 // `groups` (if given) receives its physical groups and skipped elements.
 SoupRead read_msh_surface(std::string_view bytes, const std::string& name, MeshGroups* groups = nullptr);
 PolyhedronRead read_msh_volume(std::string_view bytes, const std::string& name, MeshGroups* groups = nullptr);
-// A .msh file parsed once and read as what it holds: a volume (`cells`, as read_msh_volume) when it
-// has 3-D elements, else a surface (`surface`, as read_msh_surface). Throws FileError.
-struct MshRead {
-  bool volume = false;
-  SoupRead surface;
-  PolyhedronRead cells;
-};
-MshRead read_msh_either(std::string_view bytes, const std::string& name, MeshGroups* groups = nullptr);
+// A .msh file parsed once and read as a volume (as read_msh_volume) when it has 3-D elements, else
+// as a surface (as read_msh_surface). Throws FileError.
+SurfaceOrVolumeRead read_msh_either(std::string_view bytes, const std::string& name, MeshGroups* groups = nullptr);
 // The groups and skipped elements of a .msh file of either kind.
 MeshGroups read_msh_groups(std::string_view bytes, const std::string& name);
 // gmsh 4.1 ASCII: a surface of triangles and quadrangles, a volume of tetrahedra, hexahedra,

@@ -157,14 +157,16 @@ PolyhedronRead read_medit(std::string_view bytes, const std::string& name);
 // VTK XML unstructured grid (.vtu): the volume cells (dec/io/vtu.cpp); surface cells beside them
 // are skipped and counted.
 PolyhedronRead read_vtu(std::string_view bytes, const std::string& name);
-// A .vtu file parsed once and read as what it holds: a volume (`cells`, as read_vtu) when it has
-// volume cells or no cells at all, else a surface (`surface`, as read_vtu_surface). Throws FileError.
-struct VtuRead {
+// A file of a format that holds either kind (.msh, .vtu), parsed once and read as what it holds:
+// `cells` when `volume`, else `surface`.
+struct SurfaceOrVolumeRead {
   bool volume = false;
   SoupRead surface;
   PolyhedronRead cells;
 };
-VtuRead read_vtu_either(std::string_view bytes, const std::string& name);
+// A .vtu file read as a volume (as read_vtu) when it has volume cells or no cells at all, else as a
+// surface (as read_vtu_surface). Throws FileError.
+SurfaceOrVolumeRead read_vtu_either(std::string_view bytes, const std::string& name);
 // Whether a .vtu file holds volume cells (else it is a surface); true for bytes that do not parse,
 // so the volume reader reports why.
 bool vtu_holds_volume(std::string_view bytes, const std::string& name);

@@ -618,9 +618,9 @@ PolyhedronRead read_msh_volume(std::string_view bytes, const std::string& name, 
   return volume_of(parse(bytes, name), name, groups);
 }
 
-MshRead read_msh_either(std::string_view bytes, const std::string& name, MeshGroups* groups) {
+SurfaceOrVolumeRead read_msh_either(std::string_view bytes, const std::string& name, MeshGroups* groups) {
   Parsed p = parse(bytes, name);
-  MshRead r;
+  SurfaceOrVolumeRead r;
   r.volume = top_dimension(p) == 3;
   if (r.volume)
     r.cells = volume_of(std::move(p), name, groups);

@@ -122,26 +122,23 @@ MeshFile read_mesh_file(const std::string& path, const MeshFileOptions& options)
     else
       file.soup = std::move(r.soup);
   };
+  const auto either = [&](SurfaceOrVolumeRead r) {
+    if (r.volume)
+      file.volume = validate(std::move(r.cells), path, &file.notes);
+    else
+      surface(std::move(r.surface));
+  };
   if (options.volume || (known(ext) && ext != "msh" && ext != "vtu")) {
     const std::string bytes = slurp(path);
     file.volume = read_volume_bytes(bytes, checked_format(path, bytes), path, groups, &file.notes);
   } else if (ext == "msh" || ext == "vtu") {
     const std::string bytes = slurp(path);
-    if (ext == "vtu") {
-      VtuRead r = read_vtu_either(bytes, path);
-      if (r.volume)
-        file.volume = validate(std::move(r.cells), path, &file.notes);
-      else
-        surface(std::move(r.surface));
-    } else if (!looks_like_msh(bytes)) {
+    if (ext == "vtu")
+      either(read_vtu_either(bytes, path));
+    else if (looks_like_msh(bytes))
+      either(read_msh_either(bytes, path, groups));
+    else
       file.volume = read_volume_bytes(bytes, ext, path, groups, &file.notes);
-    } else {
-      MshRead r = read_msh_either(bytes, path, groups);
-      if (r.volume)
-        file.volume = validate(std::move(r.cells), path, &file.notes);
-      else
-        surface(std::move(r.surface));
-    }
   } else {
     surface(read_surface_file(path, groups));
   }

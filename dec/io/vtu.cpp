@@ -1007,9 +1007,9 @@ SoupRead read_vtu_surface(std::string_view bytes, const std::string& name) {
   return surface_of(io_vtu_detail::read_grid(bytes, name), name);
 }
 
-VtuRead read_vtu_either(std::string_view bytes, const std::string& name) {
+SurfaceOrVolumeRead read_vtu_either(std::string_view bytes, const std::string& name) {
   Grid g = io_vtu_detail::read_grid(bytes, name);
-  VtuRead r;
+  SurfaceOrVolumeRead r;
   r.volume = g.types.empty() ||
              std::any_of(g.types.begin(), g.types.end(), [](int t) { return vtk_cell_dimension(t) == 3; });
   if (r.volume)
