@@ -96,7 +96,8 @@ InputMesh load_input_mesh(const std::string& path, bool volume, bool repair_firs
 }
 
 void PhaseTimer::check_phase(const char* phase) {
-  static const char* const kPhases[] = {"read", "operators", "factorization", "solve", "write"};
+  static const char* const kPhases[] = {"read",       "generate", "operators", "factorization", "solve",
+                                         "statistics", "evaluation", "render", "write"};
   if (std::find_if(std::begin(kPhases), std::end(kPhases), [&](const char* p) { return std::string(p) == phase; }) ==
       std::end(kPhases))
     throw std::logic_error(fmt::format("PhaseTimer: unknown phase '{}'", phase));

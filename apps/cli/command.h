@@ -98,9 +98,11 @@ struct UsageError : std::runtime_error {
 };
 
 // Wall times of a command's phases, reported by every --json as "times_ms": milliseconds of the
-// phases that happened, named read, operators (refinement and assembly), factorization, solve (all
-// solves), write, and total (from the timer's construction to json(), so at least their sum). A
-// phase timed twice adds up; another name is an internal error (std::logic_error).
+// phases that happened, named read, generate (a built-in mesh instead of a file), operators
+// (refinement and assembly), factorization, solve (all solves), statistics (mesh measures),
+// evaluation (a whole experiment suite), render (pictures, their files included), write, and total
+// (from the timer's construction to json(), so at least their sum). A phase timed twice adds up;
+// another name is an internal error (std::logic_error).
 class PhaseTimer {
  public:
   using Clock = std::chrono::steady_clock;

@@ -74,8 +74,9 @@ void print_groups(const nlohmann::json& j, const char* elements) {
   }
 }
 
-void run_volume(const Options& o, const InputMesh& in) {
+void run_volume(const Options& o, const InputMesh& in, PhaseTimer& timer) {
   if (o.repair) throw UsageError("--repair applies to surface meshes only");
+  const auto t_statistics = PhaseTimer::Clock::now();
   const VolumeReadNotes& notes = in.notes;
   const VolumeMesh& m = *in.volume;
   std::map<std::string, int> shapes{
@@ -149,6 +150,8 @@ void run_volume(const Options& o, const InputMesh& in) {
                             {"mean_nonplanarity", m.n_faces() ? sum_np / m.n_faces() : 0.0},
                             {"skipped_cells", notes.skipped_cells}};
   add_groups(in.groups, "cells", j);
+  timer.add("statistics", t_statistics);
+  j["times_ms"] = timer.json();
   if (o.json) {
     print_json(j);
     return;
@@ -181,10 +184,11 @@ void run_volume(const Options& o, const InputMesh& in) {
 }
 
 void run(const Options& o) {
-  const InputMesh in = load_input_mesh(o.mesh, o.volume, o.repair, true);
-  if (in.volume) return run_volume(o, in);
+  PhaseTimer timer;
+  const InputMesh in = timer.time("read", [&] { return load_input_mesh(o.mesh, o.volume, o.repair, true); });
+  if (in.volume) return run_volume(o, in, timer);
   const Mesh& mesh = *in.surface;
-  const MeshStatistics s = mesh_statistics(mesh);
+  const MeshStatistics s = timer.time("statistics", [&] { return mesh_statistics(mesh); });
   nlohmann::json hist = nlohmann::json::object();
   for (const auto& [n, c] : s.valence_histogram) hist[std::to_string(n)] = c;
   nlohmann::json j = {{"mesh", o.mesh},
@@ -211,6 +215,7 @@ void run(const Options& o) {
                             {"fan_inverted", s.fan.n_inverted},
                             {"fan_faces_affected", s.fan.n_faces_affected}};
   add_groups(in.groups, "faces", j);
+  j["times_ms"] = timer.json();
   if (o.json) {
     print_json(j);
     return;

@@ -66,7 +66,7 @@ void finish_options(const Options& o, RenderOptions& r) {
 }
 
 // A volume mesh: the solid behind the cut plane, the scalar on the section and the boundary.
-void run_volume(const Options& o, const VolumeMesh& mesh) {
+void run_volume(const Options& o, const VolumeMesh& mesh, PhaseTimer& timer) {
   if (o.repair) throw UsageError("--repair applies to surface meshes only");
   RenderOptions r = picture_options(o);
   CutPlane plane;
@@ -86,39 +86,48 @@ void run_volume(const Options& o, const VolumeMesh& mesh) {
     if (o.source >= mesh.n_vertices())
       throw std::out_of_range(fmt::format("source vertex {} is out of range (the mesh has {} vertices)",
                                           o.source, mesh.n_vertices()));
-    const HeatGeodesics heat(
-        build_volume_operators(mesh, parse_volume_laplacian(o.laplacian), {.keep_refinement = true}),
-        mesh.mean_edge_length());
-    s = heat.distance(o.source);
+    VolumeOperatorOptions vopt;
+    vopt.keep_refinement = true;
+    OperatorSet ops = timer.time("operators", [&] {
+      return build_volume_operators(mesh, parse_volume_laplacian(o.laplacian), vopt);
+    });
+    const HeatGeodesics heat =
+        timer.time("factorization", [&] { return HeatGeodesics(take_operators(ops), mesh.mean_edge_length()); });
+    s = timer.time("solve", [&] { return heat.distance(o.source); });
     refinement = *heat.operators().volume_refinement;
     r.scalar_label = "distance";
     r.isolines = 15;
   } else {
     s = coordinate_scalar(o, mesh.positions(), r);
-    refinement = refine_volume(mesh);
+    refinement = timer.time("operators", [&] { return refine_volume(mesh); });
   }
   finish_options(o, r);
-  render_volume_cut_png(o.png, mesh, refinement, s, plane, r);
+  timer.time("render", [&] { render_volume_cut_png(o.png, mesh, refinement, s, plane, r); });
   if (o.json)
     print_json({{"mesh", o.mesh},
                 {"png", o.png},
                 {"width", r.width},
                 {"height", r.height},
                 {"cut_point", {plane.point.x(), plane.point.y(), plane.point.z()}},
-                {"cut_normal", {plane.normal.x(), plane.normal.y(), plane.normal.z()}}});
+                {"cut_normal", {plane.normal.x(), plane.normal.y(), plane.normal.z()}},
+                {"times_ms", timer.json()}});
   else
     fmt::print("wrote {}\n", o.png);
 }
 
 void run(const Options& o) {
-  const InputMesh in = load_input_mesh(o.mesh, o.volume, o.repair);
-  if (in.volume) return run_volume(o, *in.volume);
+  PhaseTimer timer;
+  const InputMesh in = timer.time("read", [&] { return load_input_mesh(o.mesh, o.volume, o.repair); });
+  if (in.volume) return run_volume(o, *in.volume, timer);
   const Mesh& mesh = *in.surface;
   RenderOptions r = picture_options(o);
   Eigen::VectorXd s;
   if (o.source >= 0) {
     if (o.scalar != "none") throw UsageError("--distance-from and --scalar exclude each other");
-    s = HeatGeodesics(mesh).distance(o.source);
+    OperatorSet ops = timer.time("operators", [&] { return build_operators(mesh, parse_laplacian("ours")); });
+    const HeatGeodesics heat =
+        timer.time("factorization", [&] { return HeatGeodesics(take_operators(ops), mesh.mean_edge_length()); });
+    s = timer.time("solve", [&] { return heat.distance(o.source); });
     r.scalar_label = "distance";
     r.isolines = 15;
     r.view_direction = view_facing_vertex(mesh, o.source, r.up);
@@ -126,9 +135,10 @@ void run(const Options& o) {
     s = coordinate_scalar(o, mesh.positions(), r);
   }
   finish_options(o, r);
-  render_png(o.png, mesh, s, r);
+  timer.time("render", [&] { render_png(o.png, mesh, s, r); });
   if (o.json)
-    print_json({{"mesh", o.mesh}, {"png", o.png}, {"width", r.width}, {"height", r.height}});
+    print_json(
+        {{"mesh", o.mesh}, {"png", o.png}, {"width", r.width}, {"height", r.height}, {"times_ms", timer.json()}});
   else
     fmt::print("wrote {}\n", o.png);
 }

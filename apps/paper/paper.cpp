@@ -98,11 +98,16 @@ class Evaluation {
     plan();
     double total = 0, done = 0;
     for (const Step& s : steps_) total += s.weight;
+    json step_ms = json::object();
     for (const Step& s : steps_) {
       if (o_.progress) o_.progress(done / total, s.label);
+      const auto start = std::chrono::steady_clock::now();
       s.run();
+      const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+      step_ms[s.label] = step_ms.value(s.label, 0.0) + ms;
       done += s.weight;
     }
+    r_["step_times_ms"] = step_ms;
     if (o_.progress) o_.progress(1.0, "done");
     r_["paper"] = paper_printed_values();
     r_["authors_program"] = authors_program_values();

@@ -30,7 +30,8 @@ struct PaperOptions {
   std::function<void(double fraction, const std::string& step)> progress;
 };
 
-// Runs the evaluation. Throws FileError when a mesh of data_dir is missing or unreadable.
+// Runs the evaluation; "step_times_ms" holds each step's wall time (its progress label as key).
+// Throws FileError when a mesh of data_dir is missing or unreadable.
 nlohmann::json reproduce_paper(const PaperOptions& options);
 
 // The report as Markdown: every table with our value, every baseline, and the paper's printed

@@ -65,7 +65,8 @@ class VolumeMesh:
     cell points, sub-tetrahedra) is built on the first operator call that needs it, one per
     cell-point rule ("squared-volume" for the Laplacians "ours" and "diamond", "polylaplace"), and
     kept for the next calls: volume_operators and the functions built on it (volume_stiffness, ...),
-    volume_dec, VolumeHeatGeodesics, volume_spectrum and volume_poisson. The results are bitwise
+    volume_dec, VolumeHeatGeodesics, volume_spectrum, volume_poisson, volume_franke_poisson and
+    VolumeHodgeDecomposer. The results are bitwise
     those of a fresh refinement. n_cached_refinements tells how many are held, clear_refinements()
     drops them; a pickled mesh leaves them out (rebuilt after unpickling on first use).
 
@@ -649,7 +650,8 @@ def volume_franke_poisson(mesh, laplacian="ours", mass="galerkin"):
     >>> r["n_cells"], bool(r["l2_error"] > 0)
     (64, True)
     """
-    return _polydec.volume_franke_poisson(_mesh(mesh), str(laplacian), _convert.lumped_flag(mass))
+    m, cache = _cached(mesh)
+    return _polydec.volume_franke_poisson(m, str(laplacian), _convert.lumped_flag(mass), cache)
 
 
 class VolumeHodgeDecomposer:
@@ -667,7 +669,8 @@ class VolumeHodgeDecomposer:
     """
 
     def __init__(self, mesh, cell_point="squared-volume", complex="complete"):
-        self._h = _polydec.VolumeHodgeDecomposer(_mesh(mesh), str(cell_point), str(complex))
+        m, cache = _cached(mesh)
+        self._h = _polydec.VolumeHodgeDecomposer(m, str(cell_point), str(complex), cache)
         self.pairs = self._h.pairs
         self.d0 = self._h.d0
         self.star1 = self._h.star1

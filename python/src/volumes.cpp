@@ -439,22 +439,26 @@ void register_volumes(py::module_& m) {
     }
     return poisson_dict(e);
   });
-  m.def("volume_franke_poisson", [](const VolumeMesh& mesh, const std::string& spec, bool lumped_mass) {
+  m.def("volume_franke_poisson", [](const VolumeMesh& mesh, const std::string& spec, bool lumped_mass,
+                                    VolumeRefinements* cache) {
     const LaplacianChoice choice = parse_volume_laplacian(spec);
     VolumePoissonError e;
     {
       py::gil_scoped_release release;
-      e = volume_franke_poisson(mesh, lumped_mass, choice);
+      e = volume_franke_poisson(cached_operators(mesh, choice, {.with_gradient = false}, cache), mesh, lumped_mass);
     }
     return poisson_dict(e);
   });
 
   py::class_<VolumeHodgeDecomposer>(m, "VolumeHodgeDecomposer")
-      .def(py::init([](const VolumeMesh& mesh, const std::string& cell_point, const std::string& complex) {
+      .def(py::init([](const VolumeMesh& mesh, const std::string& cell_point, const std::string& complex,
+                       VolumeRefinements* cache) {
         const VolumeRefinementOptions options = refinement_options(cell_point);
         const DecComplex kind = parse_dec_complex(complex);
         py::gil_scoped_release release;
-        return std::make_unique<VolumeHodgeDecomposer>(mesh, options, kind);
+        if (!cache) return std::make_unique<VolumeHodgeDecomposer>(mesh, options, kind);
+        const auto r = cache->for_rule(mesh, options.cell_rule, options.threads);
+        return std::make_unique<VolumeHodgeDecomposer>(VolumeHodgeDecomposer::on_refinement(mesh, *r, kind));
       }))
       .def("decompose", &decompose_to_dict<VolumeHodgeDecomposer>)
       .def_property_readonly("pairs",

@@ -426,6 +426,8 @@ def test_kept_refinement_gives_bitwise_the_results_of_a_fresh_one(method):
     zero = lambda X: np.zeros(len(X))  # noqa: E731
     p = polydec.volume_poisson(mesh, linear, zero, method)
     assert bitwise_equal(p["solution"], polydec.volume_poisson(fresh(), linear, zero, method)["solution"])
+    f = polydec.volume_franke_poisson(mesh, method)
+    assert bitwise_equal(f["solution"], polydec.volume_franke_poisson(fresh(), method)["solution"])
     assert mesh.n_cached_refinements == 1
 
 
@@ -444,6 +446,14 @@ def test_kept_refinements_one_per_cell_point_rule_and_not_pickled():
     for key in reference:
         if scipy.sparse.issparse(reference[key]):
             assert bitwise_equal(D[key], reference[key]), key
+    for complex in ("mesh", "complete"):
+        h = polydec.VolumeHodgeDecomposer(mesh, cell_point="polylaplace", complex=complex)
+        h_fresh = polydec.VolumeHodgeDecomposer(pickle.loads(pickle.dumps(mesh)), cell_point="polylaplace",
+                                                complex=complex)
+        assert bitwise_equal(h.star1, h_fresh.star1) and bitwise_equal(h.d0, h_fresh.d0), complex
+        omega = np.sin(np.arange(h.pairs.shape[0]))
+        assert np.array_equal(h.decompose(omega).exact, h_fresh.decompose(omega).exact), complex
+    assert mesh.n_cached_refinements == 2
     assert len(pickle.dumps(mesh)) == size  # the refinements stay out of the pickle
     back = pickle.loads(pickle.dumps(mesh))
     assert back.n_cached_refinements == 0

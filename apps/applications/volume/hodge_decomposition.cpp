@@ -89,11 +89,28 @@ Eigen::MatrixXd closed_edge_generators(const SparseMatrix& d0, const SparseMatri
   return Z;
 }
 
-VolumeHodgeDecomposer::VolumeHodgeDecomposer(const VolumeMesh& mesh, const VolumeRefinementOptions& options,
-                                             DecComplex complex) {
+namespace {
+
+const VolumeMesh& with_cells(const VolumeMesh& mesh) {
   if (mesh.n_cells() == 0)
     throw InvalidMeshError("cell", 0, "volume Hodge decomposition: the mesh has no cells");
-  const VolumeRefinement refinement = refine_volume(mesh, options);
+  return mesh;
+}
+
+}  // namespace
+
+VolumeHodgeDecomposer::VolumeHodgeDecomposer(const VolumeMesh& mesh, const VolumeRefinementOptions& options,
+                                             DecComplex complex)
+    : VolumeHodgeDecomposer(OnRefinement{}, mesh, refine_volume(with_cells(mesh), options), complex) {}
+
+VolumeHodgeDecomposer VolumeHodgeDecomposer::on_refinement(const VolumeMesh& mesh, const VolumeRefinement& refinement,
+                                                           DecComplex complex) {
+  return VolumeHodgeDecomposer(OnRefinement{}, mesh, refinement, complex);
+}
+
+VolumeHodgeDecomposer::VolumeHodgeDecomposer(OnRefinement, const VolumeMesh& mesh, const VolumeRefinement& refinement,
+                                             DecComplex complex) {
+  with_cells(mesh);
   // 1-forms need d1 and star2, not the 3-forms.
   dec_ = volume_dec(mesh, refinement, VolumeDecOptions{.max_degree = 2, .complex = complex});
   const SparseMatrix& d0 = dec_.d[0];

@@ -40,6 +40,10 @@ class VolumeHodgeDecomposer {
  public:
   explicit VolumeHodgeDecomposer(const VolumeMesh& mesh, const VolumeRefinementOptions& options = {},
                                  DecComplex complex = DecComplex::Complete);
+  // The same on a refinement of `mesh` the caller already holds (std::invalid_argument when it
+  // belongs to another mesh); the results are those of refining again with its options.
+  static VolumeHodgeDecomposer on_refinement(const VolumeMesh& mesh, const VolumeRefinement& refinement,
+                                             DecComplex complex = DecComplex::Complete);
 
   // omega: one value per coarse pair, or per mesh edge on the mesh complex (std::invalid_argument
   // on a size mismatch or non-finite values).
@@ -52,6 +56,8 @@ class VolumeHodgeDecomposer {
   int harmonic_dimension() const { return int(H_.cols()); }
 
  private:
+  struct OnRefinement {};
+  VolumeHodgeDecomposer(OnRefinement, const VolumeMesh& mesh, const VolumeRefinement& refinement, DecComplex complex);
   Eigen::VectorXd exact_potential(const Eigen::VectorXd& rhs) const;
 
   VolumeDec dec_;

@@ -97,9 +97,12 @@ VolumePoissonError volume_dirichlet_poisson(const OperatorSet& ops, const Volume
 
 VolumePoissonError volume_franke_poisson(const VolumeMesh& mesh, bool lumped_mass,
                                          const LaplacianChoice& laplacian) {
+  return volume_franke_poisson(build_volume_operators(mesh, laplacian, {.with_gradient = false}), mesh, lumped_mass);
+}
+
+VolumePoissonError volume_franke_poisson(const OperatorSet& operators, const VolumeMesh& mesh, bool lumped_mass) {
   return volume_dirichlet_poisson(
-      build_volume_operators(mesh, laplacian, {.with_gradient = false}), mesh,
-      [](const Eigen::Vector3d& p) { return franke3d(p.x(), p.y(), p.z()); },
+      operators, mesh, [](const Eigen::Vector3d& p) { return franke3d(p.x(), p.y(), p.z()); },
       [](const Eigen::Vector3d& p) { return franke3d_laplacian(p.x(), p.y(), p.z()); }, lumped_mass);
 }
 

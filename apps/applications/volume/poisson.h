@@ -54,6 +54,9 @@ VolumePoissonError volume_dirichlet_poisson(const OperatorSet& operators, const 
 // Laplacian `laplacian` (operators/registry/volume_laplacians.h; default "ours").
 VolumePoissonError volume_franke_poisson(const VolumeMesh& mesh, bool lumped_mass = false,
                                          const LaplacianChoice& laplacian = {});
+// The same with operators of `mesh` the caller already built (S, M and the lumped M).
+VolumePoissonError volume_franke_poisson(const OperatorSet& operators, const VolumeMesh& mesh,
+                                         bool lumped_mass = false);
 
 struct VolumeConvergenceSeries {
   std::string family;

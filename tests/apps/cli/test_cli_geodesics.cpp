@@ -72,8 +72,9 @@ void check_times(const std::string& command, const nlohmann::json& j, std::vecto
   double sum = 0;
   for (const auto& [name, value] : t.items()) {
     INFO(name);
-    CHECK((name == "read" || name == "operators" || name == "factorization" || name == "solve" ||
-           name == "write" || name == "total"));
+    CHECK((name == "read" || name == "generate" || name == "operators" || name == "factorization" ||
+           name == "solve" || name == "statistics" || name == "evaluation" || name == "render" || name == "write" ||
+           name == "total"));
     REQUIRE(value.is_number());
     const double ms = value.get<double>();
     CHECK(std::isfinite(ms));
@@ -108,7 +109,16 @@ TEST_CASE("every computing command's --json reports its phases' times", "[cli][t
       {"convert " + obj + " " + dir + "/copy.off", {"read", "write"}},
       {"convert " + ovm + " " + dir + "/copy.vtk", {"read", "write"}},
       {"poisson --resolutions 4 8 --family quads", {"solve"}},
-      {"volume-spectrum --ball 2 --k 2", {"solve"}}};
+      {"volume-spectrum --ball 2 --k 2", {"solve"}},
+      {"info " + obj, {"read", "statistics"}},
+      {"info " + ovm, {"read", "statistics"}},
+      {"render " + obj + " --png " + dir + "/a.png --width 64 --height 48", {"read", "render"}},
+      {"render " + obj + " --png " + dir + "/b.png --distance-from 0 --width 64 --height 48",
+       {"read", "operators", "factorization", "solve", "render"}},
+      {"render " + ovm + " --png " + dir + "/c.png --width 64 --height 48", {"read", "operators", "render"}},
+      {"render " + ovm + " --png " + dir + "/d.png --distance-from 0 --width 64 --height 48",
+       {"read", "operators", "factorization", "solve", "render"}},
+      {"demo --level 1 --out " + dir + "/demo", {"generate", "operators", "factorization", "solve", "render", "write"}}};
   for (const auto& [args, phases] : runs) {
     const test::CliRun r = test::run_cli_in(dir, args + " --json");
     INFO(args << "\n" << r.err);

@@ -76,6 +76,20 @@ TEST_CASE("polydec paper --quick: report and pictures written, cells agree with 
     for (const char* t : {"table1", "table2", "table3", "table4", "table6", "figure9", "figure7", "figure8"})
       CHECK(r.results.contains(t));
     CHECK(!r.results.contains("table5"));  // --quick leaves the timings out
+    // The phases' times; the steps' times add up to at most the evaluation's (they do not overlap).
+    REQUIRE(r.results["times_ms"].is_object());
+    const json& t = r.results["times_ms"];
+    REQUIRE(t.contains("evaluation"));
+    REQUIRE(t.contains("write"));
+    CHECK(t["total"].get<double>() >= t["evaluation"].get<double>() + t["write"].get<double>() - 2e-3);
+    double steps = 0;
+    for (const auto& [label, ms] : r.results["step_times_ms"].items()) {
+      INFO(label);
+      CHECK(ms.get<double>() >= 0);
+      steps += ms.get<double>();
+    }
+    CHECK(r.results["step_times_ms"].size() >= 10);
+    CHECK(steps <= t["evaluation"].get<double>() + 1e-3);
     CHECK(r.results["table2"]["REGULAR SPHERE"].size() >= 13);
     CHECK(r.results["table6"]["L-SHAPED"].contains("centroid-unlumped"));
     for (const char* h : {"## Table 1", "## Table 2", "## Table 3", "## Table 4", "## Table 5", "## Table 6",

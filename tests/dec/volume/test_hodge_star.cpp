@@ -268,7 +268,15 @@ TEST_CASE("volume Hodge decomposition: harmonic dimension is the first Betti num
     for (int i = 0; i < u.size(); ++i) u(i) = g(rng);
     const HodgeParts q = hodge.decompose(D.d[0] * u);
     CHECK(q.norm_coexact + q.norm_harmonic <= 1e-9 * q.norm);
+    // On a refinement the caller holds: the same decomposition, bit for bit.
+    const VolumeRefinement r = refine_volume(c.mesh);
+    const HodgeParts p2 = VolumeHodgeDecomposer::on_refinement(c.mesh, r, complex).decompose(omega);
+    CHECK(p2.exact == p.exact);
+    CHECK(p2.harmonic == p.harmonic);
   }
+  // Another mesh's refinement is refused.
+  CHECK_THROWS_AS(VolumeHodgeDecomposer::on_refinement(cases[0].mesh, refine_volume(cases[1].mesh)),
+                  std::invalid_argument);
 }
 
 }  // namespace test_volume_dec
