@@ -71,6 +71,16 @@ py::object to_scipy(Eigen::SparseMatrix<double>& A);
 // A numpy vector that takes over v's storage without copying (v is left empty).
 py::array_t<double> to_numpy(Eigen::VectorXd& v);
 
+// f() run with the GIL released, its result returned as f made it: declared as
+// `T x = without_gil(...)`, the result is never copied. Assigning it to an object declared before
+// the released block would be: Eigen 3.4's SparseMatrix has no move assignment, so every
+// struct holding one deep-copies its matrices there (fresh pages to fault in on every call).
+template <class F>
+auto without_gil(F&& f) {
+  py::gil_scoped_release release;
+  return std::forward<F>(f)();
+}
+
 // (eigenvalues, eigenvectors, info dict with shift, n_converged, n_solves, method) of a spectrum,
 // as `spectrum` and `volume_spectrum` return it.
 py::tuple spectrum_to_python(const Spectrum& s);

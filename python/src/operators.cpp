@@ -75,11 +75,7 @@ void register_operators(py::module_& m) {
   m.def("operators", [](const MeshHandle& h, const std::string& spec, const Parts& parts, int threads,
                         double planarity) {
     if (threads < 0) throw std::invalid_argument("threads must be at least 0 (0: all hardware threads)");
-    Assembled a;
-    {
-      py::gil_scoped_release release;
-      a = assemble(h, spec, parts, threads, planarity);
-    }
+    Assembled a = without_gil([&] { return assemble(h, spec, parts, threads, planarity); });
     py::dict d;
     d["name"] = a.name;
     d["n_input_vertices"] = a.n_input_vertices;
@@ -105,11 +101,12 @@ void register_operators(py::module_& m) {
       const std::shared_ptr<const Refinement> ref = h.refinement(vrule, planarity);
       const Refinement& r = *ref;
       K = CoarseComplex(mesh);
-      if (parts.count("d0")) mats["d0"] = K.d0();
-      if (parts.count("d1")) mats["d1"] = K.d1();
-      if (parts.count("P0")) mats["P0"] = prolongation(mesh, r);
-      if (parts.count("P1")) mats["P1"] = prolongation1(mesh, r, K);
-      if (parts.count("P2")) mats["P2"] = prolongation2(mesh, r, K);
+      auto keep = [&](const char* name, SparseMatrix A) { mats[name].swap(A); };  // no copy
+      if (parts.count("d0")) keep("d0", K.d0());
+      if (parts.count("d1")) keep("d1", K.d1());
+      if (parts.count("P0")) keep("P0", prolongation(mesh, r));
+      if (parts.count("P1")) keep("P1", prolongation1(mesh, r, K));
+      if (parts.count("P2")) keep("P2", prolongation2(mesh, r, K));
       HodgeStarParts hp{parts.count("star0") > 0, parts.count("star0_lumped") > 0, parts.count("star1") > 0,
                         parts.count("star2") > 0};
       if (hp.star0 || hp.star0_lumped || hp.star1 || hp.star2) {
@@ -121,7 +118,7 @@ void register_operators(py::module_& m) {
       }
     }
     py::dict d;
-    for (auto& [name, A] : mats) d[py::str(name)] = A;
+    for (auto& [name, A] : mats) d[py::str(name)] = to_scipy(A);
     if (parts.count("star0_lumped")) d["star0_lumped"] = star0_lumped;
     if (parts.count("pairs")) d["pairs"] = Eigen::MatrixX2i(K.pairs());
     if (parts.count("triples")) d["triples"] = Eigen::MatrixX3i(K.triples());
@@ -141,17 +138,12 @@ void register_operators(py::module_& m) {
     options.spoke_rule = parse_spoke_rule(spoke_rule);
     options.max_degree = max_degree;
     const VirtualVertexRule vrule = parse_virtual_vertex_rule(rule);
-    SurfaceDec D;
-    {
-      py::gil_scoped_release release;
-      const std::shared_ptr<const Refinement> ref = h.refinement(vrule, planarity);
-      D = surface_dec(mesh, *ref, options);
-    }
+    SurfaceDec D = without_gil([&] { return surface_dec(mesh, *h.refinement(vrule, planarity), options); });
     py::list d, P, star;
-    for (int k = 0; k < D.max_degree; ++k) d.append(D.d[k]);
+    for (int k = 0; k < D.max_degree; ++k) d.append(to_scipy(D.d[k]));
     for (int k = 0; k <= D.max_degree; ++k) {
-      P.append(D.P[k]);
-      star.append(D.star[k]);
+      P.append(to_scipy(D.P[k]));
+      star.append(to_scipy(D.star[k]));
     }
     py::dict out;
     out["d"] = d;

@@ -9,12 +9,8 @@ namespace polydec::python {
 void register_quadratic(py::module_& m) {
   m.def("quadratic_operators", [](const MeshHandle& h) {
     const Mesh& mesh = h.mesh();
-    QuadraticLaplacian Q;
-    {
-      py::gil_scoped_release release;
-      Q = quadratic_laplacian(mesh);
-    }
-    return py::make_tuple(Q.S, Q.M, Q.M_lumped, Q.dofs);
+    QuadraticLaplacian Q = without_gil([&] { return quadratic_laplacian(mesh); });
+    return py::make_tuple(to_scipy(Q.S), to_scipy(Q.M), to_numpy(Q.M_lumped), Q.dofs);
   });
 }
 

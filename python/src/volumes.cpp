@@ -119,25 +119,23 @@ py::dict volume_operator_dict(const VolumeMesh& mesh, const std::string& spec,
     if (std::find(std::begin(kParts), std::end(kParts), p) == std::end(kParts))
       throw std::invalid_argument("unknown operator part '" + p + "' (known: S, M, M_lumped, G, D)");
   const LaplacianChoice choice = parse_volume_laplacian(spec);
-  OperatorSet ops;
-  {
-    py::gil_scoped_release release;
+  OperatorSet ops = without_gil([&] {
     VolumeOperatorOptions options;
     options.with_gradient = parts.count("G") || parts.count("D");
     options.threads = threads;
-    ops = cached_operators(mesh, choice, options, cache);
-  }
+    return cached_operators(mesh, choice, options, cache);
+  });
   const SubTetQuality& q = ops.sub_tet_quality;
   py::dict d;
   d["name"] = ops.name;
   d["subtet_degenerate"] = q.n_degenerate;
   d["subtet_inverted"] = q.n_inverted;
   d["cells_affected"] = q.n_cells_affected;
-  if (parts.count("S")) d["S"] = ops.S;
-  if (parts.count("M")) d["M"] = ops.M;
-  if (parts.count("M_lumped")) d["M_lumped"] = ops.M_lumped;
-  if (parts.count("G")) d["G"] = ops.G;
-  if (parts.count("D")) d["D"] = ops.D;
+  if (parts.count("S")) d["S"] = to_scipy(ops.S);
+  if (parts.count("M")) d["M"] = to_scipy(ops.M);
+  if (parts.count("M_lumped")) d["M_lumped"] = to_numpy(ops.M_lumped);
+  if (parts.count("G")) d["G"] = to_scipy(ops.G);
+  if (parts.count("D")) d["D"] = to_scipy(ops.D);
   if (parts.count("G")) d["G_blocks"] = ops.G_blocks;
   return d;
 }
@@ -349,35 +347,30 @@ void register_volumes(py::module_& m) {
     VolumeDecOptions options;
     options.complex = parse_dec_complex(complex);
     options.spoke_rule = parse_spoke_rule(spoke_rule);
-    VolumeDec D;
-    {
-      py::gil_scoped_release release;
+    VolumeDec D = without_gil([&] {
       if (max_degree < 0) max_degree = options.complex == DecComplex::Mesh ? 3 : volume_dec_max_degree(mesh);
       options.max_degree = max_degree;
-      if (cache) {
-        D = volume_dec(mesh, *cache->for_rule(mesh, ropt.cell_rule, 1), options);
-      } else {
-        D = volume_dec(mesh, refine_volume(mesh, ropt), options);
-      }
-    }
+      if (cache) return volume_dec(mesh, *cache->for_rule(mesh, ropt.cell_rule, 1), options);
+      return volume_dec(mesh, refine_volume(mesh, ropt), options);
+    });
     py::dict d;
     d["max_degree"] = D.max_degree;
     const char* d_names[] = {"d0", "d1", "d2"};
     const char* P_names[] = {"P0", "P1", "P2", "P3"};
     const char* star_names[] = {"star0", "star1", "star2", "star3"};
+    py::list d_list, P_list, star_list;  // the same scipy objects as d0, P0, star0, ...
+    auto put = [&](const char* name, SparseMatrix& A, py::list& list) {
+      const py::object o = to_scipy(A);
+      d[name] = o;
+      list.append(o);
+    };
     for (int k = 0; k <= D.max_degree; ++k) {
-      if (k < D.max_degree) d[d_names[k]] = D.d[k];
-      d[P_names[k]] = D.P[k];
-      d[star_names[k]] = D.star[k];
+      if (k < D.max_degree) put(d_names[k], D.d[k], d_list);
+      put(P_names[k], D.P[k], P_list);
+      put(star_names[k], D.star[k], star_list);
     }
     d["complex"] = to_string(D.complex);
     if (D.complex == DecComplex::Mesh) {
-      py::list d_list, P_list, star_list;
-      for (int k = 0; k < D.max_degree; ++k) d_list.append(D.d[k]);
-      for (int k = 0; k <= D.max_degree; ++k) {
-        P_list.append(D.P[k]);
-        star_list.append(D.star[k]);
-      }
       d["d"] = d_list;
       d["P"] = P_list;
       d["star"] = star_list;
