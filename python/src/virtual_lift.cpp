@@ -21,23 +21,22 @@ void register_virtual_lift(py::module_& m) {
       options.lift = parse_virtual_lift(lift);
     }
     const LaplacianChoice choice = parse_laplacian(spec);
-    OperatorSet ops;
     Eigen::MatrixX3d points;
-    {
-      py::gil_scoped_release release;
-      ops = build_operators(mesh, choice, options);
+    OperatorSet ops = without_gil([&] {
+      OperatorSet built = build_operators(mesh, choice, options);  // returned without a copy (NRVO)
       // The refinement the operators were built on, for its virtual points ("ours" and "refined": squared-area).
       RefinementOptions ro;
       ro.rule = parse_virtual_vertex_rule(choice.method == "ours" || choice.method == "refined" ? "squared-area"
                                                                                                  : choice.method);
       ro.lift = options.lift;
       points = refine(mesh, ro).virtual_points;
-    }
+      return built;
+    });
     py::dict d;
     d["name"] = ops.name;
-    d["S"] = ops.S;
-    d["M"] = ops.M;
-    d["M_lumped"] = ops.M_lumped;
+    d["S"] = to_scipy(ops.S);
+    d["M"] = to_scipy(ops.M);
+    d["M_lumped"] = to_numpy(ops.M_lumped);
     d["virtual_points"] = Eigen::MatrixXd(points);
     return d;
   });
