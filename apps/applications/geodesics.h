@@ -3,7 +3,8 @@
 //
 // Time step t = factor * (mean edge length of the input mesh)^2 (factor 1 by default, as in the
 // paper). The constructor factors (M - t S) and the pinned Poisson matrix -S once; every
-// distance() call then costs two back-substitutions and linear work. Works with any
+// distance() call then costs a forward solve over the sources' reach in the elimination tree, three
+// full triangular solves and linear work. Works with any
 // OperatorSet that has G and D (operators/registry/laplacians.h), including the volume ones of
 // operators/registry/volume_laplacians.h (pass the volume mesh's mean edge length); sources and results are
 // indexed by the input mesh's vertices.
