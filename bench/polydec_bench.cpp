@@ -409,7 +409,7 @@ void bench_geodesics(const std::string& name, const Mesh& mesh, int n_sources) {
     copt.relaxed_supernodes = false;
     copt.ordering = CholeskyOrdering::BestFill;
     const SparseCholesky chol(SparseMatrix(Ml - h * h * o.S), "M - t S", copt);
-    std::vector<double> td, ts;
+    std::vector<double> td, ts, tdist, rest;
     double diff = 0, xmax = 0;
     for (int i = 0; i < n_sources; ++i) {
       const int s = int((long(i) * 7919 * 104729) % mesh.n_vertices());
@@ -420,6 +420,8 @@ void bench_geodesics(const std::string& name, const Mesh& mesh, int n_sources) {
       if (i == 0) (void)chol.solve_sparse(rows, values);  // its workspace, made once
       td.push_back(time_ms([&] { xd = chol.solve(b); }));
       ts.push_back(time_ms([&] { xs = chol.solve_sparse(rows, values); }));
+      tdist.push_back(time_ms([&] { heat->distance(s); }));
+      rest.push_back(tdist.back() - td.back() - ts.back());
       diff = std::max(diff, (xs - xd).cwiseAbs().maxCoeff());
       xmax = std::max(xmax, xd.cwiseAbs().maxCoeff());
     }
@@ -430,18 +432,15 @@ void bench_geodesics(const std::string& name, const Mesh& mesh, int n_sources) {
                      "thread CPU time",
                      n_sources, chol.factor_nonzeros() / 1e6, diff, xmax)});
     // Where one source's time goes: distance() against its two solves (the heat step's sparse one and
-    // a dense one for the Poisson step, which has the same pattern and analysis), interleaved; the rest
-    // (right-hand sides, the face-wise pass, the shift) by subtraction.
-    std::vector<double> tdist;
-    for (int i = 0; i < n_sources; ++i) {
-      const int s = int((long(i) * 7919 * 104729) % mesh.n_vertices());
-      tdist.push_back(time_ms([&] { heat->distance(s); }));
-    }
-    const double rest = median(tdist) - median(td) - median(ts);
-    add({"heat geodesics per source: the rest", name, "distance()", "all but the two solves", median(tdist), rest, 0, 0,
-         fmt::format("by subtraction: distance() {:.2f} ms - heat step (solve_sparse) {:.2f} ms - one dense solve "
-                     "{:.2f} ms (the Poisson step's); medians of {}, interleaved with the rows above; thread CPU time",
-                     median(tdist), median(ts), median(td), n_sources)});
+    // a dense one for the Poisson step, which has the same pattern and analysis), timed in the same
+    // iterations; the rest (right-hand sides, the face-wise pass, the shift) by subtraction per
+    // iteration.
+    add({"heat geodesics per source: the rest", name, "distance()", "all but the two solves", median(tdist),
+         median(rest), 0, 0,
+         fmt::format("by subtraction per iteration: distance() - heat step (solve_sparse) - one dense solve (the "
+                     "Poisson step's), median of {} ({:.2f} ms; medians of the three: {:.2f}, {:.2f}, {:.2f} ms); "
+                     "thread CPU time",
+                     n_sources, median(rest), median(tdist), median(ts), median(td))});
   }
   // One field per source for 64 sources at once (blocks of right-hand sides), against the single
   // source median above, re-timed interleaved with it. Target: at most a quarter per source.
