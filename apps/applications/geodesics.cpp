@@ -74,16 +74,63 @@ void normalize_block(double* x, int n, int stride) {
   for (int i = 0; i < n; ++i) x[i * stride] = -x[i * stride] / norm;
 }
 
+// One fan triangle (hat gradients q[0..2], q[3..5] of corners i and j, area a) for m columns:
+// eq. (32) and its divergence added to b_i, b_j and the virtual vertex's acc. Without branches in
+// the main loops so that they vectorize: the squared norms, -1 / |g| (Eigen's packet square root;
+// std::sqrt does not vectorize under errno), the divergence; columns with |g|^2 outside
+// [1e-280, 1e280] (or not finite) contribute nothing there and take normalize_block's rescaled
+// path afterwards. The arrays do not overlap (i != j on a fan triangle of non-zero area); sq and
+// inv are scratch of m values.
+void fan_columns(int m, double a, const double* q, const double* __restrict ui, const double* __restrict uj,
+                 const double* __restrict uf, double* __restrict bi, double* __restrict bj, double* __restrict acc,
+                 double* __restrict sq, double* __restrict inv) {
+  const double q0 = q[0], q1 = q[1], q2 = q[2], q3 = q[3], q4 = q[4], q5 = q[5];
+  for (int c = 0; c < m; ++c) {
+    const double di = ui[c] - uf[c], dj = uj[c] - uf[c];
+    const double g0 = di * q0 + dj * q3, g1 = di * q1 + dj * q4, g2 = di * q2 + dj * q5;
+    sq[c] = g0 * g0 + g1 * g1 + g2 * g2;
+  }
+  Eigen::Map<Eigen::ArrayXd>(inv, m) = -Eigen::Map<const Eigen::ArrayXd>(sq, m).sqrt().inverse();
+  int out_of_range = 0;
+  for (int c = 0; c < m; ++c) {
+    const bool in_range = sq[c] > 1e-280 && sq[c] < 1e280;
+    out_of_range += !in_range;
+    inv[c] = in_range ? inv[c] : 0.0;
+  }
+  for (int c = 0; c < m; ++c) {
+    const double di = ui[c] - uf[c], dj = uj[c] - uf[c], f = inv[c];
+    const double g0 = (di * q0 + dj * q3) * f, g1 = (di * q1 + dj * q4) * f, g2 = (di * q2 + dj * q5) * f;
+    const double si = a * (g0 * q0 + g1 * q1 + g2 * q2);
+    const double sj = a * (g0 * q3 + g1 * q4 + g2 * q5);
+    bi[c] += si;
+    bj[c] += sj;
+    acc[c] -= si + sj;  // the virtual vertex's hat gradient is -(g_i + g_j)
+  }
+  for (int c = 0; c < m && out_of_range > 0; ++c) {
+    if (sq[c] > 1e-280 && sq[c] < 1e280) continue;
+    const double di = ui[c] - uf[c], dj = uj[c] - uf[c];
+    double g[3] = {di * q0 + dj * q3, di * q1 + dj * q4, di * q2 + dj * q5};
+    normalize_block(g, 3, 1);
+    const double si = a * (g[0] * q0 + g[1] * q1 + g[2] * q2);
+    const double sj = a * (g[0] * q3 + g[1] * q4 + g[2] * q5);
+    bi[c] += si;
+    bj[c] += sj;
+    acc[c] -= si + sj;
+  }
+}
+
 // b += -D g for g = -grad u / |grad u| on every fan triangle (eqs. 32-33; D = -G^T W), face by
 // face from the fan data of HeatGeodesics: m columns at once, vertex-major (vertex v's m values of
 // u at U + v m, of b at B + v m). The gradient on the fan triangle (x_i, x_j, x_f) is
 // (u_i - u_f) g_i + (u_j - u_f) g_j with u_f the weighted corner values; the virtual vertex's share
-// of the divergence goes to the corners by the weights. `scratch` holds 2 m values.
+// of the divergence goes to the corners by the weights. `scratch` holds 4 m values.
 void fan_gradient_divergence(const Mesh& mesh, const std::vector<double>& weights, const std::vector<double>& fan,
                              const double* U, int m, double* B, std::vector<double>& scratch) {
-  scratch.assign(2 * size_t(m), 0.0);
+  scratch.assign(4 * size_t(m), 0.0);
   double* uf = scratch.data();
   double* acc = uf + m;
+  double* sq = acc + m;
+  double* inv = sq + m;
   const int* fo = mesh.face_offsets().data();
   const int* fi = mesh.face_indices().data();
   for (int f = 0; f < mesh.n_faces(); ++f) {
@@ -103,25 +150,7 @@ void fan_gradient_divergence(const Mesh& mesh, const std::vector<double>& weight
       const double* uj = U + size_t(j) * m;
       double* bi = B + size_t(i) * m;
       double* bj = B + size_t(j) * m;
-      for (int c = 0; c < m; ++c) {
-        const double di = ui[c] - uf[c], dj = uj[c] - uf[c];
-        double g[3] = {di * q[0] + dj * q[3], di * q[1] + dj * q[4], di * q[2] + dj * q[5]};
-        // (32), normalize_block's common case inline (it is called per column and fan triangle).
-        const double g2 = g[0] * g[0] + g[1] * g[1] + g[2] * g[2];
-        if (g2 > 1e-280 && g2 < 1e280) {
-          const double f = -1.0 / std::sqrt(g2);
-          g[0] *= f;
-          g[1] *= f;
-          g[2] *= f;
-        } else {
-          normalize_block(g, 3, 1);
-        }
-        const double si = a * (g[0] * q[0] + g[1] * q[1] + g[2] * q[2]);
-        const double sj = a * (g[0] * q[3] + g[1] * q[4] + g[2] * q[5]);
-        bi[c] += si;
-        bj[c] += sj;
-        acc[c] -= si + sj;  // the virtual vertex's hat gradient is -(g_i + g_j)
-      }
+      fan_columns(m, a, q, ui, uj, uf, bi, bj, acc, sq, inv);
     }
     for (int k = 0; k < n; ++k) {
       const double w = weights[size_t(b0 + k)];
