@@ -3,7 +3,8 @@
 //
 // Time step t = factor * (mean edge length of the input mesh)^2 (factor 1 by default, as in the
 // paper). The constructor factors (M - t S) and the pinned Poisson matrix -S once; every
-// distance() call then costs two back-substitutions and linear work. Works with any
+// distance() call then costs a forward solve over the sources' reach in the elimination tree, three
+// full triangular solves and linear work. Works with any
 // OperatorSet that has G and D (operators/registry/laplacians.h), including the volume ones of
 // operators/registry/volume_laplacians.h (pass the volume mesh's mean edge length); sources and results are
 // indexed by the input mesh's vertices.
@@ -17,6 +18,8 @@
 #include "polydec/operators/registry/laplacians.h"
 
 #include <limits>
+#include <memory>
+#include <mutex>
 #include <span>
 
 namespace polydec {
@@ -59,7 +62,8 @@ class HeatGeodesics {
   HeatGeodesics(OperatorSet operators, double mean_edge_length, const HeatGeodesicsOptions& options = {});
 
   // Distances from the given source vertices (at least one; throws std::out_of_range for a
-  // vertex index outside the mesh).
+  // vertex index outside the mesh). Calls on one object run one at a time (they share the
+  // factors' workspaces and the buffers below).
   Eigen::VectorXd distance(std::span<const int> sources) const { return distance(sources, nullptr); }
   // The same, and how far the heat step was resolved (HeatDiagnostics) when `diagnostics` is given.
   Eigen::VectorXd distance(std::span<const int> sources, HeatDiagnostics* diagnostics) const;
@@ -92,6 +96,13 @@ class HeatGeodesics {
   // corner weights eqs. (32)-(33)'s gradient, normalization and divergence run face by face
   // without reading G and D. Empty for other operator sets (their G and D are used).
   std::vector<double> fan_;
+  // distance()'s buffers, kept between calls: the heat step's right-hand side, u, the Poisson
+  // right-hand side, its solution and the face-wise pass's scratch; the lock that serializes
+  // distance() and distances() (the Python binding calls them without the GIL).
+  std::unique_ptr<std::mutex> lock_ = std::make_unique<std::mutex>();
+  mutable std::vector<int> work_rows_;
+  mutable std::vector<double> work_values_, work_scratch_;
+  mutable Eigen::VectorXd work_u_, work_b_, work_d_;
 };
 
 // Root-mean-square of (a - b).

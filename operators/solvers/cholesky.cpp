@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <limits>
 #include <mutex>
 #include <stdexcept>
 #include <string_view>
@@ -87,36 +88,30 @@ struct SparseCholesky::Impl {
   mutable cholmod_common c{};
   cholmod_factor* L = nullptr;
   // Solution and workspace of cholmod_solve2, kept between solves: allocating them per solve
-  // (cholmod_solve) made one FINE SPHERE solve 17 instead of 14.5 ms (fresh pages each time).
+  // (cholmod_solve) made one FINE SPHERE solve 17 instead of 14.5 ms (fresh pages each time). One
+  // set for single columns and one for blocks, so that alternating the two does not reallocate
+  // (CHOLMOD reallocates when the column count changes: 2 x 49 MB for 64 columns on FINE SPHERE).
   mutable cholmod_dense* X = nullptr;
   mutable cholmod_dense* Y = nullptr;
   mutable cholmod_dense* E = nullptr;
-  // solve_sparse: a simplicial copy of L (made on its first call, dropped by refactor), the
-  // dense right-hand side (zero between calls), Bset, Xset and the forward solve's workspace.
-  mutable cholmod_factor* Ls = nullptr;
-  mutable cholmod_dense* Bs = nullptr;
-  mutable cholmod_sparse* Bset = nullptr;
-  mutable cholmod_sparse* Xset = nullptr;
-  mutable cholmod_dense* Xs = nullptr;
-  mutable cholmod_dense* Ys = nullptr;
-  mutable cholmod_dense* Es = nullptr;
-  mutable std::vector<int> iperm;  // row -> position in the factor's ordering
+  mutable cholmod_dense* Xb = nullptr;
+  mutable cholmod_dense* Yb = nullptr;
+  mutable cholmod_dense* Eb = nullptr;
+  // solve_sparse: the supernode of each column and the parent of each supernode (L's structure,
+  // fixed by the analysis; made on the first call), the inverse permutation, the forward solution
+  // (zero between calls) and the supernodes of the current reach with their marks.
+  mutable std::vector<int> super_of, super_parent, iperm, reach, mark;
+  mutable std::vector<double> y;
+  mutable int mark_now = 0;
   bool started = false;
-  void drop_simplicial() const {
-    if (Ls) cholmod_free_factor(&Ls, &c);
-  }
   ~Impl() {
     if (started) {
       if (X) cholmod_free_dense(&X, &c);
       if (Y) cholmod_free_dense(&Y, &c);
       if (E) cholmod_free_dense(&E, &c);
-      drop_simplicial();
-      if (Bs) cholmod_free_dense(&Bs, &c);
-      if (Bset) cholmod_free_sparse(&Bset, &c);
-      if (Xset) cholmod_free_sparse(&Xset, &c);
-      if (Xs) cholmod_free_dense(&Xs, &c);
-      if (Ys) cholmod_free_dense(&Ys, &c);
-      if (Es) cholmod_free_dense(&Es, &c);
+      if (Xb) cholmod_free_dense(&Xb, &c);
+      if (Yb) cholmod_free_dense(&Yb, &c);
+      if (Eb) cholmod_free_dense(&Eb, &c);
       if (L) cholmod_free_factor(&L, &c);
       cholmod_finish(&c);
     }
@@ -206,7 +201,6 @@ void SparseCholesky::refactor(const Eigen::SparseMatrix<double>& A_in) {
     return;
   }
 #ifdef POLYDEC_HAVE_CHOLMOD
-  impl_->drop_simplicial();  // solve_sparse's copy holds the old values
   const SpMat A = A_in.isCompressed() ? SpMat() : SpMat(A_in);
   cholmod_sparse s = view_lower(A_in.isCompressed() ? A_in : A);
   cholmod_common& c = impl_->c;
@@ -294,78 +288,112 @@ void SparseCholesky::solve(const double* B, double* X, int n_columns) const {
   b.x = const_cast<double*>(B);
   b.xtype = CHOLMOD_REAL;
   b.dtype = CHOLMOD_DOUBLE;
-  if (!cholmod_solve2(CHOLMOD_A, impl_->L, &b, nullptr, &impl_->X, nullptr, &impl_->Y, &impl_->E, &impl_->c))
-    throw SolverError("solve with " + name_ + " failed (CHOLMOD status " + std::to_string(impl_->c.status) + ")");
-  std::copy_n(static_cast<const double*>(impl_->X->x), size_t(rows_) * n_columns, X);
+  Impl& m = *impl_;
+  const bool one = n_columns == 1;
+  if (!cholmod_solve2(CHOLMOD_A, m.L, &b, nullptr, one ? &m.X : &m.Xb, nullptr, one ? &m.Y : &m.Yb,
+                      one ? &m.E : &m.Eb, &m.c))
+    throw SolverError("solve with " + name_ + " failed (CHOLMOD status " + std::to_string(m.c.status) + ")");
+  std::copy_n(static_cast<const double*>((one ? m.X : m.Xb)->x), size_t(rows_) * n_columns, X);
 #endif
 }
 
 Eigen::VectorXd SparseCholesky::solve_sparse(std::span<const int> rows, std::span<const double> values) const {
+  Eigen::VectorXd x(rows_);
+  solve_sparse(rows, values, x.data());
+  return x;
+}
+
+void SparseCholesky::solve_sparse(std::span<const int> rows, std::span<const double> values, double* x) const {
   if (rows.size() != values.size())
     throw std::invalid_argument("solve_sparse with " + name_ + ": rows and values differ in length");
-  Eigen::VectorXd b = Eigen::VectorXd::Zero(rows_);
-  for (size_t k = 0; k < rows.size(); ++k) {
-    if (rows[k] < 0 || rows[k] >= rows_ || b[rows[k]] != 0)
-      throw std::invalid_argument("solve_sparse with " + name_ + ": row " + std::to_string(rows[k]) +
-                                  " out of range or repeated");
-    b[rows[k]] = values[k];
+  for (size_t k = 0; k < rows.size(); ++k)
+    if (rows[k] < 0 || rows[k] >= rows_)
+      throw std::invalid_argument("solve_sparse with " + name_ + ": row " + std::to_string(rows[k]) + " out of range");
+  {
+    std::vector<int> sorted(rows.begin(), rows.end());
+    std::sort(sorted.begin(), sorted.end());
+    if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
+      throw std::invalid_argument("solve_sparse with " + name_ + ": row " +
+                                  std::to_string(*std::adjacent_find(sorted.begin(), sorted.end())) + " repeated");
   }
-  if (!impl_->use_cholmod || rows.empty()) return solve(b);
-  Eigen::VectorXd x(rows_);
+  if (!impl_->use_cholmod || rows.empty()) {
+    Eigen::VectorXd b = Eigen::VectorXd::Zero(rows_);
+    for (size_t k = 0; k < rows.size(); ++k) b[rows[k]] = values[k];
+    solve(b.data(), x, 1);
+    return;
+  }
 #ifdef POLYDEC_HAVE_CHOLMOD
   Impl& m = *impl_;
-  cholmod_common& c = m.c;
-  const size_t n = size_t(rows_);
-  auto fail = [&](const char* what) {
-    throw SolverError("sparse solve with " + name_ + " failed (" + what + ", CHOLMOD status " +
-                      std::to_string(c.status) + ")");
-  };
-  if (!m.Ls) {
-    m.Ls = cholmod_copy_factor(m.L, &c);
-    // Simplicial LL^T with the same values and permutation (no refactorization).
-    if (!m.Ls || !cholmod_change_factor(CHOLMOD_REAL, 1, 0, 0, 0, m.Ls, &c)) fail("simplicial copy");
-    const int* perm = static_cast<const int*>(m.L->Perm);
-    m.iperm.resize(n);
-    for (int k = 0; k < rows_; ++k) m.iperm[size_t(perm ? perm[k] : k)] = k;
+  const cholmod_factor& L = *m.L;
+  const int n = rows_, n_super = int(L.nsuper);
+  const int* super = static_cast<const int*>(L.super);
+  const int* pi = static_cast<const int*>(L.pi);
+  const int* px = static_cast<const int*>(L.px);
+  const int* s = static_cast<const int*>(L.s);
+  const double* Lx = static_cast<const double*>(L.x);
+  const int* perm = static_cast<const int*>(L.Perm);
+  if (m.super_of.empty()) {
+    // The supernodal elimination tree: a supernode's parent holds the first row below its
+    // diagonal block; parents come after their children.
+    m.super_of.resize(size_t(n));
+    for (int k = 0; k < n_super; ++k) std::fill(m.super_of.begin() + super[k], m.super_of.begin() + super[k + 1], k);
+    m.super_parent.assign(size_t(n_super), -1);
+    for (int k = 0; k < n_super; ++k) {
+      const int n_col = super[k + 1] - super[k];
+      if (pi[k + 1] - pi[k] > n_col) m.super_parent[size_t(k)] = m.super_of[size_t(s[pi[k] + n_col])];
+    }
+    m.iperm.resize(size_t(n));
+    for (int k = 0; k < n; ++k) m.iperm[size_t(perm ? perm[k] : k)] = k;
+    m.mark.assign(size_t(n_super), 0);
+    m.y.assign(size_t(n), 0.0);
   }
-  if (!m.Bs) m.Bs = cholmod_zeros(n, 1, CHOLMOD_REAL, &c);
-  if (!m.Bset) m.Bset = cholmod_allocate_sparse(n, 1, n, 0, 1, 0, CHOLMOD_PATTERN, &c);
-  if (!m.Bs || !m.Bset) fail("workspace");
-  // The forward solve L y = P b on the permuted rows (the system CHOLMOD_L applies no permutation).
-  const int* perm = static_cast<const int*>(m.L->Perm);
-  std::vector<int> position(rows.size());
-  for (size_t k = 0; k < rows.size(); ++k) position[k] = m.iperm[size_t(rows[k])];
-  double* bs = static_cast<double*>(m.Bs->x);
-  int* bset_p = static_cast<int*>(m.Bset->p);
-  int* bset_i = static_cast<int*>(m.Bset->i);
-  bset_p[0] = 0;
-  bset_p[1] = int(rows.size());
+  // The reach: the supernodes from each row's up to the root, in elimination order.
+  if (++m.mark_now == std::numeric_limits<int>::max()) {
+    std::fill(m.mark.begin(), m.mark.end(), 0);
+    m.mark_now = 1;
+  }
+  m.reach.clear();
+  double* y = m.y.data();
   for (size_t k = 0; k < rows.size(); ++k) {
-    bs[position[k]] = values[k];
-    bset_i[k] = position[k];
+    const int p = m.iperm[size_t(rows[k])];
+    y[p] = values[k];
+    for (int j = m.super_of[size_t(p)]; j >= 0 && m.mark[size_t(j)] != m.mark_now; j = m.super_parent[size_t(j)]) {
+      m.mark[size_t(j)] = m.mark_now;
+      m.reach.push_back(j);
+    }
   }
-  const int ok = cholmod_solve2(CHOLMOD_L, m.Ls, m.Bs, m.Bset, &m.Xs, &m.Xset, &m.Ys, &m.Es, &c);
-  for (size_t k = 0; k < rows.size(); ++k) bs[position[k]] = 0;
-  if (!ok) fail("forward solve");
-  // y: the forward solution on its reach (Xset), zero elsewhere; then L^T z = y on the supernodal factor.
-  Eigen::VectorXd y = Eigen::VectorXd::Zero(rows_);
-  const int* xset_i = static_cast<const int*>(m.Xset->i);
-  const int n_reach = static_cast<const int*>(m.Xset->p)[1];
-  const double* xs = static_cast<const double*>(m.Xs->x);
-  for (int p = 0; p < n_reach; ++p) y[xset_i[p]] = xs[xset_i[p]];
+  std::sort(m.reach.begin(), m.reach.end());
+  // L y = P b over the reach, column by column of each supernode (LL^T: its nsrow x nscol block
+  // column-major at px, the diagonal block on top, the rows below listed in s).
+  for (int k : m.reach) {
+    const int k1 = super[k], n_col = super[k + 1] - k1, n_row = pi[k + 1] - pi[k];
+    const int* r = s + pi[k];
+    const double* block = Lx + px[k];
+    for (int j = 0; j < n_col; ++j) {
+      const double* col = block + size_t(j) * size_t(n_row);
+      const double yj = (y[k1 + j] /= col[j]);
+      if (yj == 0) continue;
+      for (int i = j + 1; i < n_col; ++i) y[k1 + i] -= col[i] * yj;
+      for (int i = n_col; i < n_row; ++i) y[r[i]] -= col[i] * yj;
+    }
+  }
+  // L^T z = y over the whole factor, then x = P^T z; y is cleared on the reach for the next call.
   cholmod_dense yd{};
-  yd.nrow = n;
+  yd.nrow = size_t(n);
   yd.ncol = 1;
-  yd.nzmax = n;
-  yd.d = n;
-  yd.x = y.data();
+  yd.nzmax = size_t(n);
+  yd.d = size_t(n);
+  yd.x = y;
   yd.xtype = CHOLMOD_REAL;
   yd.dtype = CHOLMOD_DOUBLE;
-  if (!cholmod_solve2(CHOLMOD_Lt, m.L, &yd, nullptr, &m.X, nullptr, &m.Y, &m.E, &c)) fail("backward solve");
+  const int ok = cholmod_solve2(CHOLMOD_Lt, m.L, &yd, nullptr, &m.X, nullptr, &m.Y, &m.E, &m.c);
+  for (int k : m.reach) std::fill(y + super[k], y + super[k + 1], 0.0);
+  if (!ok)
+    throw SolverError("sparse solve with " + name_ + " failed (backward solve, CHOLMOD status " +
+                      std::to_string(m.c.status) + ")");
   const double* z = static_cast<const double*>(m.X->x);
-  for (int k = 0; k < rows_; ++k) x[perm ? perm[k] : k] = z[k];
+  for (int k = 0; k < n; ++k) x[perm ? perm[k] : k] = z[k];
 #endif
-  return x;
 }
 
 std::string SparseCholesky::backend() const {

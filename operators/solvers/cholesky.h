@@ -105,10 +105,12 @@ class SparseCholesky {
   void solve(const double* B, double* X, int n_columns) const;
   // Solves A x = b for a right-hand side with few non-zeros, b(rows[i]) = values[i] (rows distinct,
   // in [0, rows()); std::invalid_argument otherwise), zero elsewhere. With CHOLMOD the forward solve
-  // runs over the rows' reach in the elimination tree only (cholmod_solve2 with Bset, on a
-  // simplicial copy of the factor made on the first call: the factor's memory again), the backward
-  // solve over the whole supernodal factor; equal to solve() up to round-off. Eigen: solve().
+  // runs over the rows' reach only (the supernodes from theirs to the root of the supernodal
+  // elimination tree, on the supernodal factor itself), the backward solve over the whole factor;
+  // equal to solve() up to round-off. Eigen: solve(). Not safe to call concurrently either.
   Eigen::VectorXd solve_sparse(std::span<const int> rows, std::span<const double> values) const;
+  // The same into x (rows() values).
+  void solve_sparse(std::span<const int> rows, std::span<const double> values, double* x) const;
 
   int rows() const { return rows_; }
   const std::string& name() const { return name_; }

@@ -325,4 +325,53 @@ TEST_CASE("the face-wise pass of the paper's operator equals the route through G
   CHECK_FALSE(build_operators(mesh, parse_laplacian("intrinsic-delaunay")).refinement.has_value());
 }
 
+TEST_CASE("distance equals eqs. (31)-(33) solved with dense right-hand sides, for one and several sources",
+          "[geodesics]") {
+  // The reference: both steps through SparseCholesky::solve on dense right-hand sides, G and D as
+  // matrices, vertex 0 pinned in the Poisson step (one component), shifted to minimum 0.
+  const Mesh mesh = add_noise(hex_sphere(2), 0.2, 5);
+  const int n = mesh.n_vertices();
+  const OperatorSet ops = build_operators(mesh, parse_laplacian("ours"));
+  const double t = mesh.mean_edge_length() * mesh.mean_edge_length();
+  for (bool lumped : {true, false})
+    for (bool weighted : {true, false}) {
+      HeatGeodesicsOptions o;
+      o.lumped_mass = lumped;
+      o.mass_weighted_source = weighted;
+      const HeatGeodesics heat(mesh, o);
+      SparseMatrix Ml(n, n);
+      Ml.setIdentity();
+      Ml.diagonal() = ops.M_lumped;
+      const SparseCholesky heat_chol(SparseMatrix((lumped ? Ml : ops.M) - t * ops.S), "heat");
+      std::vector<unsigned char> pinned(size_t(n), 0);
+      pinned[0] = 1;
+      const SparseCholesky poisson_chol(pin_to_identity(SparseMatrix(-ops.S), pinned), "Poisson");
+      for (const std::vector<int>& sources : {std::vector<int>{7}, std::vector<int>{3, n - 1, 3, n / 2}}) {
+        INFO("lumped " << lumped << ", mass-weighted " << weighted << ", " << sources.size() << " sources");
+        Eigen::VectorXd delta = Eigen::VectorXd::Zero(n);
+        for (int s : sources) delta[s] = 1.0;
+        const Eigen::VectorXd rhs =
+            !weighted ? delta : lumped ? Eigen::VectorXd(ops.M_lumped.cwiseProduct(delta)) : Eigen::VectorXd(ops.M * delta);
+        const Eigen::VectorXd u = heat_chol.solve(rhs);
+        Eigen::VectorXd g = ops.G * u;
+        const int n_blocks = ops.G_blocks.empty() ? int(g.size() / 3) : int(ops.G_blocks.size()) - 1;
+        for (int h = 0; h < n_blocks; ++h) {
+          const int b0 = ops.G_blocks.empty() ? 3 * h : ops.G_blocks[size_t(h)];
+          const int b1 = ops.G_blocks.empty() ? 3 * h + 3 : ops.G_blocks[size_t(h) + 1];
+          const double norm = g.segment(b0, b1 - b0).norm();
+          if (norm > 0)
+            g.segment(b0, b1 - b0) /= -norm;
+          else
+            g.segment(b0, b1 - b0).setZero();
+        }
+        Eigen::VectorXd b = -(ops.D * g);
+        b[0] = 0;
+        Eigen::VectorXd expected = poisson_chol.solve(b);
+        expected.array() -= expected.minCoeff();
+        const Eigen::VectorXd d = heat.distance(sources);
+        CHECK((d - expected).cwiseAbs().maxCoeff() <= 1e-12 * expected.maxCoeff());
+      }
+    }
+}
+
 }  // namespace test_geodesics

@@ -273,4 +273,53 @@ TEST_CASE("Cholesky: a sparse right-hand side solves as the dense one, after ref
   }
 }
 
+TEST_CASE("Cholesky: the sparse solve over the supernodal reach, for many rows, relaxed supernodes and a shared analysis",
+          "[robust][numerics][cholesky]") {
+  const Mesh mesh = add_noise(hex_sphere(3), 0.1, 5);
+  const Refinement r = refine(mesh);
+  const SparseMatrix S = stiffness(mesh, r), M = mass(mesh, r);
+  const SparseMatrix A = M - 0.01 * S;
+  const int n = int(A.rows());
+  std::vector<int> many;
+  std::vector<double> many_values;
+  for (int v = n - 1; v >= 0; v -= 5) {
+    many.push_back(v);
+    many_values.push_back(1.0 + 0.01 * v);
+  }
+  // The default (relaxed) supernodes store explicit zeros; the second factor reuses the analysis.
+  for (bool relaxed : {true, false}) {
+    CholeskyOptions o;
+    o.relaxed_supernodes = relaxed;
+    const SparseCholesky heat(A, "A", o);
+    const SparseCholesky other = heat.with_values(SparseMatrix(2.0 * M - 0.3 * S), "B");
+    for (const SparseCholesky* chol : {&heat, &other}) {
+      auto check = [&](const std::vector<int>& rows, const std::vector<double>& values) {
+        Eigen::VectorXd b = Eigen::VectorXd::Zero(n);
+        for (size_t k = 0; k < rows.size(); ++k) b[rows[k]] = values[k];
+        const Eigen::VectorXd dense = chol->solve(b);
+        Eigen::VectorXd sparse(n);
+        chol->solve_sparse(rows, values, sparse.data());
+        INFO(chol->name() << ", relaxed " << relaxed << ", " << rows.size() << " rows");
+        CHECK((sparse - dense).norm() <= 1e-12 * dense.norm());
+        CHECK((chol->solve_sparse(rows, values) - sparse).norm() == 0.0);
+      };
+      check({0}, {1.0});
+      check(many, many_values);
+      check({n / 3, 2 * n / 3}, {-1.0, 4.0});  // after a wide reach, the workspace is clean again
+      // Alternating with multi-column solves (their own workspace) changes nothing.
+      const Eigen::MatrixXd B = Eigen::MatrixXd::Random(n, 3);
+      const Eigen::MatrixXd X = chol->solve(B);
+      CHECK((X.col(1) - chol->solve(Eigen::VectorXd(B.col(1)))).norm() <= 1e-12 * X.col(1).norm());
+      check({5}, {2.0});
+    }
+  }
+  // The Eigen backend answers with its dense solve.
+  CholeskyOptions eigen;
+  eigen.backend = CholeskyBackend::Eigen;
+  const SparseCholesky e(A, "A", eigen);
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(n);
+  b[4] = 3.0;
+  CHECK((e.solve_sparse(std::vector<int>{4}, std::vector<double>{3.0}) - e.solve(b)).norm() <= 1e-12 * e.solve(b).norm());
+}
+
 }  // namespace test_numerics
