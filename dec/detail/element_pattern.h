@@ -95,6 +95,98 @@ inline void with_size(long m, F&& f) {
   }
 }
 
+// The elements of each node (CSR, ascending element order) with the node's position in each.
+struct Incidences {
+  std::vector<int> start;                  // n_nodes + 1
+  std::unique_ptr<int[]> elements, local;  // n_incidences each; local null unless asked for
+  size_t bound = 0;                        // sum m_e^2: at least nnz and the number of slots
+};
+
+template <class NodesOf>
+Incidences incidences(int n_nodes, int n_elements, NodesOf& nodes_of, bool with_local) {
+  Incidences in;
+  in.start.assign(size_t(n_nodes) + 1, 0);
+  for (int e = 0; e < n_elements; ++e) {
+    const auto& nodes = nodes_of(e);
+    const int* p = std::data(nodes);
+    const size_t m = std::size(nodes);
+    for (size_t a = 0; a < m; ++a) ++in.start[size_t(p[a]) + 1];
+    in.bound += m * m;
+  }
+  for (int v = 0; v < n_nodes; ++v) in.start[size_t(v) + 1] += in.start[size_t(v)];
+  const size_t n_incidences = size_t(in.start[size_t(n_nodes)]);
+  std::vector<int> next(in.start.begin(), in.start.end() - 1);
+  in.elements = uninitialized_on_huge_pages<int>(n_incidences);  // every entry written below
+  in.local = uninitialized_on_huge_pages<int>(with_local ? n_incidences : 0);
+  for (int e = 0; e < n_elements; ++e) {
+    const auto& nodes = nodes_of(e);
+    const int* p = std::data(nodes);
+    const int m = int(std::size(nodes));
+    for (int b = 0; b < m; ++b) {
+      const int k = next[size_t(p[b])]++;
+      in.elements[size_t(k)] = e;
+      if (with_local) in.local[size_t(k)] = b;
+    }
+  }
+  return in;
+}
+
+// Calls row(u) for the nodes u of node v's elements, each once, in first-seen order: mark[u] ==
+// tag marks u as seen (a tag not used before in mark for this column).
+template <class NodesOf, class Row>
+inline void gather_column(const Incidences& in, int v, NodesOf& nodes_of, int* mark, int tag, Row&& row) {
+  for (int k = in.start[size_t(v)]; k < in.start[size_t(v) + 1]; ++k) {
+    const auto& nodes = nodes_of(in.elements[size_t(k)]);
+    const int* p = std::data(nodes);
+    with_size(long(std::size(nodes)), [&](auto M) {
+      const int m = M() > 0 ? M() : int(std::size(nodes));
+      for (int a = 0; a < m; ++a) {
+        const int u = p[a];
+        if (mark[size_t(u)] != tag) {
+          mark[size_t(u)] = tag;
+          row(u);
+        }
+      }
+    });
+  }
+}
+
+// The slots of node v's elements in column v: each element e, v its node b, gets its slots
+// (a, b) = entry (nodes[a], v) at out[offsets[e] + a m_e + b] = where[nodes[a]].
+template <class Slot, class NodesOf>
+inline void column_slots(const Incidences& in, int v, NodesOf& nodes_of, const long* offsets, const int* where,
+                         Slot* out) {
+  for (int k = in.start[size_t(v)]; k < in.start[size_t(v) + 1]; ++k) {
+    const int e = in.elements[size_t(k)];
+    const auto& nodes = nodes_of(e);
+    const int* p = std::data(nodes);
+    with_size(long(std::size(nodes)), [&](auto M) {
+      const int m = M() > 0 ? M() : int(std::size(nodes));
+      Slot* s = out + offsets[e] + in.local[size_t(k)];
+      for (int a = 0; a < m; ++a) s[long(a) * m] = Slot(where[size_t(p[a])]);
+    });
+  }
+}
+
+// ep.offsets (the prefix sums of m_e^2) and ep's slot array of kind K (not yet written).
+template <SlotKind K, class NodesOf>
+void allocate_slots(ElementPattern& ep, int n_elements, NodesOf& nodes_of) {
+  ep.offsets.resize(size_t(n_elements) + 1);
+  ep.offsets[0] = 0;
+  for (int e = 0; e < n_elements; ++e) {
+    const long m = long(std::size(nodes_of(e)));
+    ep.offsets[size_t(e) + 1] = ep.offsets[size_t(e)] + m * m;
+  }
+  const size_t n_slots = size_t(ep.offsets[size_t(n_elements)]);
+  if constexpr (K == SlotKind::absolute) {
+    ep.slots.reserve(n_slots);
+    advise_huge_pages(ep.slots.data(), sizeof(int) * n_slots);
+    ep.slots.resize(n_slots);
+  } else if constexpr (K == SlotKind::column_relative) {
+    ep.relative_slots = uninitialized_on_huge_pages<std::uint16_t>(n_slots);  // the caller writes all
+  }
+}
+
 }  // namespace element_pattern_impl
 
 // The pattern of n_nodes x n_nodes entries (u, v) such that u and v are nodes of one element, and
@@ -105,33 +197,10 @@ inline void with_size(long m, F&& f) {
 template <SlotKind K, ColumnOrder O = ColumnOrder::transpose, class NodesOf>
 ElementPattern element_pattern(int n_nodes, int n_elements, NodesOf&& nodes_of) {
   using element_pattern_impl::sort_column;
-  using element_pattern_impl::with_size;
   constexpr bool with_slots = K != SlotKind::none;
-  // The elements of each node (CSR), with the node's position in the element.
-  std::vector<int> start(size_t(n_nodes) + 1, 0);
-  size_t bound = 0;  // sum m_e^2: at least nnz and the number of slots
-  for (int e = 0; e < n_elements; ++e) {
-    const auto& nodes = nodes_of(e);
-    const int* p = std::data(nodes);
-    const size_t m = std::size(nodes);
-    for (size_t a = 0; a < m; ++a) ++start[size_t(p[a]) + 1];
-    bound += m * m;
-  }
-  for (int v = 0; v < n_nodes; ++v) start[size_t(v) + 1] += start[size_t(v)];
-  const size_t n_incidences = size_t(start[size_t(n_nodes)]);
-  std::vector<int> next(start.begin(), start.end() - 1);
-  const auto elements = uninitialized_on_huge_pages<int>(n_incidences);  // every entry written below
-  const auto local = uninitialized_on_huge_pages<int>(with_slots ? n_incidences : 0);
-  for (int e = 0; e < n_elements; ++e) {
-    const auto& nodes = nodes_of(e);
-    const int* p = std::data(nodes);
-    const int m = int(std::size(nodes));
-    for (int b = 0; b < m; ++b) {
-      const int k = next[size_t(p[b])]++;
-      elements[size_t(k)] = e;
-      if constexpr (with_slots) local[size_t(k)] = b;
-    }
-  }
+  const element_pattern_impl::Incidences in =
+      element_pattern_impl::incidences(n_nodes, n_elements, nodes_of, with_slots);
+  const size_t bound = in.bound;
   // Column v: the nodes of v's elements, each once (marked with v), in first-seen order, written
   // to a buffer of the bound sum m_e^2 (the pages never written are never touched): the pattern's
   // own index array when sorting in place (trimmed afterwards without copying), else scratch.
@@ -152,20 +221,7 @@ ElementPattern element_pattern(int n_nodes, int n_elements, NodesOf&& nodes_of) 
   }
   int nnz = 0, longest = 0;
   for (int v = 0; v < n_nodes; ++v) {
-    for (int k = start[size_t(v)]; k < start[size_t(v) + 1]; ++k) {
-      const auto& nodes = nodes_of(elements[size_t(k)]);
-      const int* p = std::data(nodes);
-      with_size(long(std::size(nodes)), [&](auto M) {
-        const int m = M() > 0 ? M() : int(std::size(nodes));
-        for (int a = 0; a < m; ++a) {
-          const int u = p[a];
-          if (mark[size_t(u)] != v) {
-            mark[size_t(u)] = v;
-            rows[nnz++] = u;
-          }
-        }
-      });
-    }
+    element_pattern_impl::gather_column(in, v, nodes_of, mark.data(), v, [&](int u) { rows[nnz++] = u; });
     if constexpr (O == ColumnOrder::sort) sort_column(rows + outer[size_t(v)], rows + nnz);
     outer[size_t(v) + 1] = nnz;
     longest = std::max(longest, nnz - outer[size_t(v)]);
@@ -184,7 +240,7 @@ ElementPattern element_pattern(int n_nodes, int n_elements, NodesOf&& nodes_of) 
     advise_huge_pages(pattern.valuePtr(), sizeof(double) * size_t(nnz));
     std::copy(outer.begin(), outer.end(), pattern.outerIndexPtr());
     inner = pattern.innerIndexPtr();
-    std::copy(outer.begin(), outer.end() - 1, next.begin());
+    std::vector<int> next(outer.begin(), outer.end() - 1);
     for (int v = 0; v < n_nodes; ++v)
       for (int k = outer[size_t(v)]; k < outer[size_t(v) + 1]; ++k) inner[next[size_t(unsorted[size_t(k)])]++] = v;
     unsorted.reset();
@@ -194,13 +250,7 @@ ElementPattern element_pattern(int n_nodes, int n_elements, NodesOf&& nodes_of) 
     return ep;
   } else {
     if (K == SlotKind::column_relative && longest > 65535) return ep;
-    ep.offsets.resize(size_t(n_elements) + 1);
-    ep.offsets[0] = 0;
-    for (int e = 0; e < n_elements; ++e) {
-      const long m = long(std::size(nodes_of(e)));
-      ep.offsets[size_t(e) + 1] = ep.offsets[size_t(e)] + m * m;
-    }
-    const size_t n_slots = size_t(ep.offsets[size_t(n_elements)]);
+    element_pattern_impl::allocate_slots<K>(ep, n_elements, nodes_of);
     // Column v: where[u] is the slot of row u (absolute or past the column's start); each element
     // of v, v its node b, gets its slots (a, b) = entry (nodes[a], v).
     auto fill_slots = [&](auto* out, auto relative) {
@@ -209,27 +259,13 @@ ElementPattern element_pattern(int n_nodes, int n_elements, NodesOf&& nodes_of) 
       for (int v = 0; v < n_nodes; ++v) {
         const int col = outer[size_t(v)];
         for (int k = col; k < outer[size_t(v) + 1]; ++k) where[size_t(inner[k])] = relative() ? k - col : k;
-        for (int k = start[size_t(v)]; k < start[size_t(v) + 1]; ++k) {
-          const int e = elements[size_t(k)];
-          const auto& nodes = nodes_of(e);
-          const int* p = std::data(nodes);
-          with_size(long(std::size(nodes)), [&](auto M) {
-            const int m = M() > 0 ? M() : int(std::size(nodes));
-            Slot* s = out + ep.offsets[size_t(e)] + local[size_t(k)];
-            for (int a = 0; a < m; ++a) s[long(a) * m] = Slot(where[size_t(p[a])]);
-          });
-        }
+        element_pattern_impl::column_slots<Slot>(in, v, nodes_of, ep.offsets.data(), where.data(), out);
       }
     };
-    if constexpr (K == SlotKind::absolute) {
-      ep.slots.reserve(n_slots);
-      advise_huge_pages(ep.slots.data(), sizeof(int) * n_slots);
-      ep.slots.resize(n_slots);
+    if constexpr (K == SlotKind::absolute)
       fill_slots(ep.slots.data(), std::false_type{});
-    } else {
-      ep.relative_slots = uninitialized_on_huge_pages<std::uint16_t>(n_slots);  // all written
+    else
       fill_slots(ep.relative_slots.get(), std::true_type{});
-    }
     return ep;
   }
 }

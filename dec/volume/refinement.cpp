@@ -4,6 +4,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <atomic>
 #include <array>
 #include <cmath>
 #include <span>
@@ -198,6 +199,20 @@ Eigen::VectorXd last_pinned_affine_weights(const Eigen::MatrixX3d& Q, const Eige
   return out;
 }
 
+namespace {
+
+// Calls item(i) for the items of [0, n) in chunks taken from `next` by whichever thread is free,
+// ascending within a chunk: a thread slowed by other processes takes fewer chunks (contiguous halves
+// would make the other thread wait for it). Each item's result is independent of the others.
+template <class Item>
+void take_chunks(std::atomic<long>& next, int n, Item&& item) {
+  constexpr long kChunk = 2048;
+  for (long lo = next.fetch_add(kChunk); lo < n; lo = next.fetch_add(kChunk))
+    for (int i = int(lo); i < int(std::min<long>(n, lo + kChunk)); ++i) item(i);
+}
+
+}  // namespace
+
 VolumeRefinement refine_volume(const VolumeMesh& mesh, const VolumeRefinementOptions& options) {
   using namespace volume_refinement_detail;
   VolumeRefinement R;
@@ -225,9 +240,10 @@ VolumeRefinement refine_volume(const VolumeMesh& mesh, const VolumeRefinementOpt
   // those of the unscaled formulas bit for bit); a face's moment is kept in its own units, times
   // 2^-4e, with e in face_exponent.
   std::vector<short> face_exponent(size_t(nF), 0);
-  run_on_threads(T, [&](int t) {
+  std::atomic<long> next_face{0};
+  run_on_threads(T, [&](int) {
     std::vector<double> corners, work, scaled;
-    for (int f = int(long(nF) * t / T); f < int(long(nF) * (t + 1) / T); ++f) {
+    take_chunks(next_face, nF, [&](int f) {
       const auto face = mesh.face(f);
       const int n = int(face.size());
       corners.resize(3 * size_t(n));
@@ -270,7 +286,7 @@ VolumeRefinement refine_volume(const VolumeMesh& mesh, const VolumeRefinementOpt
       }
       moments[size_t(f)] = Nf;
       face_exponent[size_t(f)] = short(e);
-    }
+    });
   });
 
   R.cell_points.resize(nC, 3);
@@ -295,11 +311,12 @@ VolumeRefinement refine_volume(const VolumeMesh& mesh, const VolumeRefinementOpt
   const double *P0 = P.col(0).data(), *P1 = P.col(1).data(), *P2 = P.col(2).data();
   const double *F0 = R.face_points.col(0).data(), *F1 = R.face_points.col(1).data(),
                *F2 = R.face_points.col(2).data();
+  std::atomic<long> next_cell{0};
   run_on_threads(T, [&](int thread) {
     Eigen::MatrixX3d X, Xc;  // reused: no allocation per cell of the same size
     SubTetQuality& Q = quality[thread];
     const double tol2 = options.degenerate_tolerance * options.degenerate_tolerance;
-    for (int c = int(long(nC) * thread / T); c < int(long(nC) * (thread + 1) / T); ++c) {
+    take_chunks(next_cell, nC, [&](int c) {
       const auto cell = mesh.cell(c);
       const auto verts = mesh.cell_vertices(c);
       const int m = int(verts.size());
@@ -414,7 +431,7 @@ VolumeRefinement refine_volume(const VolumeMesh& mesh, const VolumeRefinementOpt
         }
       }
       if (affected) ++Q.n_cells_affected;
-    }
+    });
   });
   for (const SubTetQuality& q : quality) {
     R.quality.n_degenerate += q.n_degenerate;

@@ -9,6 +9,7 @@
 #include "polydec/operators/surface/laplacian.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <memory>
 #include <stdexcept>
 #include <type_traits>
@@ -83,10 +84,25 @@ inline void with_size(int n, F&& f) {
   }
 }
 
+// Where face f's local entries sit in the value arrays: entry (a, b) (row a, column b of its n x n
+// local matrix) at index base(v_b) + slots[start(f) + a n + b], v_b the face's corner b. Absolute
+// (Slot = int, FacePattern::slots): base 0; relative to the column's start (narrow Slot): base
+// outer[v_b], the column's start in the pattern.
+template <class Slot>
+struct SlotTable {
+  static constexpr bool relative = !std::is_same_v<Slot, int>;
+  const Slot* slots;
+  const long* offsets;  // |F| + 1 starts, or null when every face has `uniform` corners
+  long uniform;         // uniform * uniform slots per face when offsets is null
+  long start(int f) const { return offsets ? offsets[f] : f * uniform * uniform; }
+};
+
+template <class Slot>
 struct Assembler {
   const Mesh& mesh;
   const Refinement& r;
-  const FacePattern& fp;
+  SlotTable<Slot> table;
+  const int* face_rank;  // FacePattern::face_rank, or null: file order
   const int* outer;  // the pattern's column starts
   double* sv;        // stiffness values or null
   double* mv;        // mass values or null
@@ -114,16 +130,20 @@ struct Assembler {
   void scatter(int f, const double* cs, const double* cm, Keep keep, double* col) const {
     const int h0 = offsets[f], n = N > 0 ? N : offsets[f + 1] - h0;
     const double* w = r.weights.data() + h0;
-    const int* slot = fp.slots.data() + fp.local_offsets[f];
+    const Slot* slot = table.slots + table.start(f);
     for (int b = 0; b < n; ++b) {
-      if (!keep(indices[h0 + b])) continue;
+      const int v = indices[h0 + b];
+      if (!keep(v)) continue;
+      const long base = SlotTable<Slot>::relative ? outer[v] : 0;
       if (sv) {
         detail::expand_column<N>(n, b, w, cs, col);
-        for (int a = 0; a < n; ++a) sv[slot[a * n + b]] += col[a];
+        double* s = sv + base;
+        for (int a = 0; a < n; ++a) s[slot[a * n + b]] += col[a];
       }
       if (mv) {
         detail::expand_column<N>(n, b, w, cm, col);
-        for (int a = 0; a < n; ++a) mv[slot[a * n + b]] += col[a];
+        double* m = mv + base;
+        for (int a = 0; a < n; ++a) m[slot[a * n + b]] += col[a];
       }
     }
   }
@@ -159,8 +179,7 @@ struct Assembler {
   void run_parallel(int T, Eigen::VectorXd* lumped) const {
     const int nf = mesh.n_faces(), nv = mesh.n_vertices(), nmax = mesh.max_face_size();
     // Thread of face f: its breadth-first rank (FacePattern::face_rank) split into T equal ranges.
-    const std::vector<int>& rank = fp.face_rank;
-    auto thread_of = [&](int f) { return int(long(rank.empty() ? f : rank[size_t(f)]) * T / nf); };
+    auto thread_of = [&](int f) { return int(long(face_rank ? face_rank[f] : f) * T / nf); };
     // owner[v]: the thread holding every face around v, or kSeam.
     constexpr int kNone = -2, kSeam = -1;
     std::vector<int> owner(nv, kNone);
@@ -209,16 +228,12 @@ int thread_count(const AssemblyOptions& options, const Mesh& mesh) {
   return std::max(1, std::min(resolve_threads(options.threads), mesh.n_halfedges() / kHalfedgesPerThread));
 }
 
-// Assembles into L with the slots of `fp` and the sparsity structure `structure` (fp.pattern,
-// or a matrix that took over its storage).
-void assemble_into(const Mesh& mesh, const Refinement& refinement, const FacePattern& fp,
-                   const SparseMatrix& structure, LaplacianParts parts, Laplacian& L,
-                   const AssemblyOptions& options) {
-  if (long(refinement.weights.size()) != mesh.n_halfedges() ||
-      refinement.virtual_points.rows() != mesh.n_faces())
-    throw std::invalid_argument("assemble_laplacian: the refinement does not belong to this mesh");
-  if (structure.rows() != mesh.n_vertices() || long(fp.local_offsets.size()) != mesh.n_faces() + 1)
-    throw std::invalid_argument("assemble_laplacian: the face pattern does not belong to this mesh");
+// Assembles the requested parts of L on the sparsity structure `structure` (a FacePattern's
+// pattern, or a matrix of L that holds it) with the faces' slots in `table`.
+template <class Slot>
+void assemble_values(const Mesh& mesh, const Refinement& refinement, SlotTable<Slot> table, const int* face_rank,
+                     const SparseMatrix& structure, LaplacianParts parts, Laplacian& L,
+                     const AssemblyOptions& options) {
   const long nnz = structure.nonZeros();
   auto prepare = [&](SparseMatrix& A) {
     if (A.rows() != structure.rows() || A.nonZeros() != nnz || !A.isCompressed()) {
@@ -249,14 +264,149 @@ void assemble_into(const Mesh& mesh, const Refinement& refinement, const FacePat
     L.M_lumped.resize(mesh.n_vertices());
     advise_huge_pages(L.M_lumped.data(), sizeof(double) * mesh.n_vertices());
   }
-  const Assembler as{
-      mesh, refinement, fp, structure.outerIndexPtr(), parts.stiffness ? L.S.valuePtr() : nullptr, mv};
+  const Assembler<Slot> as{mesh,    refinement, table, face_rank, structure.outerIndexPtr(),
+                           parts.stiffness ? L.S.valuePtr() : nullptr, mv};
   Eigen::VectorXd* lumped = parts.lumped_mass ? &L.M_lumped : nullptr;
   const int T = thread_count(options, mesh);
   if (T == 1)
     as.run_serial(lumped);
   else
     as.run_parallel(T, lumped);
+}
+
+// Assembles into L with the slots of `fp` and the sparsity structure `structure` (fp.pattern,
+// or a matrix that took over its storage).
+void assemble_into(const Mesh& mesh, const Refinement& refinement, const FacePattern& fp,
+                   const SparseMatrix& structure, LaplacianParts parts, Laplacian& L,
+                   const AssemblyOptions& options) {
+  if (long(refinement.weights.size()) != mesh.n_halfedges() ||
+      refinement.virtual_points.rows() != mesh.n_faces())
+    throw std::invalid_argument("assemble_laplacian: the refinement does not belong to this mesh");
+  if (structure.rows() != mesh.n_vertices() || long(fp.local_offsets.size()) != mesh.n_faces() + 1)
+    throw std::invalid_argument("assemble_laplacian: the face pattern does not belong to this mesh");
+  assemble_values<int>(mesh, refinement, {fp.slots.data(), fp.local_offsets.data(), 0},
+                       fp.face_rank.empty() ? nullptr : fp.face_rank.data(), structure, parts, L, options);
+}
+
+// An upper bound on the rows of any column of the pattern: 1 + sum over the faces around a
+// vertex of their other corners.
+long longest_column_bound(const Mesh& mesh) {
+  int valence = 0;
+  for (int v = 0; v < mesh.n_vertices(); ++v) valence = std::max(valence, int(mesh.vertex_faces(v).size()));
+  return 1 + long(valence) * std::max(0, mesh.max_face_size() - 1);
+}
+
+// The pattern of a one-off assembly, built in A (column starts, rows ascending; values not
+// written), and the faces' slots relative to their columns' starts, from the mesh's own faces
+// around each vertex. Slot must hold the longest column's length. Cheaper in time and memory than
+// face_pattern: no vertex-face lists of its own, slots of 1 or 2 bytes. Each column's rows are
+// collected in first-seen order and ordered as element_pattern's ColumnOrder says: sorted in
+// place and their slots written in the same pass when no face has more than 4 corners (columns of
+// ~9 rows), else by one transposition of the whole pattern (hexagons: ~13 rows, which insertion
+// sort handles slowly).
+template <class Slot>
+struct RelativePattern {
+  std::unique_ptr<Slot[]> slots;
+  std::vector<long> starts;  // |F| + 1 slot starts; empty when all faces have `uniform` corners
+  long uniform = 0;
+};
+
+template <class Slot>
+RelativePattern<Slot> relative_pattern(const Mesh& mesh, SparseMatrix& A) {
+  const int nv = mesh.n_vertices(), nf = mesh.n_faces();
+  const int* fo = mesh.face_offsets().data();
+  const int* fi = mesh.face_indices().data();
+  RelativePattern<Slot> rp;
+  const int n0 = nf > 0 ? fo[1] - fo[0] : 0;
+  bool uniform = true;
+  for (int f = 0; f < nf && uniform; ++f) uniform = fo[f + 1] - fo[f] == n0;
+  long bound = long(nf) * n0 * n0;  // sum of n_f^2: the number of slots, at least nnz
+  if (uniform) {
+    rp.uniform = n0;
+  } else {
+    rp.starts.resize(size_t(nf) + 1);
+    rp.starts[0] = 0;
+    for (int f = 0; f < nf; ++f) {
+      const long n = fo[f + 1] - fo[f];
+      rp.starts[size_t(f) + 1] = rp.starts[size_t(f)] + n * n;
+    }
+    bound = rp.starts[size_t(nf)];
+  }
+  const bool in_place = mesh.max_face_size() <= 4;
+  rp.slots = uninitialized_on_huge_pages<Slot>(size_t(bound));  // every slot written below
+  Slot* slots = rp.slots.get();
+  std::vector<int> mark(size_t(nv), -1), outer(size_t(nv) + 1);
+  const auto where = uninitialized_on_huge_pages<int>(size_t(nv));  // read only for rows of the column
+  // Column v's rows in first-seen order appended at rows[nnz...].
+  auto gather = [&](int v, int* rows, int& nnz) {
+    for (const int f : mesh.vertex_faces(v))
+      for (int h = fo[f]; h < fo[f + 1]; ++h) {
+        const int u = fi[h];
+        if (mark[size_t(u)] != v) {
+          mark[size_t(u)] = v;
+          rows[nnz++] = u;
+        }
+      }
+  };
+  // The slots of column v, whose sorted rows are rows[0..len).
+  auto write_slots = [&](int v, const int* rows, int len) {
+    for (int k = 0; k < len; ++k) where[size_t(rows[k])] = k;
+    for (const int f : mesh.vertex_faces(v)) {
+      const int h0 = fo[f], n = fo[f + 1] - h0;
+      int b = 0;
+      while (fi[h0 + b] != v) ++b;
+      Slot* s = slots + (uniform ? long(f) * n0 * n0 : rp.starts[size_t(f)]) + b;
+      for (int a = 0; a < n; ++a) s[long(a) * n] = Slot(where[size_t(fi[h0 + a])]);
+    }
+  };
+  int nnz = 0;
+  outer[0] = 0;
+  if (in_place) {
+    A.resize(nv, nv);
+    A.resizeNonZeros(bound);  // trimmed to nnz below, within the capacity (pages past nnz never touched)
+    advise_huge_pages(A.innerIndexPtr(), sizeof(int) * size_t(bound));
+    advise_huge_pages(A.valuePtr(), sizeof(double) * size_t(bound));
+    int* rows = A.innerIndexPtr();
+    for (int v = 0; v < nv; ++v) {
+      const int col = nnz;
+      gather(v, rows, nnz);
+      detail::element_pattern_impl::sort_column(rows + col, rows + nnz);
+      write_slots(v, rows + col, nnz - col);
+      outer[size_t(v) + 1] = nnz;
+    }
+    A.data().resize(nnz);  // within the capacity: no copy
+  } else {
+    const auto unsorted = uninitialized_on_huge_pages<int>(size_t(bound));  // the first nnz written
+    for (int v = 0; v < nv; ++v) {
+      gather(v, unsorted.get(), nnz);
+      outer[size_t(v) + 1] = nnz;
+    }
+    A.resize(nv, nv);
+    A.resizeNonZeros(nnz);
+    advise_huge_pages(A.innerIndexPtr(), sizeof(int) * size_t(nnz));
+    advise_huge_pages(A.valuePtr(), sizeof(double) * size_t(nnz));
+    // The pattern is symmetric: appending v to column u for each row u of column v, columns v in
+    // order, leaves every column's rows ascending.
+    int* rows = A.innerIndexPtr();
+    std::vector<int> next(outer.begin(), outer.end() - 1);
+    for (int v = 0; v < nv; ++v)
+      for (int k = outer[size_t(v)]; k < outer[size_t(v) + 1]; ++k) rows[next[size_t(unsorted[k])]++] = v;
+    for (int v = 0; v < nv; ++v) write_slots(v, rows + outer[size_t(v)], outer[size_t(v) + 1] - outer[size_t(v)]);
+  }
+  std::copy(outer.begin(), outer.end(), A.outerIndexPtr());
+  return rp;
+}
+
+// A one-off assembly with slots of type Slot (relative_pattern) on the matrix `host` of L (or a
+// pattern of its own when neither S nor M is wanted).
+template <class Slot>
+void assemble_fresh(const Mesh& mesh, const Refinement& refinement, LaplacianParts parts, Laplacian& L,
+                    const AssemblyOptions& options) {
+  SparseMatrix own;
+  SparseMatrix& A = parts.stiffness ? L.S : parts.mass ? L.M : own;
+  const RelativePattern<Slot> rp = relative_pattern<Slot>(mesh, A);
+  assemble_values<Slot>(mesh, refinement, {rp.slots.get(), rp.starts.empty() ? nullptr : rp.starts.data(), rp.uniform},
+                        nullptr, A, parts, L, options);
 }
 
 }  // namespace
@@ -275,19 +425,24 @@ Laplacian assemble_laplacian(const Mesh& mesh, const Refinement& refinement, Lap
     reassemble_laplacian(mesh, refinement, *pattern, parts, L, options);
     return L;
   }
-  // File order for the threads' face split: the breadth-first patches (face_pattern(mesh, T))
+  if (long(refinement.weights.size()) != mesh.n_halfedges() || refinement.virtual_points.rows() != mesh.n_faces())
+    throw std::invalid_argument("assemble_laplacian: the refinement does not belong to this mesh");
+  // The threads split the faces in file order: the breadth-first patches (face_pattern(mesh, T))
   // cost more than they save in a one-off assembly (~0.3 s serial on 1.5M quads); they pay off
   // when the pattern is kept for re-assembly.
-  FacePattern own = face_pattern(mesh);
-  // The pattern's storage becomes S's (or M's) instead of being copied (swap: Eigen 3.4's
-  // SparseMatrix has no move assignment, std::move would copy).
-  SparseMatrix* host = parts.stiffness ? &L.S : parts.mass ? &L.M : nullptr;
-  if (!host) {
-    assemble_into(mesh, refinement, own, own.pattern, parts, L, options);
-    return L;
+  const long longest = longest_column_bound(mesh);
+  if (longest <= 255) {
+    assemble_fresh<std::uint8_t>(mesh, refinement, parts, L, options);
+  } else if (longest <= 65535) {
+    assemble_fresh<std::uint16_t>(mesh, refinement, parts, L, options);
+  } else {
+    FacePattern own = face_pattern(mesh);
+    // The pattern's storage becomes S's (or M's) instead of being copied (swap: Eigen 3.4's
+    // SparseMatrix has no move assignment, std::move would copy).
+    SparseMatrix* host = parts.stiffness ? &L.S : parts.mass ? &L.M : &own.pattern;
+    if (host != &own.pattern) host->swap(own.pattern);
+    assemble_into(mesh, refinement, own, *host, parts, L, options);
   }
-  host->swap(own.pattern);
-  assemble_into(mesh, refinement, own, *host, parts, L, options);
   return L;
 }
 

@@ -87,7 +87,7 @@ inline void polygon_compact(const double* x, int n_dyn, const double* w, const d
 }
 
 template <int N>
-inline void expand_column(int n_dyn, int b, const double* w, const double* c, double* out) {
+[[gnu::always_inline]] inline void expand_column(int n_dyn, int b, const double* w, const double* c, double* out) {
   const int n = N > 0 ? N : n_dyn;
   const double* d = c;
   const double* o = c + n;

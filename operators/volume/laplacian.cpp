@@ -6,9 +6,11 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "polydec/dec/detail/element_pattern.h"
+#include "polydec/dec/detail/element_pattern_threads.h"
 #include "polydec/dec/detail/huge_pages.h"
 #include "polydec/dec/detail/scale.h"
 #include "polydec/dec/detail/threads.h"
@@ -251,6 +253,32 @@ void cell_matrices(const VolumeMesh& mesh, const VolumeRefinement& refinement, i
   if (M) *M = std::move(Mc);
 }
 
+namespace volume_laplacian_detail {
+namespace {
+
+// For T threads holding the cells in T contiguous ranges: each vertex's owner (the range holding
+// all its cells, or -1 on a seam between ranges) and the cells with a seam vertex, ascending.
+std::pair<std::vector<int>, std::vector<int>> owners(const VolumeMesh& mesh, int T) {
+  const int nC = mesh.n_cells();
+  constexpr int kNone = -2, kSeam = -1;
+  std::vector<int> owner(size_t(mesh.n_vertices()), kNone), seam_cells;
+  for (int c = 0; c < nC; ++c) {
+    const int t = int(long(c) * T / nC);
+    for (const int v : mesh.cell_vertices(c)) {
+      int& o = owner[size_t(v)];
+      o = (o == kNone || o == t) ? t : kSeam;
+    }
+  }
+  for (int c = 0; c < nC; ++c) {
+    const auto verts = mesh.cell_vertices(c);
+    if (std::any_of(verts.begin(), verts.end(), [&](int v) { return owner[size_t(v)] == kSeam; })) seam_cells.push_back(c);
+  }
+  return {std::move(owner), std::move(seam_cells)};
+}
+
+}  // namespace
+}  // namespace volume_laplacian_detail
+
 VolumeLaplacian assemble_volume_laplacian(const VolumeMesh& mesh, const VolumeRefinement& refinement,
                                           const SparseMatrix* pattern, int threads) {
   check_refinement(mesh, refinement, "assemble_volume_laplacian");
@@ -263,37 +291,48 @@ VolumeLaplacian assemble_volume_laplacian(const VolumeMesh& mesh, const VolumeRe
   // Where each cell's local entries go: slot a m + b of cell c (rows and columns in the order of
   // cell_vertices(c)) is row verts[a] of column verts[b], that many entries past the column's
   // start, so the assembly adds without searching the column (2 bytes per slot).
+  // With several threads, every large array is also first written by all of them (page faults
+  // and the kernel's zeroing of fresh pages cost as much as the arithmetic on large meshes).
+  const int T = std::min(resolve_threads(threads), std::max(1, nC / 2048));
+  // Thread t's share [lo, hi) of n items.
+  auto share = [T](long n, int t) { return std::pair<long, long>{n * t / T, n * (t + 1) / T}; };
   detail::ElementPattern slots;
+  auto cells = [&](int c) { return mesh.cell_vertices(c); };
   if (pattern) {
     L.S = *pattern;
     L.S.coeffs().setZero();
   } else {
-    slots = detail::element_pattern<detail::SlotKind::column_relative>(nV, nC, [&](int c) { return mesh.cell_vertices(c); });
+    slots = T > 1 ? detail::element_pattern_threaded<detail::SlotKind::column_relative>(nV, nC, cells, T)
+                  : detail::element_pattern<detail::SlotKind::column_relative>(nV, nC, cells);
     L.S.swap(slots.pattern);  // values already zero
   }
   // M: S's pattern, zero values (a copy by hand, so that its arrays take huge pages too).
+  const long nnz = L.S.nonZeros();
   L.M.resize(L.S.rows(), L.S.cols());
-  L.M.resizeNonZeros(L.S.nonZeros());
-  advise_huge_pages(L.M.innerIndexPtr(), sizeof(int) * size_t(L.S.nonZeros()));
-  advise_huge_pages(L.M.valuePtr(), sizeof(double) * size_t(L.S.nonZeros()));
+  L.M.resizeNonZeros(nnz);
+  advise_huge_pages(L.M.innerIndexPtr(), sizeof(int) * size_t(nnz));
+  advise_huge_pages(L.M.valuePtr(), sizeof(double) * size_t(nnz));
   std::copy_n(L.S.outerIndexPtr(), L.S.outerSize() + 1, L.M.outerIndexPtr());
-  std::copy_n(L.S.innerIndexPtr(), L.S.nonZeros(), L.M.innerIndexPtr());
-  std::fill_n(L.M.valuePtr(), L.S.nonZeros(), 0.0);
+  run_on_threads(T, [&](int t) {
+    const auto [lo, hi] = share(nnz, t);
+    std::copy(L.S.innerIndexPtr() + lo, L.S.innerIndexPtr() + hi, L.M.innerIndexPtr() + lo);
+    std::fill(L.M.valuePtr() + lo, L.M.valuePtr() + hi, 0.0);
+  });
   const int* outer = L.S.outerIndexPtr();
   const int* inner = L.S.innerIndexPtr();
   double* sv = L.S.valuePtr();
   double* mv = L.M.valuePtr();
-  // Adds cell c's local matrices (column-major m x m, upper triangles) to the columns v0 <= v < v1:
+  // Adds cell c's local matrices (column-major m x m, upper triangles) to the columns v with keep(v):
   // by the cells' slots, or (a pattern given by the caller) by one forward walk per column, the
   // cell's vertices being ascending, as are a column's rows.
   const bool by_slots = slots.relative_slots != nullptr;
-  auto scatter = [&](int c, const double* Sc, const double* Mc, int v0, int v1) {
+  auto scatter = [&](int c, const double* Sc, const double* Mc, auto keep) {
     const auto verts = mesh.cell_vertices(c);
     const int m = int(verts.size());
     if (by_slots) {
       const std::uint16_t* slot = slots.relative_slots.get() + slots.offsets[c];
       for (int b = 0; b < m; ++b) {
-        if (verts[b] < v0 || verts[b] >= v1) continue;
+        if (!keep(verts[b])) continue;
         double *cs = sv + outer[verts[b]], *cm = mv + outer[verts[b]];
         const std::uint16_t* s = slot + b;  // slot (a, b) at s[a m]
         for (int a = 0; a <= b; ++a) cs[s[a * m]] += Sc[a + long(b) * m], cm[s[a * m]] += Mc[a + long(b) * m];
@@ -302,7 +341,7 @@ VolumeLaplacian assemble_volume_laplacian(const VolumeMesh& mesh, const VolumeRe
       return;
     }
     for (int b = 0; b < m; ++b) {
-      if (verts[b] < v0 || verts[b] >= v1) continue;
+      if (!keep(verts[b])) continue;
       int pos = outer[verts[b]];
       for (int a = 0; a < m; ++a) {
         while (inner[pos] != verts[a]) ++pos;
@@ -312,16 +351,34 @@ VolumeLaplacian assemble_volume_laplacian(const VolumeMesh& mesh, const VolumeRe
       }
     }
   };
-  const int T = std::min(resolve_threads(threads), std::max(1, nC / 2048));
   if (T == 1) {
     Eigen::MatrixXd Sc, Mc;
     CellWorkspace ws;
     for (int c = 0; c < nC; ++c) {
       cell_kernel(mesh, refinement, c, Sc, Mc, ws);
-      scatter(c, Sc.data(), Mc.data(), 0, nV);
+      scatter(c, Sc.data(), Mc.data(), [](int) { return true; });
+    }
+  } else if (const auto [owner, seam_cells] = owners(mesh, T); seam_cells.size() * 8 <= size_t(nC)) {
+    // Thread t computes the cells of its range and adds them to the columns of the vertices all of
+    // whose cells it holds; then one pass adds the cells around the other (seam) vertices to their
+    // columns. Either way each entry receives its terms in cell order (bitwise as one thread).
+    run_on_threads(T, [&](int t) {
+      Eigen::MatrixXd Sc, Mc;
+      CellWorkspace ws;
+      for (int c = int(long(nC) * t / T); c < int(long(nC) * (t + 1) / T); ++c) {
+        cell_kernel(mesh, refinement, c, Sc, Mc, ws);
+        scatter(c, Sc.data(), Mc.data(), [&](int v) { return owner[size_t(v)] == t; });
+      }
+    });
+    Eigen::MatrixXd Sc, Mc;
+    CellWorkspace ws;
+    for (const int c : seam_cells) {
+      cell_kernel(mesh, refinement, c, Sc, Mc, ws);
+      scatter(c, Sc.data(), Mc.data(), [&](int v) { return owner[size_t(v)] < 0; });
     }
   } else {
-    // Blocks of cells: the threads compute the block's local matrices (cells split in ranges),
+    // Cell order without spatial coherence (more than 1/8 of the cells on seams): blocks of cells.
+    // The threads compute the block's local matrices (cells split in ranges),
     // then add them with each thread owning a range of columns, visiting the cells in order: every
     // entry receives its terms in cell order, as with one thread (bitwise identical results).
     const int block = 4096;
@@ -365,7 +422,7 @@ VolumeLaplacian assemble_volume_laplacian(const VolumeMesh& mesh, const VolumeRe
         for (int c = c0; c < c1; ++c) {
           const size_t m = mesh.cell_vertices(c).size();
           const double* in = local.data() + offset[c - c0];
-          scatter(c, in, in + m * m, v0, v1);
+          scatter(c, in, in + m * m, [&](int v) { return v >= v0 && v < v1; });
         }
       });
     }
@@ -373,11 +430,15 @@ VolumeLaplacian assemble_volume_laplacian(const VolumeMesh& mesh, const VolumeRe
   // Row sums of M as its column sums (M is bitwise symmetric: both triangles get the same local
   // values, so this is the sum M 1 in the same order), one pass over the values.
   L.M_lumped.resize(nV);
-  for (int v = 0; v < nV; ++v) {
-    double sum = 0;
-    for (int k = outer[v]; k < outer[v + 1]; ++k) sum += mv[k];
-    L.M_lumped[v] = sum;
-  }
+  advise_huge_pages(L.M_lumped.data(), sizeof(double) * size_t(nV));
+  run_on_threads(T, [&](int t) {
+    const auto [lo, hi] = share(nV, t);
+    for (long v = lo; v < hi; ++v) {
+      double sum = 0;
+      for (int k = outer[v]; k < outer[v + 1]; ++k) sum += mv[k];
+      L.M_lumped[v] = sum;
+    }
+  });
   return L;
 }
 

@@ -36,8 +36,11 @@ struct VolumeLaplacian {
 // One pass over the cells; `pattern` (from cell_pattern) may be passed to skip the symbolic step
 // (each cell's entries are then found by searching its columns; the pattern built here also records
 // where they sit, 2 bytes per local entry, freed on return).
-// `threads` (0: all hardware threads) compute the cells' local matrices in blocks and add them by
-// column ranges; results are bitwise identical for every thread count.
+// `threads` (0: all hardware threads) build the pattern by vertex ranges and take the cells in
+// contiguous ranges, each thread adding its cells to the columns of the vertices all of whose cells
+// it holds, then one pass the cells around the vertices on the seams (when the cell order is not
+// spatially coherent, more than 1/8 of the cells on seams: blocks of cells computed in parallel and
+// added by column ranges); results are bitwise identical for every thread count.
 VolumeLaplacian assemble_volume_laplacian(const VolumeMesh& mesh, const VolumeRefinement& refinement,
                                           const SparseMatrix* pattern = nullptr, int threads = 1);
 

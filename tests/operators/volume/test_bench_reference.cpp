@@ -3,6 +3,8 @@
 // route: face and cell points from the quadratics' normal equations, weights from the minimum-norm
 // solution of [X^T; 1^T] w = [x; 1], gradients from the inverse of [1 p], triplet assembly).
 #include <catch2/catch.hpp>
+#include <numeric>
+#include <random>
 
 #include "bench/plain_volume_reference.h"
 #include "polydec/dec/io/volume_io.h"
@@ -57,8 +59,25 @@ TEST_CASE("volume S and M equal the plain benchmark reference on the shared cube
 
 namespace test_volume_bench_reference {
 
+// The mesh with its cells in a random order (a cell order without spatial coherence: the threaded
+// assembly's other path).
+VolumeMesh shuffle_cells(const VolumeMesh& mesh, unsigned seed) {
+  PolyhedronSoup soup;
+  soup.positions = mesh.positions();
+  soup.precision = mesh.precision();
+  for (int f = 0; f < mesh.n_faces(); ++f) soup.add_face(mesh.face(f));
+  std::vector<int> order(size_t(mesh.n_cells()));
+  std::iota(order.begin(), order.end(), 0);
+  std::shuffle(order.begin(), order.end(), std::mt19937(seed));
+  for (const int c : order) soup.add_cell(mesh.cell(c));
+  return VolumeMesh(std::move(soup));
+}
+
 TEST_CASE("volume refinement and assembly: bitwise identical for every thread count", "[volume][volume-operators][volume-threads]") {
-  const VolumeMesh mesh = hex_grid_volume(20, 21, 22, VolumeJitter{0.2, 3});  // 9240 cells: up to 4 threads
+  const VolumeMesh grid = hex_grid_volume(20, 21, 22, VolumeJitter{0.2, 3});  // 9240 cells: up to 4 threads
+  const bool shuffled = GENERATE(false, true);
+  INFO((shuffled ? "cells shuffled" : "cells in the grid's order"));
+  const VolumeMesh mesh = shuffled ? shuffle_cells(grid, 5) : grid;
   VolumeRefinementOptions one;
   const VolumeRefinement R1 = refine_volume(mesh, one);
   const VolumeLaplacian L1 = assemble_volume_laplacian(mesh, R1);
