@@ -261,7 +261,7 @@ TEST_CASE("Cholesky: a sparse right-hand side solves as the dense one, after ref
     check({7}, {1.0});
     check({n - 1, 0, n / 2}, {0.5, -2.0, 3.0});
     check({11}, {2.5});  // the workspace is clean between calls
-    // New values: the solves follow the new factor (its sparse copy is remade).
+    // New values: the sparse solve follows the new factor.
     chol.refactor(SparseMatrix(2.0 * M - 0.5 * S));
     Eigen::VectorXd b = Eigen::VectorXd::Zero(n);
     b[7] = 1.0;
