@@ -163,7 +163,8 @@ void fan_gradient_divergence(const Mesh& mesh, const std::vector<double>& weight
 }  // namespace
 
 HeatGeodesics::HeatGeodesics(const Mesh& mesh, const HeatGeodesicsOptions& options)
-    : HeatGeodesics(build_operators(mesh, parse_laplacian("ours")), mesh.mean_edge_length(), options) {}
+    : HeatGeodesics(build_operators(mesh, parse_laplacian("ours"), {.gradient_with_refinement = false}),
+                    mesh.mean_edge_length(), options) {}
 
 HeatGeodesics::HeatGeodesics(OperatorSet operators, double mean_edge_length, const HeatGeodesicsOptions& options)
     : ops_(take_operators(operators)), options_(options) {
@@ -171,7 +172,13 @@ HeatGeodesics::HeatGeodesics(OperatorSet operators, double mean_edge_length, con
   // that an operator set without a surface domain (a volume mesh's, operators/registry/volume_laplacians.h)
   // works the same way.
   const int nv = int(ops_.S.rows());
-  if (ops_.G.cols() != nv || ops_.D.rows() != nv)
+  // Operators with one virtual vertex per face carry the refinement G and D are built from: the
+  // face-wise pass reads its fan triangles, the same ones as G and D (tests/apps/applications/
+  // test_geodesics.cpp compares the two routes), without refining again, and needs no G and D.
+  const Mesh& domain = ops_.domain;
+  const bool face_wise = ops_.refinement && domain.n_vertices() == nv &&
+                         (ops_.G.rows() == 3 * domain.n_halfedges() || (ops_.G.size() == 0 && ops_.D.size() == 0));
+  if (!face_wise && (ops_.G.cols() != nv || ops_.D.rows() != nv))
     throw std::invalid_argument("heat geodesics: Laplacian '" + ops_.name + "' defines no gradient/divergence");
   if (!options.lumped_mass && ops_.M.rows() != nv)
     throw std::invalid_argument("heat geodesics: Laplacian '" + ops_.name + "' defines no unlumped mass");
@@ -216,14 +223,10 @@ HeatGeodesics::HeatGeodesics(OperatorSet operators, double mean_edge_length, con
   poisson_ = std::make_unique<SparseCholesky>(
       heat_->with_values(pin_to_identity(poisson, pinned_, true), "Poisson operator -S"));
 
-  // Operators with one virtual vertex per face carry the refinement G and D were built from: the
-  // face-wise pass reads its fan triangles, the same ones as G and D (tests/apps/applications/
-  // test_geodesics.cpp compares the two routes), without refining again.
-  const Mesh& domain = ops_.domain;
-  if (ops_.refinement && domain.n_vertices() == nv && ops_.G.rows() == 3 * domain.n_halfedges()) {
+  if (face_wise) {
     const Refinement& r = *ops_.refinement;
     check_refinement(domain, r, "HeatGeodesics");
-    fan_.assign(7 * size_t(domain.n_halfedges()), 0.0);
+    assign_on_huge_pages(fan_, 7 * size_t(domain.n_halfedges()), 0.0);
     for (int f = 0; f < domain.n_faces(); ++f) {
       const auto face = domain.face(f);
       const int n = int(face.size()), h0 = domain.face_offsets()[f];

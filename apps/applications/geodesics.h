@@ -54,11 +54,13 @@ double suggested_time_factor(double factor, const HeatDiagnostics& diagnostics, 
 
 class HeatGeodesics {
  public:
-  // With the paper's operator ("ours").
+  // With the paper's operator ("ours"), built without G and D (the face-wise pass reads the fan
+  // triangles of the refinement instead; operators().G and .D are empty).
   explicit HeatGeodesics(const Mesh& mesh, const HeatGeodesicsOptions& options = {});
   // With any operator set; `mean_edge_length` sets the time step (that of the input mesh). A set
-  // that carries its refinement (OperatorSet::refinement, whose fan triangles G and D must be
-  // those of) is solved face by face from it; any other through its G and D.
+  // that carries its refinement (OperatorSet::refinement; G and D, if present, must be those of its
+  // fan triangles) is solved face by face from it and needs no G and D
+  // (OperatorOptions::gradient_with_refinement = false); any other through its G and D.
   HeatGeodesics(OperatorSet operators, double mean_edge_length, const HeatGeodesicsOptions& options = {});
 
   // Distances from the given source vertices (at least one; throws std::out_of_range for a

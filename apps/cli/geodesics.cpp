@@ -250,7 +250,9 @@ void run(const Options& given) {
   hopt.time_step_factor = o.time_factor;
   if (o.time_step_edges != "input" && o.time_step_edges != "operator")
     throw UsageError("--time-step-edges must be input or operator");
-  OperatorSet ops = timer.time("operators", [&] { return build_operators(mesh, parse_laplacian(o.laplacian)); });
+  OperatorSet ops = timer.time("operators", [&] {
+    return build_operators(mesh, parse_laplacian(o.laplacian), {.gradient_with_refinement = false});
+  });
   const double h = o.time_step_edges == "input" ? mesh.mean_edge_length() : ops.mean_edge_length;
   const HeatGeodesics heat =
       timer.time("factorization", [&] { return HeatGeodesics(take_operators(ops), h, hopt); });

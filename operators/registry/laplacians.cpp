@@ -106,7 +106,7 @@ OperatorSet virtual_vertex_operators(const Mesh& mesh, VirtualVertexRule rule,
   ops.M.swap(L.M);
   ops.M_lumped = std::move(L.M_lumped);
   ops.quality = r.quality;
-  if (options.with_gradient) {
+  if (options.with_gradient && options.gradient_with_refinement) {
     SparseMatrix G = gradient(mesh, r), D = divergence(mesh, r);
     ops.G.swap(G);
     ops.D.swap(D);

@@ -82,6 +82,10 @@ std::vector<std::string> laplacian_names();
 // What build_operators builds besides S, M and the lumped M, and how.
 struct OperatorOptions {
   bool with_gradient = true;  // G and D too
+  // With with_gradient, false leaves G and D out of a set that carries its refinement
+  // (OperatorSet::refinement) and keeps them for every other method: for consumers that read the
+  // fan triangles instead (the heat method's face-wise pass, apps/applications/geodesics.h).
+  bool gradient_with_refinement = true;
   int threads = 1;            // assembly threads of "ours" and its virtual-vertex variants (0: all
                               // hardware threads); the results do not depend on it
   // Virtual vertices off their affine points (dec/surface/virtual_lift.h) for "ours", its virtual-vertex

@@ -74,6 +74,32 @@ cholmod_sparse view_lower(const SpMat& A) {
   s.packed = 1;
   return s;
 }
+
+// CHOLMOD allocates its factors, solutions and workspaces through SuiteSparse_config. With
+// glibc's malloc and calloc there, blocks of 2 MB and more are advised onto transparent huge pages
+// before their first write (dec/detail/huge_pages.h): a FINE SPHERE factor (42 MB) otherwise
+// costs ~10 000 page faults of ~13 us here, and every solve that streams it misses the TLB (one
+// source of the heat method 23 -> 19 ms, docs/benchmarks.md). Installed once, and only over
+// glibc's own functions: a program that set its own allocator for SuiteSparse keeps it. The
+// blocks are plain malloc/calloc blocks, so CHOLMOD's free (free) stays right for them.
+void* malloc_on_huge_pages(size_t bytes) {
+  void* p = std::malloc(bytes);
+  if (p) advise_huge_pages(p, bytes);
+  return p;
+}
+void* calloc_on_huge_pages(size_t count, size_t size) {
+  // glibc's calloc takes large blocks fresh from the kernel, already zero and not yet touched.
+  void* p = std::calloc(count, size);
+  if (p && size != 0 && count <= std::numeric_limits<size_t>::max() / size) advise_huge_pages(p, count * size);
+  return p;
+}
+void advise_cholmod_allocations() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    if (SuiteSparse_config.malloc_func == &std::malloc) SuiteSparse_config.malloc_func = &malloc_on_huge_pages;
+    if (SuiteSparse_config.calloc_func == &std::calloc) SuiteSparse_config.calloc_func = &calloc_on_huge_pages;
+  });
+}
 #endif
 
 }  // namespace
@@ -137,6 +163,7 @@ SparseCholesky::SparseCholesky(const Eigen::SparseMatrix<double>& A_in, std::str
   }
 #ifdef POLYDEC_HAVE_CHOLMOD
   blas_threads();  // the thread policy, applied once before the first factorization
+  advise_cholmod_allocations();
   impl_->use_cholmod = true;
   cholmod_common& c = impl_->c;
   cholmod_start(&c);

@@ -31,7 +31,7 @@ void register_solvers(py::module_& m) {
         options.time_step_factor = time_step_factor;
         options.lumped_mass = lumped_mass;
         options.mass_weighted_source = mass_weighted_source;
-        return std::make_unique<HeatGeodesics>(build_operators(mesh, parse_laplacian(spec), true),
+        return std::make_unique<HeatGeodesics>(build_operators(mesh, parse_laplacian(spec), {.gradient_with_refinement = false}),
                                                mesh.mean_edge_length(), options);
       }))
       .def("distance",

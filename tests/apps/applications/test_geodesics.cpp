@@ -284,6 +284,7 @@ TEST_CASE("the face-wise pass of the paper's operator equals the route through G
       o.lumped_mass = lumped;
       const HeatGeodesics fused(mesh, o);
       REQUIRE(fused.operators().refinement.has_value());  // the face-wise pass reads it
+      CHECK(fused.operators().G.size() == 0);             // and needs no G and D
       OperatorSet ops = build_operators(mesh, parse_laplacian("ours"));
       ops.refinement.reset();  // without its refinement: the matrices are used
       const HeatGeodesics plain(std::move(ops), mesh.mean_edge_length(), o);
@@ -321,8 +322,18 @@ TEST_CASE("the face-wise pass of the paper's operator equals the route through G
   const Eigen::VectorXd a = HeatGeodesics(std::move(carried), mesh.mean_edge_length()).distance(0);
   const Eigen::VectorXd b = HeatGeodesics(operators_on(mesh, r, "ours"), mesh.mean_edge_length()).distance(0);
   CHECK((a - b).cwiseAbs().maxCoeff() <= 1e-12 * b.maxCoeff());
-  // Methods without one virtual vertex per face carry none.
-  CHECK_FALSE(build_operators(mesh, parse_laplacian("intrinsic-delaunay")).refinement.has_value());
+  // Methods without one virtual vertex per face carry none, and keep G and D when sets with a
+  // refinement leave them out; a set with neither cannot be solved.
+  OperatorOptions no_fan_gradient;
+  no_fan_gradient.gradient_with_refinement = false;
+  OperatorSet idt = build_operators(mesh, parse_laplacian("intrinsic-delaunay"), no_fan_gradient);
+  CHECK_FALSE(idt.refinement.has_value());
+  CHECK(idt.G.cols() == mesh.n_vertices());
+  CHECK(idt.D.rows() == mesh.n_vertices());
+  OperatorSet bare = build_operators(mesh, parse_laplacian("ours"), no_fan_gradient);
+  CHECK(bare.G.size() == 0);
+  bare.refinement.reset();
+  CHECK_THROWS_AS(HeatGeodesics(std::move(bare), mesh.mean_edge_length()), std::invalid_argument);
 }
 
 TEST_CASE("distance equals eqs. (31)-(33) solved with dense right-hand sides, for one and several sources",
