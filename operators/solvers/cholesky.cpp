@@ -93,6 +93,36 @@ void* calloc_on_huge_pages(size_t count, size_t size) {
   if (p && size != 0 && count <= std::numeric_limits<size_t>::max() / size) advise_huge_pages(p, count * size);
   return p;
 }
+// CHOLMOD 3 copies into its large supernodes on up to 4 OpenMP threads. With the BLAS policy at
+// one thread (blas_threads()) those loops stay on the calling thread too: for the duration of a
+// call, this thread's OpenMP max-active-levels is 0 (libgomp keeps it per thread, so other
+// threads' OpenMP is untouched), restored afterwards. On a loaded 2-core machine the team of 4
+// costs more than it saves (FINE SPHERE heat-method precomputation ~1.25 -> ~1.02 s wall, one
+// run each of three, docs/benchmarks.md). Nothing happens when CHOLMOD was built without OpenMP.
+class CholmodOpenMPScope {
+ public:
+  CholmodOpenMPScope() {
+    using Get = int (*)();
+    using Set = void (*)(int);
+    static const auto get = reinterpret_cast<Get>(dlsym(RTLD_DEFAULT, "omp_get_max_active_levels"));
+    static const auto set = reinterpret_cast<Set>(dlsym(RTLD_DEFAULT, "omp_set_max_active_levels"));
+    const BlasThreads b = blas_threads();
+    if (!get || !set || !(b.threads == 1 || (b.threads < 0 && b.requested == 1))) return;
+    set_ = set;
+    saved_ = get();
+    set_(0);
+  }
+  ~CholmodOpenMPScope() {
+    if (set_) set_(saved_);
+  }
+  CholmodOpenMPScope(const CholmodOpenMPScope&) = delete;
+  CholmodOpenMPScope& operator=(const CholmodOpenMPScope&) = delete;
+
+ private:
+  void (*set_)(int) = nullptr;
+  int saved_ = 0;
+};
+
 void advise_cholmod_allocations() {
   static std::once_flag once;
   std::call_once(once, [] {
@@ -231,7 +261,10 @@ void SparseCholesky::refactor(const Eigen::SparseMatrix<double>& A_in) {
   const SpMat A = A_in.isCompressed() ? SpMat() : SpMat(A_in);
   cholmod_sparse s = view_lower(A_in.isCompressed() ? A_in : A);
   cholmod_common& c = impl_->c;
-  const int ok = cholmod_factorize(&s, impl_->L, &c);
+  const int ok = [&] {
+    const CholmodOpenMPScope serial;
+    return cholmod_factorize(&s, impl_->L, &c);
+  }();
   if (!ok || c.status == CHOLMOD_NOT_POSDEF || c.status < CHOLMOD_OK)
     throw SolverError("Cholesky factorization of " + name_ + " failed: matrix is not positive definite" +
                       (c.status == CHOLMOD_NOT_POSDEF ? " (breakdown at column " + std::to_string(impl_->L->minor) + ")"

@@ -56,8 +56,8 @@ Eigen::SparseMatrix<double> pin_to_identity(const Eigen::SparseMatrix<double>& A
 Eigen::SparseMatrix<double> principal_submatrix(const Eigen::SparseMatrix<double>& A, const std::vector<int>& index);
 
 // The BLAS thread policy of the solvers. CHOLMOD's supernodal factorization and its solves do
-// their dense work in BLAS (CHOLMOD 3's own threads, OpenMP with up to 4 on the copies into
-// large supernodes, are not governed by this policy; OMP_THREAD_LIMIT does); OpenBLAS's default of one
+// their dense work in BLAS, and copy into large supernodes on up to 4 OpenMP threads of CHOLMOD's
+// own (kept on the calling thread while the policy is one thread); OpenBLAS's default of one
 // thread per core spins against other processes on a loaded machine (measured when this policy
 // was introduced: geodesics on HEX SPHERE 7.5-9.1 s wall with the default threads, 3.1-3.4 s
 // with one, same CPU time). The policy, applied once before the first factorization (or by

@@ -7,6 +7,7 @@
 #include <Eigen/Dense>
 #include <Eigen/QR>
 #include <catch2/catch.hpp>
+#include <dlfcn.h>
 #include <random>
 
 #include "polydec/dec/mesh/generators.h"
@@ -323,3 +324,29 @@ TEST_CASE("Cholesky: the sparse solve over the supernodal reach, for many rows, 
 }
 
 }  // namespace test_numerics
+
+TEST_CASE("Cholesky: a factorization leaves the calling thread's OpenMP nesting setting as it was",
+          "[robust][numerics][cholesky]") {
+  // CHOLMOD's OpenMP loops are kept on the calling thread while the BLAS policy is one thread, by a
+  // per-call setting that must be undone (other code of the program may use OpenMP).
+  using Get = int (*)();
+  using Set = void (*)(int);
+  const auto get = reinterpret_cast<Get>(dlsym(RTLD_DEFAULT, "omp_get_max_active_levels"));
+  const auto set = reinterpret_cast<Set>(dlsym(RTLD_DEFAULT, "omp_set_max_active_levels"));
+  if (!get || !set || !SparseCholesky::cholmod_available()) {
+    WARN("skipped: no OpenMP runtime mapped or no CHOLMOD");
+    return;
+  }
+  const Mesh mesh = hex_sphere(4);
+  const Refinement r = refine(mesh);
+  const SparseMatrix A = mass(mesh, r) - 0.1 * stiffness(mesh, r);
+  for (int levels : {3, 1}) {
+    set(levels);
+    const SparseCholesky chol(A, "A");
+    CHECK(get() == levels);
+    const SparseCholesky again = chol.with_values(A, "A again");
+    CHECK(get() == levels);
+    const Eigen::VectorXd b = Eigen::VectorXd::Ones(A.rows());
+    CHECK((A * again.solve(b) - b).norm() < 1e-8 * b.norm());
+  }
+}
