@@ -26,6 +26,7 @@
 #include "polydec/apps/applications/spectrum.h"
 #include "bench/plain_surface_reference.h"
 #include "bench/plain_volume_reference.h"
+#include "polydec/dec/detail/huge_pages.h"
 #include "polydec/dec/surface/complex.h"
 #include "polydec/dec/mesh/generators.h"
 #include "polydec/dec/surface/hodge_star.h"
@@ -476,6 +477,28 @@ void bench_geodesics(const std::string& name, const Mesh& mesh, int n_sources) {
                      "Poisson step's), median of {} ({:.2f} ms; medians of the three: {:.2f}, {:.2f}, {:.2f} ms); "
                      "thread CPU time",
                      n_sources, median(rest), median(tdist), median(ts), median(td))});
+    // What the solves cannot go below on this machine: one source streams the heat factor once (its
+    // backward solve; the forward one covers the source's reach only) and the Poisson factor twice,
+    // each at least nnz(L) doubles. Two arrays of nnz(L) doubles (together beyond the L3 cache, as
+    // the two factors are), read as one source reads its factors (vectorized sums, huge pages),
+    // median of 9; the row indices and CHOLMOD's explicit zeros come on top.
+    const size_t lnz = size_t(chol.factor_nonzeros());
+    const auto heat_values = uninitialized_on_huge_pages<double>(lnz), poisson_values = uninitialized_on_huge_pages<double>(lnz);
+    for (size_t k = 0; k < lnz; ++k) heat_values[k] = poisson_values[k] = 1.0 / double(k + 1);
+    auto read = [&](const std::unique_ptr<double[]>& a) {
+      return Eigen::Map<const Eigen::VectorXd>(a.get(), Eigen::Index(lnz)).sum();
+    };
+    std::vector<double> tread;
+    double sink = 0;
+    for (int i = 0; i < 9; ++i)
+      tread.push_back(time_ms([&] { sink += read(heat_values) + read(poisson_values) + read(poisson_values); }));
+    const double floor_ms = median(tread);
+    add({"heat geodesics per source: memory floor", name, "target (half of geometry-central's 23.5 ms)",
+         "heat factor once, Poisson factor twice", 11.75, floor_ms, 0, 0,
+         fmt::format("three reads of {:.2f}M doubles, two arrays: {:.2f} ms ({:.1f} GB/s; median of 9, thread CPU time; "
+                     "sum {:.3f}); against the two solves timed above ({:.2f} + {:.2f} ms): what the solves take beyond "
+                     "streaming their values is not bandwidth",
+                     lnz / 1e6, floor_ms, 24e-6 * double(lnz) / floor_ms, sink / 27, median(ts), median(td))});
   }
   // One field per source for 64 sources at once (blocks of right-hand sides), against the single
   // source median above, re-timed interleaved with it. Target: at most a quarter per source.

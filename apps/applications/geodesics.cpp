@@ -119,6 +119,41 @@ void fan_columns(int m, double a, const double* q, const double* __restrict ui, 
   }
 }
 
+// fan_gradient_divergence for one column (distance()): the same operations in the same order,
+// without the per-triangle loops over columns and the scratch they need.
+void fan_gradient_divergence_one(const Mesh& mesh, const std::vector<double>& weights, const std::vector<double>& fan,
+                                 const double* u, double* b) {
+  const int* fo = mesh.face_offsets().data();
+  const int* fi = mesh.face_indices().data();
+  const double* w = weights.data();
+  for (int f = 0; f < mesh.n_faces(); ++f) {
+    const int b0 = fo[f], n = fo[f + 1] - b0;
+    double uf = 0, acc = 0;
+    for (int k = 0; k < n; ++k) uf += w[b0 + k] * u[fi[b0 + k]];
+    for (int k = 0; k < n; ++k) {
+      const double* q = fan.data() + 7 * size_t(b0 + k);
+      const double a = q[6];
+      if (a == 0) continue;  // degenerate: no gradient, no divergence
+      const int i = fi[b0 + k], j = fi[b0 + (k + 1 == n ? 0 : k + 1)];
+      const double di = u[i] - uf, dj = u[j] - uf;
+      double g[3] = {di * q[0] + dj * q[3], di * q[1] + dj * q[4], di * q[2] + dj * q[5]};
+      const double sq = g[0] * g[0] + g[1] * g[1] + g[2] * g[2];
+      if (sq > 1e-280 && sq < 1e280) {
+        const double inv = -(1.0 / std::sqrt(sq));
+        g[0] *= inv, g[1] *= inv, g[2] *= inv;
+      } else {
+        normalize_block(g, 3, 1);
+      }
+      const double si = a * (g[0] * q[0] + g[1] * q[1] + g[2] * q[2]);
+      const double sj = a * (g[0] * q[3] + g[1] * q[4] + g[2] * q[5]);
+      b[i] += si;
+      b[j] += sj;
+      acc -= si + sj;  // the virtual vertex's hat gradient is -(g_i + g_j)
+    }
+    for (int k = 0; k < n; ++k) b[fi[b0 + k]] += w[b0 + k] * acc;
+  }
+}
+
 // b += -D g for g = -grad u / |grad u| on every fan triangle (eqs. 32-33; D = -G^T W), face by
 // face from the fan data of HeatGeodesics: m columns at once, vertex-major (vertex v's m values of
 // u at U + v m, of b at B + v m). The gradient on the fan triangle (x_i, x_j, x_f) is
@@ -126,6 +161,7 @@ void fan_columns(int m, double a, const double* q, const double* __restrict ui, 
 // of the divergence goes to the corners by the weights. `scratch` holds 4 m values.
 void fan_gradient_divergence(const Mesh& mesh, const std::vector<double>& weights, const std::vector<double>& fan,
                              const double* U, int m, double* B, std::vector<double>& scratch) {
+  if (m == 1) return fan_gradient_divergence_one(mesh, weights, fan, U, B);
   scratch.assign(4 * size_t(m), 0.0);
   double* uf = scratch.data();
   double* acc = uf + m;

@@ -75,6 +75,69 @@ cholmod_sparse view_lower(const SpMat& A) {
   return s;
 }
 
+// One right-hand side through CHOLMOD's supernodal LL^T factor, supernode by supernode with Eigen's
+// inlined kernels: the diagonal block's triangular solve and one matrix-vector product with the
+// rows below (gathered or scattered once per row). cholmod_solve2 makes two BLAS calls per
+// supernode, whose fixed cost dominates the many small supernodes of a surface mesh's factor (one
+// FINE SPHERE solve ~10 ms against ~2 ms to stream the factor's values, docs/benchmarks.md). A
+// supernode's nsrow x nscol block is column-major at px, its diagonal block on top, the rows below
+// listed in s; `work` holds at least the largest supernode's row count.
+struct SupernodalView {
+  const int *super, *pi, *px, *s;
+  const double* x;
+  explicit SupernodalView(const cholmod_factor& L)
+      : super(static_cast<const int*>(L.super)), pi(static_cast<const int*>(L.pi)),
+        px(static_cast<const int*>(L.px)), s(static_cast<const int*>(L.s)), x(static_cast<const double*>(L.x)) {}
+};
+
+// L y = y for supernode k (forward elimination). Plain loops that GCC vectorizes, compiled for
+// AVX2 too and chosen at load time (target_clones): the library's baseline is SSE2.
+__attribute__((target_clones("avx2", "default"))) void forward_supernode(const SupernodalView& L, int k, double* y,
+                                                                         double* work) {
+  const int k1 = L.super[k], n_col = L.super[k + 1] - k1, n_row = L.pi[k + 1] - L.pi[k], m = n_row - n_col;
+  const double* block = L.x + L.px[k];
+  double* __restrict yd = y + k1;
+  double* __restrict t = work;
+  for (int i = 0; i < m; ++i) t[i] = 0.0;
+  for (int j = 0; j < n_col; ++j) {
+    const double* __restrict c = block + size_t(j) * size_t(n_row);
+    const double yj = (yd[j] /= c[j]);
+    for (int i = j + 1; i < n_col; ++i) yd[i] -= c[i] * yj;
+    const double* __restrict below = c + n_col;
+    for (int i = 0; i < m; ++i) t[i] += below[i] * yj;
+  }
+  const int* r = L.s + L.pi[k] + n_col;
+  for (int i = 0; i < m; ++i) y[r[i]] -= t[i];
+}
+
+// L^T z = z for supernode k (backward substitution; the supernodes after k are done).
+__attribute__((target_clones("avx2", "default"))) void backward_supernode(const SupernodalView& L, int k, double* z,
+                                                                          double* work) {
+  const int k1 = L.super[k], n_col = L.super[k + 1] - k1, n_row = L.pi[k + 1] - L.pi[k], m = n_row - n_col;
+  const double* block = L.x + L.px[k];
+  const int* r = L.s + L.pi[k] + n_col;
+  double* __restrict g = work;
+  for (int i = 0; i < m; ++i) g[i] = z[r[i]];
+  double* __restrict zd = z + k1;
+  for (int j = n_col - 1; j >= 0; --j) {
+    const double* __restrict c = block + size_t(j) * size_t(n_row);
+    const double* __restrict below = c + n_col;
+    // Four partial sums, so that the reduction vectorizes without reassociating the compiler's way.
+    double a0 = 0, a1 = 0, a2 = 0, a3 = 0;
+    int i = 0;
+    for (; i + 4 <= m; i += 4) {
+      a0 += below[i] * g[i];
+      a1 += below[i + 1] * g[i + 1];
+      a2 += below[i + 2] * g[i + 2];
+      a3 += below[i + 3] * g[i + 3];
+    }
+    for (; i < m; ++i) a0 += below[i] * g[i];
+    double acc = (a0 + a1) + (a2 + a3);
+    for (int q = j + 1; q < n_col; ++q) acc += c[q] * zd[q];
+    zd[j] = (zd[j] - acc) / c[j];
+  }
+}
+
 // CHOLMOD allocates its factors, solutions and workspaces through SuiteSparse_config. With
 // glibc's malloc and calloc there, blocks of 2 MB and more are advised onto transparent huge pages
 // before their first write (dec/detail/huge_pages.h): a FINE SPHERE factor (42 MB) otherwise
@@ -159,6 +222,18 @@ struct SparseCholesky::Impl {
   mutable std::vector<int> super_of, super_parent, iperm, reach, mark;
   mutable std::vector<double> y;
   mutable int mark_now = 0;
+  // One-column solves (forward_supernode, backward_supernode): the permuted vector and the
+  // gather/scatter scratch of the largest supernode, made on the first call.
+  mutable std::vector<double> w, work;
+  bool own_solve() const { return L && L->is_super && L->is_ll && L->xtype == CHOLMOD_REAL; }
+  void make_solve_buffers() const {
+    if (!work.empty()) return;
+    int widest = 1;
+    const int* pi = static_cast<const int*>(L->pi);
+    for (size_t k = 0; k < L->nsuper; ++k) widest = std::max(widest, pi[k + 1] - pi[k]);
+    work.assign(size_t(widest), 0.0);
+    w.assign(L->n, 0.0);
+  }
   bool started = false;
   ~Impl() {
     if (started) {
@@ -350,6 +425,18 @@ void SparseCholesky::solve(const double* B, double* X, int n_columns) const {
   b.dtype = CHOLMOD_DOUBLE;
   Impl& m = *impl_;
   const bool one = n_columns == 1;
+  if (one && m.own_solve()) {
+    m.make_solve_buffers();
+    const SupernodalView V(*m.L);
+    const int* perm = static_cast<const int*>(m.L->Perm);
+    const int n_super = int(m.L->nsuper);
+    double* w = m.w.data();
+    for (int k = 0; k < rows_; ++k) w[k] = B[perm ? perm[k] : k];
+    for (int k = 0; k < n_super; ++k) forward_supernode(V, k, w, m.work.data());
+    for (int k = n_super - 1; k >= 0; --k) backward_supernode(V, k, w, m.work.data());
+    for (int k = 0; k < rows_; ++k) X[perm ? perm[k] : k] = w[k];
+    return;
+  }
   if (!cholmod_solve2(CHOLMOD_A, m.L, &b, nullptr, one ? &m.X : &m.Xb, nullptr, one ? &m.Y : &m.Yb,
                       one ? &m.E : &m.Eb, &m.c))
     throw SolverError("solve with " + name_ + " failed (CHOLMOD status " + std::to_string(m.c.status) + ")");
@@ -388,9 +475,7 @@ void SparseCholesky::solve_sparse(std::span<const int> rows, std::span<const dou
   const int n = rows_, n_super = int(L.nsuper);
   const int* super = static_cast<const int*>(L.super);
   const int* pi = static_cast<const int*>(L.pi);
-  const int* px = static_cast<const int*>(L.px);
   const int* s = static_cast<const int*>(L.s);
-  const double* Lx = static_cast<const double*>(L.x);
   const int* perm = static_cast<const int*>(L.Perm);
   if (m.super_of.empty()) {
     // The supernodal elimination tree: a supernode's parent holds the first row below its
@@ -423,36 +508,16 @@ void SparseCholesky::solve_sparse(std::span<const int> rows, std::span<const dou
     }
   }
   std::sort(m.reach.begin(), m.reach.end());
-  // L y = P b over the reach, column by column of each supernode (LL^T: its nsrow x nscol block
-  // column-major at px, the diagonal block on top, the rows below listed in s).
-  for (int k : m.reach) {
-    const int k1 = super[k], n_col = super[k + 1] - k1, n_row = pi[k + 1] - pi[k];
-    const int* r = s + pi[k];
-    const double* block = Lx + px[k];
-    for (int j = 0; j < n_col; ++j) {
-      const double* col = block + size_t(j) * size_t(n_row);
-      const double yj = (y[k1 + j] /= col[j]);
-      if (yj == 0) continue;
-      for (int i = j + 1; i < n_col; ++i) y[k1 + i] -= col[i] * yj;
-      for (int i = n_col; i < n_row; ++i) y[r[i]] -= col[i] * yj;
-    }
-  }
-  // L^T z = y over the whole factor, then x = P^T z; y is cleared on the reach for the next call.
-  cholmod_dense yd{};
-  yd.nrow = size_t(n);
-  yd.ncol = 1;
-  yd.nzmax = size_t(n);
-  yd.d = size_t(n);
-  yd.x = y;
-  yd.xtype = CHOLMOD_REAL;
-  yd.dtype = CHOLMOD_DOUBLE;
-  const int ok = cholmod_solve2(CHOLMOD_Lt, m.L, &yd, nullptr, &m.X, nullptr, &m.Y, &m.E, &m.c);
-  for (int k : m.reach) std::fill(y + super[k], y + super[k + 1], 0.0);
-  if (!ok)
-    throw SolverError("sparse solve with " + name_ + " failed (backward solve, CHOLMOD status " +
-                      std::to_string(m.c.status) + ")");
-  const double* z = static_cast<const double*>(m.X->x);
-  for (int k = 0; k < n; ++k) x[perm ? perm[k] : k] = z[k];
+  // L y = P b over the reach; L^T z = y over the whole factor, in place; then x = P^T z, and y is
+  // cleared for the next call.
+  if (!m.own_solve())
+    throw SolverError("sparse solve with " + name_ + ": the factor is not a real supernodal LL^T one");
+  m.make_solve_buffers();
+  const SupernodalView V(L);
+  for (int k : m.reach) forward_supernode(V, k, y, m.work.data());
+  for (int k = n_super - 1; k >= 0; --k) backward_supernode(V, k, y, m.work.data());
+  for (int k = 0; k < n; ++k) x[perm ? perm[k] : k] = y[k];
+  std::fill(y, y + n, 0.0);
 #endif
 }
 
