@@ -75,13 +75,13 @@ cholmod_sparse view_lower(const SpMat& A) {
   return s;
 }
 
-// One right-hand side through CHOLMOD's supernodal LL^T factor, supernode by supernode with Eigen's
-// inlined kernels: the diagonal block's triangular solve and one matrix-vector product with the
-// rows below (gathered or scattered once per row). cholmod_solve2 makes two BLAS calls per
-// supernode, whose fixed cost dominates the many small supernodes of a surface mesh's factor (one
-// FINE SPHERE solve ~10 ms against ~2 ms to stream the factor's values, docs/benchmarks.md). A
-// supernode's nsrow x nscol block is column-major at px, its diagonal block on top, the rows below
-// listed in s; `work` holds at least the largest supernode's row count.
+// One right-hand side through CHOLMOD's supernodal LL^T factor, supernode by supernode: the
+// diagonal block's triangular solve and one update with the rows below (gathered or scattered
+// once per row). cholmod_solve2 makes two BLAS calls per supernode on the many small supernodes of
+// a surface mesh's factor: one FINE SPHERE solve took ~10 ms against ~2 ms to stream the factor's
+// values, and ~6 ms with these loops (docs/benchmarks.md). A supernode's nsrow x nscol block is
+// column-major at px, its diagonal block on top, the rows below listed in s; `work` holds at least
+// the largest supernode's row count.
 struct SupernodalView {
   const int *super, *pi, *px, *s;
   const double* x;
@@ -122,7 +122,7 @@ __attribute__((target_clones("avx2", "default"))) void backward_supernode(const 
   for (int j = n_col - 1; j >= 0; --j) {
     const double* __restrict c = block + size_t(j) * size_t(n_row);
     const double* __restrict below = c + n_col;
-    // Four partial sums, so that the reduction vectorizes without reassociating the compiler's way.
+    // Four partial sums: GCC does not reorder a floating-point sum by itself, this lets it vectorize.
     double a0 = 0, a1 = 0, a2 = 0, a3 = 0;
     int i = 0;
     for (; i + 4 <= m; i += 4) {
@@ -141,8 +141,8 @@ __attribute__((target_clones("avx2", "default"))) void backward_supernode(const 
 // CHOLMOD allocates its factors, solutions and workspaces through SuiteSparse_config. With
 // glibc's malloc and calloc there, blocks of 2 MB and more are advised onto transparent huge pages
 // before their first write (dec/detail/huge_pages.h): a FINE SPHERE factor (42 MB) otherwise
-// costs ~10 000 page faults of ~13 us here, and every solve that streams it misses the TLB (one
-// source of the heat method 23 -> 19 ms, docs/benchmarks.md). Installed once, and only over
+// costs ~10 000 page faults of ~13 us here (docs/benchmarks.md), and the solves that stream it
+// miss the TLB on 4 KB pages. Installed once, and only over
 // glibc's own functions: a program that set its own allocator for SuiteSparse keeps it. The
 // blocks are plain malloc/calloc blocks, so CHOLMOD's free (free) stays right for them.
 void* malloc_on_huge_pages(size_t bytes) {
