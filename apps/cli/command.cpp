@@ -80,16 +80,15 @@ InputMesh load_input_mesh(const std::string& path, bool volume, bool repair_firs
   options.volume = volume;
   options.validate_surface = !repair_first;
   options.groups = groups;
-  MeshFile file = read_mesh_file(path, options);
   InputMesh in;
-  in.groups = std::move(file.groups);
-  in.notes = std::move(file.notes);
-  if (file.volume) {
-    in.volume = load_detail::with_global_options(std::move(*file.volume));
-  } else if (file.soup) {
-    in.surface = load_detail::repaired(path, std::move(*file.soup), &in.vertex_map);
+  static_cast<MeshFile&>(in) = read_mesh_file(path, options);
+  if (in.volume) {
+    in.volume = load_detail::with_global_options(std::move(*in.volume));
+  } else if (in.soup) {
+    in.surface = load_detail::repaired(path, std::move(*in.soup), &in.vertex_map);
+    in.soup.reset();
   } else {
-    in.surface = load_detail::with_global_options(std::move(*file.surface));
+    in.surface = load_detail::with_global_options(std::move(*in.surface));
     in.vertex_map = load_detail::identity_map(in.surface->n_vertices());
   }
   return in;

@@ -56,12 +56,10 @@ VolumeMesh load_volume_mesh(const std::string& path, VolumeReadNotes* notes = nu
 // (with `volume`, or when the file's name or content says so: is_volume_mesh_path) as load_volume_mesh
 // reads it, else a surface as load_mesh reads it (with `repair_first`, repaired; vertex_map: file vertex
 // -> mesh vertex, -1 when removed). With `groups`, the file's groups (gmsh, MEDIT) are read too.
-struct InputMesh {
-  std::optional<Mesh> surface;
-  std::optional<VolumeMesh> volume;
-  MeshGroups groups;
-  VolumeReadNotes notes;
-  std::vector<int> vertex_map;
+// The MeshFile with the global --planarity-tolerance applied and never a soup: with `repair_first`
+// the file's polygons are repaired into `surface`.
+struct InputMesh : MeshFile {
+  std::vector<int> vertex_map;  // surfaces only
 };
 InputMesh load_input_mesh(const std::string& path, bool volume, bool repair_first, bool groups = false);
 

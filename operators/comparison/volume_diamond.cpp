@@ -6,6 +6,8 @@
 #include <array>
 #include <cmath>
 
+#include "polydec/operators/detail/volume_refinement_in_use.h"
+
 namespace polydec {
 
 FineDiamonds volume_diamonds(const VolumeMesh& mesh, const VolumeRefinement& refinement) {
@@ -96,12 +98,11 @@ OperatorSet volume_diamond_operators(const VolumeMesh& mesh, const VolumeOperato
   ops.name = "diamond (volume)";
   ops.n_input_vertices = mesh.n_vertices();
   ops.mean_edge_length = mesh.mean_edge_length();
-  VolumeRefinement own;
-  if (!options.refinement) own = refine_volume(mesh);
-  const VolumeRefinement& R = options.refinement ? *options.refinement : own;
+  detail::VolumeRefinementInUse in_use(mesh, options.refinement);
+  const VolumeRefinement& R = in_use.get();
   ops.sub_tet_quality = R.quality;
   fill_diamond_operators(volume_diamonds(mesh, R), volume_prolongation(mesh, R), options.with_gradient, ops);
-  if (options.keep_refinement) ops.volume_refinement = options.refinement ? R : std::move(own);
+  if (options.keep_refinement) ops.volume_refinement = in_use.release();
   return ops;
 }
 

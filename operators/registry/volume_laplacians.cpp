@@ -8,6 +8,7 @@
 
 #include "polydec/dec/volume/whitney.h"
 #include "polydec/operators/comparison/volume_diamond.h"
+#include "polydec/operators/detail/volume_refinement_in_use.h"
 
 namespace polydec {
 
@@ -16,14 +17,11 @@ namespace {
 
 OperatorSet refined_operators(const VolumeMesh& mesh, CellPointRule rule,
                               const VolumeOperatorOptions& options) {
-  VolumeRefinement own;
-  if (!options.refinement) {
-    VolumeRefinementOptions ropt;
-    ropt.cell_rule = rule;
-    ropt.threads = options.threads;
-    own = refine_volume(mesh, ropt);
-  }
-  const VolumeRefinement& r = options.refinement ? *options.refinement : own;
+  VolumeRefinementOptions ropt;
+  ropt.cell_rule = rule;
+  ropt.threads = options.threads;
+  detail::VolumeRefinementInUse in_use(mesh, options.refinement, ropt);
+  const VolumeRefinement& r = in_use.get();
   VolumeLaplacian L = assemble_volume_laplacian(mesh, r, nullptr, options.threads);
   OperatorSet ops;
   ops.S.swap(L.S);
@@ -35,7 +33,7 @@ OperatorSet refined_operators(const VolumeMesh& mesh, CellPointRule rule,
     ops.D = volume_divergence(ops.G, volumes);
   }
   ops.sub_tet_quality = r.quality;
-  if (options.keep_refinement) ops.volume_refinement = options.refinement ? r : std::move(own);
+  if (options.keep_refinement) ops.volume_refinement = in_use.release();
   return ops;
 }
 

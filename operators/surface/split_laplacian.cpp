@@ -1,7 +1,7 @@
 // operators/surface/split_laplacian.cpp — S, M, G, D through the explicit refined triangles of the pieces.
 #include "polydec/operators/surface/split_laplacian.h"
 
-#include "polydec/operators/comparison/cotan.h"
+#include "polydec/operators/surface/cotan_operators.h"
 #include "polydec/operators/surface/gradient.h"
 
 namespace polydec {

@@ -1,6 +1,6 @@
 // operators/surface/split_laplacian.h — the paper's operators with several virtual vertices in a face
 // (dec/surface/split_refinement.h): S = P^T S^f P, M = P^T M^f P, G = G^f P, D = -G^T W = P^T D^f,
-// with S^f, M^f, G^f, D^f the cotangent operators (operators/comparison/cotan.h) of the refined
+// with S^f, M^f, G^f, D^f the cotangent operators (operators/surface/cotan_operators.h) of the refined
 // triangles of the pieces' fans. A mesh whose faces all stay one piece (every convex mesh) gets the
 // paper's operators from its fast path, bit for bit.
 //
