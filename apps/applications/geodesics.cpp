@@ -81,7 +81,7 @@ void normalize_block(double* x, int n, int stride) {
 // [1e-280, 1e280] (or not finite) contribute nothing there and take normalize_block's rescaled
 // path afterwards. The arrays do not overlap (i != j on a fan triangle of non-zero area); sq and
 // inv are scratch of m values.
-void fan_columns(int m, double a, const double* q, const double* __restrict ui, const double* __restrict uj,
+[[gnu::always_inline]] inline void fan_columns(int m, double a, const double* q, const double* __restrict ui, const double* __restrict uj,
                  const double* __restrict uf, double* __restrict bi, double* __restrict bj, double* __restrict acc,
                  double* __restrict sq, double* __restrict inv) {
   const double q0 = q[0], q1 = q[1], q2 = q[2], q3 = q[3], q4 = q[4], q5 = q[5];
@@ -159,8 +159,9 @@ void fan_gradient_divergence_one(const Mesh& mesh, const std::vector<double>& we
 // u at U + v m, of b at B + v m). The gradient on the fan triangle (x_i, x_j, x_f) is
 // (u_i - u_f) g_i + (u_j - u_f) g_j with u_f the weighted corner values; the virtual vertex's share
 // of the divergence goes to the corners by the weights. `scratch` holds 4 m values.
-void fan_gradient_divergence(const Mesh& mesh, const std::vector<double>& weights, const std::vector<double>& fan,
-                             const double* U, int m, double* B, std::vector<double>& scratch) {
+__attribute__((target_clones("avx2", "default"))) void fan_gradient_divergence(
+    const Mesh& mesh, const std::vector<double>& weights, const std::vector<double>& fan, const double* U, int m,
+    double* B, std::vector<double>& scratch) {
   if (m == 1) return fan_gradient_divergence_one(mesh, weights, fan, U, B);
   scratch.assign(4 * size_t(m), 0.0);
   double* uf = scratch.data();
@@ -416,36 +417,32 @@ Eigen::MatrixXd HeatGeodesics::distances(std::span<const int> sources, int block
     widest = std::max(widest, ops_.G_blocks[h + 1] - ops_.G_blocks[h]);
   Eigen::MatrixXd out(n_out, k);
   advise_huge_pages(out.data(), sizeof(double) * size_t(out.size()));
-  // Three blocks of nv x width values for the whole call, on huge pages (fresh 4 KB pages cost
-  // ~13 us each here: 49 MB a block of 64 columns on FINE SPHERE): P column-major (right-hand
-  // sides and solutions, solved in place), U and B vertex-major (the m values of a vertex
-  // contiguous) for the fused pass.
+  // Two blocks of nv x width values for the whole call, on huge pages (fresh 4 KB pages cost ~13
+  // us each here: 49 MB a block of 64 columns on FINE SPHERE), vertex-major (the m values of a
+  // vertex contiguous): U the heat step's right-hand sides and solutions, B the Poisson step's,
+  // both solved in place (SparseCholesky::solve_rows) and read by the fused pass.
   const int width = std::min(block, k);
   const size_t cells = size_t(nv) * size_t(width);
-  const std::unique_ptr<double[]> P = uninitialized_on_huge_pages<double>(cells);
   const std::unique_ptr<double[]> Ub = uninitialized_on_huge_pages<double>(cells);
   const std::unique_ptr<double[]> Bb = uninitialized_on_huge_pages<double>(cells);
   std::vector<double> g(size_t(widest) * size_t(width));  // block row i's m values at g + i m
   for (int c0 = 0; c0 < k; c0 += block) {
     const int m = std::min(block, k - c0);
-    // (31) for m sources at once.
-    std::fill(P.get(), P.get() + size_t(nv) * size_t(m), 0.0);
-    for (int c = 0; c < m; ++c) {
-      const int s = sources[size_t(c0 + c)];
-      double* rhs = P.get() + size_t(c) * size_t(nv);
-      if (!options_.mass_weighted_source)
-        rhs[s] = 1.0;
-      else if (options_.lumped_mass)
-        rhs[s] = ops_.M_lumped[s];
-      else
-        for (SparseMatrix::InnerIterator it(ops_.M, s); it; ++it)
-          if (component_[it.row()] >= 0) rhs[it.row()] = it.value();
-    }
-    heat_->solve(P.get(), P.get(), m);
     double* U = Ub.get();  // vertex v's m values at U + v m
     double* Bv = Bb.get();
-    for (int v = 0; v < nv; ++v)
-      for (int c = 0; c < m; ++c) U[size_t(v) * m + c] = P[size_t(c) * nv + v];
+    // (31) for m sources at once.
+    std::fill(U, U + size_t(nv) * size_t(m), 0.0);
+    for (int c = 0; c < m; ++c) {
+      const int s = sources[size_t(c0 + c)];
+      if (!options_.mass_weighted_source)
+        U[size_t(s) * m + c] = 1.0;
+      else if (options_.lumped_mass)
+        U[size_t(s) * m + c] = ops_.M_lumped[s];
+      else
+        for (SparseMatrix::InnerIterator it(ops_.M, s); it; ++it)
+          if (component_[it.row()] >= 0) U[size_t(it.row()) * m + c] = it.value();
+    }
+    heat_->solve_rows(U, m);
     std::fill(Bv, Bv + size_t(nv) * size_t(m), 0.0);
     if (!fan_.empty()) fan_gradient_divergence(ops_.domain, ops_.refinement->weights, fan_, U, m, Bv, g);
     for (int h = 0; h < n_blocks && fan_.empty(); ++h) {
@@ -470,18 +467,17 @@ Eigen::MatrixXd HeatGeodesics::distances(std::span<const int> sources, int block
         }
       }
     }
-    // (33) for the m right-hand sides, column-major again, pinned rows zero.
+    // (33) for the m right-hand sides, pinned rows zero.
     for (int v = 0; v < nv; ++v)
-      for (int c = 0; c < m; ++c) P[size_t(c) * nv + v] = pinned_[v] ? 0.0 : Bv[size_t(v) * m + c];
-    poisson_->solve(P.get(), P.get(), m);
+      if (pinned_[v]) std::fill(Bv + size_t(v) * m, Bv + size_t(v + 1) * m, 0.0);
+    poisson_->solve_rows(Bv, m);
     for (int c = 0; c < m; ++c) {
-      const double* D = P.get() + size_t(c) * size_t(nv);
       const int reached = component_[sources[size_t(c0 + c)]];
       double cmin = std::numeric_limits<double>::infinity();
       for (int v = 0; v < n_out; ++v)
-        if (component_[v] == reached) cmin = std::min(cmin, D[v]);
+        if (component_[v] == reached) cmin = std::min(cmin, Bv[size_t(v) * m + c]);
       for (int v = 0; v < n_out; ++v)
-        out(v, c0 + c) = component_[v] == reached ? D[v] - cmin : std::numeric_limits<double>::infinity();
+        out(v, c0 + c) = component_[v] == reached ? Bv[size_t(v) * m + c] - cmin : std::numeric_limits<double>::infinity();
     }
   }
   return out;

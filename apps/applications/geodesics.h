@@ -73,10 +73,10 @@ class HeatGeodesics {
 
   // One distance field per source (unlike distance(sources), the distance to the set): column c
   // holds the distances from sources[c], |V| x k, equal to distance(sources[c]) up to round-off.
-  // Solved as blocks of up to `block` right-hand sides (CHOLMOD's supernodal solves with several
-  // columns), and the normalized gradient (eq. 32) and its divergence fused in one pass over a
-  // row-major copy of G made for the call. Throws as distance() does; std::invalid_argument for
-  // block < 1.
+  // Solved as blocks of up to `block` right-hand sides stored vertex by vertex
+  // (SparseCholesky::solve_rows), and the normalized gradient (eq. 32) and its divergence fused in
+  // one pass: face by face for a set that carries its refinement, else over a row-major copy of G
+  // made for the call. Throws as distance() does; std::invalid_argument for block < 1.
   Eigen::MatrixXd distances(std::span<const int> sources, int block = 64) const;
 
   double time_step() const { return t_; }

@@ -138,6 +138,61 @@ __attribute__((target_clones("avx2", "default"))) void backward_supernode(const 
   }
 }
 
+// The same for m right-hand sides stored row by row (row v's m values at W + v m): every factor
+// entry updates one row of m values, contiguous, so the loops vectorize across the columns.
+__attribute__((target_clones("avx2", "default"))) void forward_supernode_rows(const SupernodalView& L, int k,
+                                                                              double* W, int m) {
+  const int k1 = L.super[k], n_col = L.super[k + 1] - k1, n_row = L.pi[k + 1] - L.pi[k], nb = n_row - n_col;
+  const double* block = L.x + L.px[k];
+  const int* r = L.s + L.pi[k] + n_col;
+  for (int j = 0; j < n_col; ++j) {
+    const double* c = block + size_t(j) * size_t(n_row);
+    double* __restrict yj = W + size_t(k1 + j) * m;
+    const double d = c[j];
+    for (int q = 0; q < m; ++q) yj[q] /= d;
+    for (int i = j + 1; i < n_col; ++i) {
+      double* __restrict yi = W + size_t(k1 + i) * m;
+      const double l = c[i];
+      for (int q = 0; q < m; ++q) yi[q] -= l * yj[q];
+    }
+  }
+  for (int i = 0; i < nb; ++i) {
+    double* __restrict dst = W + size_t(r[i]) * m;
+    for (int j = 0; j < n_col; ++j) {
+      const double l = block[size_t(j) * size_t(n_row) + size_t(n_col + i)];
+      const double* __restrict src = W + size_t(k1 + j) * m;
+      for (int q = 0; q < m; ++q) dst[q] -= l * src[q];
+    }
+  }
+}
+
+__attribute__((target_clones("avx2", "default"))) void backward_supernode_rows(const SupernodalView& L, int k,
+                                                                               double* W, int m) {
+  const int k1 = L.super[k], n_col = L.super[k + 1] - k1, n_row = L.pi[k + 1] - L.pi[k], nb = n_row - n_col;
+  const double* block = L.x + L.px[k];
+  const int* r = L.s + L.pi[k] + n_col;
+  for (int j = 0; j < n_col; ++j) {
+    double* __restrict zj = W + size_t(k1 + j) * m;
+    const double* below = block + size_t(j) * size_t(n_row) + n_col;
+    for (int i = 0; i < nb; ++i) {
+      const double l = below[i];
+      const double* __restrict src = W + size_t(r[i]) * m;
+      for (int q = 0; q < m; ++q) zj[q] -= l * src[q];
+    }
+  }
+  for (int j = n_col - 1; j >= 0; --j) {
+    const double* c = block + size_t(j) * size_t(n_row);
+    double* __restrict zj = W + size_t(k1 + j) * m;
+    for (int i = j + 1; i < n_col; ++i) {
+      const double l = c[i];
+      const double* __restrict zi = W + size_t(k1 + i) * m;
+      for (int q = 0; q < m; ++q) zj[q] -= l * zi[q];
+    }
+    const double d = c[j];
+    for (int q = 0; q < m; ++q) zj[q] /= d;
+  }
+}
+
 // CHOLMOD allocates its factors, solutions and workspaces through SuiteSparse_config. With
 // glibc's malloc and calloc there, blocks of 2 MB and more are advised onto transparent huge pages
 // before their first write (dec/detail/huge_pages.h): a FINE SPHERE factor (42 MB) otherwise
@@ -225,6 +280,9 @@ struct SparseCholesky::Impl {
   // One-column solves (forward_supernode, backward_supernode): the permuted vector and the
   // gather/scatter scratch of the largest supernode, made on the first call.
   mutable std::vector<double> w, work;
+  // solve_rows: the permuted rows, on huge pages, kept for the next call of the same size.
+  mutable std::unique_ptr<double[]> rows_block;
+  mutable size_t rows_block_size = 0;
   bool own_solve() const { return L && L->is_super && L->is_ll && L->xtype == CHOLMOD_REAL; }
   void make_solve_buffers() const {
     if (!work.empty()) return;
@@ -442,6 +500,35 @@ void SparseCholesky::solve(const double* B, double* X, int n_columns) const {
     throw SolverError("solve with " + name_ + " failed (CHOLMOD status " + std::to_string(m.c.status) + ")");
   std::copy_n(static_cast<const double*>((one ? m.X : m.Xb)->x), size_t(rows_) * n_columns, X);
 #endif
+}
+
+void SparseCholesky::solve_rows(double* X, int n_columns) const {
+  if (n_columns < 1) return;
+  const size_t n = size_t(rows_), m = size_t(n_columns);
+#ifdef POLYDEC_HAVE_CHOLMOD
+  Impl& im = *impl_;
+  if (im.use_cholmod && im.own_solve()) {
+    if (im.rows_block_size != n * m) {
+      im.rows_block.reset();
+      im.rows_block = uninitialized_on_huge_pages<double>(n * m);
+      im.rows_block_size = n * m;
+    }
+    double* W = im.rows_block.get();
+    const int* perm = static_cast<const int*>(im.L->Perm);
+    for (size_t k = 0; k < n; ++k) std::copy_n(X + size_t(perm ? perm[k] : int(k)) * m, m, W + k * m);
+    const SupernodalView V(*im.L);
+    const int n_super = int(im.L->nsuper);
+    for (int k = 0; k < n_super; ++k) forward_supernode_rows(V, k, W, n_columns);
+    for (int k = n_super - 1; k >= 0; --k) backward_supernode_rows(V, k, W, n_columns);
+    for (size_t k = 0; k < n; ++k) std::copy_n(W + k * m, m, X + size_t(perm ? perm[k] : int(k)) * m);
+    return;
+  }
+#endif
+  // Column-major through solve().
+  Eigen::MatrixXd B = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+      X, rows_, n_columns);
+  solve(B.data(), B.data(), n_columns);
+  Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(X, rows_, n_columns) = B;
 }
 
 Eigen::VectorXd SparseCholesky::solve_sparse(std::span<const int> rows, std::span<const double> values) const {

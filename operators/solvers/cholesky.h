@@ -104,6 +104,10 @@ class SparseCholesky {
   Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
   // The same on raw column-major storage: B and X are rows() x n_columns (they may alias).
   void solve(const double* B, double* X, int n_columns) const;
+  // Solves A X = B in place for n_columns right-hand sides stored row by row: row v's n_columns
+  // values at X + v n_columns (a vertex's values together, as per-vertex passes want them). With
+  // CHOLMOD, supernode by supernode with the columns' updates vectorized across the row.
+  void solve_rows(double* X, int n_columns) const;
   // Solves A x = b for a right-hand side with few non-zeros, b(rows[i]) = values[i] (rows distinct,
   // in [0, rows()); std::invalid_argument otherwise), zero elsewhere. With CHOLMOD the forward solve
   // runs over the rows' reach only (the supernodes from theirs to the root of the supernodal
