@@ -124,7 +124,9 @@ void run(const Options& o) {
   Eigen::VectorXd s;
   if (o.source >= 0) {
     if (o.scalar != "none") throw UsageError("--distance-from and --scalar exclude each other");
-    OperatorSet ops = timer.time("operators", [&] { return build_operators(mesh, parse_laplacian("ours")); });
+    OperatorSet ops = timer.time("operators", [&] {
+      return build_operators(mesh, parse_laplacian("ours"), {.gradient_with_refinement = false});
+    });
     const HeatGeodesics heat =
         timer.time("factorization", [&] { return HeatGeodesics(take_operators(ops), mesh.mean_edge_length()); });
     s = timer.time("solve", [&] { return heat.distance(o.source); });
