@@ -82,6 +82,11 @@ BlasThreads blas_threads();
 // source "set_blas_threads"; throws std::invalid_argument for n < 0 or n > 1024.
 BlasThreads set_blas_threads(int n);
 
+// A symmetric positive definite factorization that factors once and solves many times. With
+// CHOLMOD, the first factorization of the process also replaces SuiteSparse_config's malloc and
+// calloc, where they are still glibc's own, by wrappers that advise blocks of 2 MB and more onto
+// transparent huge pages (fewer page faults and TLB misses; POLYDEC_NO_HUGE_PAGES turns the
+// advice off): this affects every CHOLMOD user in the process, with the same memory semantics.
 class SparseCholesky {
  public:
   // Analyses and factors A (symmetric positive definite; only its lower triangle is read).
