@@ -23,7 +23,8 @@ mkdir -p "$OUT/objects" "$OUT/artifacts" "$OUT/include/polydec"
 # rely on them for Eigen/Geometry): one for the library's objects (coverage instrumentation only,
 # fuzzer-no-link) and one for the targets (fuzzer), since clang refuses a header precompiled with
 # other instrumentation. ~4 s of compile saved per source.
-printf '#include <Eigen/Dense>\n#include <Eigen/Sparse>\n' >"$OUT/eigen.h"
+# Written once: clang refuses a precompiled header whose source's mtime changed since.
+[[ -f $OUT/eigen.h ]] || printf '#include <Eigen/Dense>\n#include <Eigen/Sparse>\n' >"$OUT/eigen.h"
 for kind in fuzzer-no-link fuzzer; do
   pch="$OUT/eigen-$kind.pch"
   if [[ ! -f $pch || ${BASH_SOURCE[0]} -nt $pch ]]; then
