@@ -215,8 +215,8 @@ void* calloc_on_huge_pages(size_t count, size_t size) {
 // one thread (blas_threads()) those loops stay on the calling thread too: for the duration of a
 // call, this thread's OpenMP max-active-levels is 0 (libgomp keeps it per thread, so other
 // threads' OpenMP is untouched), restored afterwards. On a loaded 2-core machine the team of 4
-// costs more than it saves (FINE SPHERE heat-method precomputation ~1.25 -> ~1.02 s wall, one
-// run each of three, docs/benchmarks.md). Nothing happens when CHOLMOD was built without OpenMP.
+// costs more than it saves (FINE SPHERE heat-method precomputation, medians of twelve
+// constructions: ~1.26 -> ~1.07 s wall, docs/benchmarks.md). Nothing happens when CHOLMOD was built without OpenMP.
 class CholmodOpenMPScope {
  public:
   CholmodOpenMPScope() {
