@@ -272,10 +272,9 @@ struct SparseCholesky::Impl {
   mutable cholmod_dense* Yb = nullptr;
   mutable cholmod_dense* Eb = nullptr;
   // solve_sparse: the supernode of each column and the parent of each supernode (L's structure,
-  // fixed by the analysis; made on the first call), the inverse permutation, the forward solution
-  // (zero between calls) and the supernodes of the current reach with their marks.
+  // fixed by the analysis; made on the first call), the inverse permutation and the supernodes
+  // of the current reach with their marks.
   mutable std::vector<int> super_of, super_parent, iperm, reach, mark;
-  mutable std::vector<double> y;
   mutable int mark_now = 0;
   // One-column solves (forward_supernode, backward_supernode): the permuted vector and the
   // gather/scatter scratch of the largest supernode, made on the first call.
@@ -291,6 +290,19 @@ struct SparseCholesky::Impl {
     for (size_t k = 0; k < L->nsuper; ++k) widest = std::max(widest, pi[k + 1] - pi[k]);
     work.assign(size_t(widest), 0.0);
     w.assign(L->n, 0.0);
+  }
+  // L y = w over the supernodes `forward` lists (all when null), L^T z = y over all of them, in
+  // place in the permuted w; then x = P^T z.
+  void supernodal_solve(const std::vector<int>* forward, double* x) const {
+    const SupernodalView V(*L);
+    const int n_super = int(L->nsuper);
+    if (forward)
+      for (int k : *forward) forward_supernode(V, k, w.data(), work.data());
+    else
+      for (int k = 0; k < n_super; ++k) forward_supernode(V, k, w.data(), work.data());
+    for (int k = n_super - 1; k >= 0; --k) backward_supernode(V, k, w.data(), work.data());
+    const int* perm = static_cast<const int*>(L->Perm);
+    for (size_t k = 0; k < L->n; ++k) x[perm ? perm[k] : int(k)] = w[k];
   }
   bool started = false;
   ~Impl() {
@@ -473,6 +485,15 @@ void SparseCholesky::solve(const double* B, double* X, int n_columns) const {
     return;
   }
 #ifdef POLYDEC_HAVE_CHOLMOD
+  Impl& m = *impl_;
+  const bool one = n_columns == 1;
+  if (one && m.own_solve()) {
+    m.make_solve_buffers();
+    const int* perm = static_cast<const int*>(m.L->Perm);
+    for (int k = 0; k < rows_; ++k) m.w[size_t(k)] = B[perm ? perm[k] : k];
+    m.supernodal_solve(nullptr, X);
+    return;
+  }
   cholmod_dense b{};
   b.nrow = size_t(rows_);
   b.ncol = size_t(n_columns);
@@ -481,20 +502,6 @@ void SparseCholesky::solve(const double* B, double* X, int n_columns) const {
   b.x = const_cast<double*>(B);
   b.xtype = CHOLMOD_REAL;
   b.dtype = CHOLMOD_DOUBLE;
-  Impl& m = *impl_;
-  const bool one = n_columns == 1;
-  if (one && m.own_solve()) {
-    m.make_solve_buffers();
-    const SupernodalView V(*m.L);
-    const int* perm = static_cast<const int*>(m.L->Perm);
-    const int n_super = int(m.L->nsuper);
-    double* w = m.w.data();
-    for (int k = 0; k < rows_; ++k) w[k] = B[perm ? perm[k] : k];
-    for (int k = 0; k < n_super; ++k) forward_supernode(V, k, w, m.work.data());
-    for (int k = n_super - 1; k >= 0; --k) backward_supernode(V, k, w, m.work.data());
-    for (int k = 0; k < rows_; ++k) X[perm ? perm[k] : k] = w[k];
-    return;
-  }
   if (!cholmod_solve2(CHOLMOD_A, m.L, &b, nullptr, one ? &m.X : &m.Xb, nullptr, one ? &m.Y : &m.Yb,
                       one ? &m.E : &m.Eb, &m.c))
     throw SolverError("solve with " + name_ + " failed (CHOLMOD status " + std::to_string(m.c.status) + ")");
@@ -577,15 +584,18 @@ void SparseCholesky::solve_sparse(std::span<const int> rows, std::span<const dou
     m.iperm.resize(size_t(n));
     for (int k = 0; k < n; ++k) m.iperm[size_t(perm ? perm[k] : k)] = k;
     m.mark.assign(size_t(n_super), 0);
-    m.y.assign(size_t(n), 0.0);
   }
+  if (!m.own_solve())
+    throw SolverError("sparse solve with " + name_ + ": the factor is not a real supernodal LL^T one");
+  m.make_solve_buffers();
   // The reach: the supernodes from each row's up to the root, in elimination order.
   if (++m.mark_now == std::numeric_limits<int>::max()) {
     std::fill(m.mark.begin(), m.mark.end(), 0);
     m.mark_now = 1;
   }
   m.reach.clear();
-  double* y = m.y.data();
+  double* y = m.w.data();
+  std::fill(y, y + n, 0.0);
   for (size_t k = 0; k < rows.size(); ++k) {
     const int p = m.iperm[size_t(rows[k])];
     y[p] = values[k];
@@ -595,16 +605,8 @@ void SparseCholesky::solve_sparse(std::span<const int> rows, std::span<const dou
     }
   }
   std::sort(m.reach.begin(), m.reach.end());
-  // L y = P b over the reach; L^T z = y over the whole factor, in place; then x = P^T z, and y is
-  // cleared for the next call.
-  if (!m.own_solve())
-    throw SolverError("sparse solve with " + name_ + ": the factor is not a real supernodal LL^T one");
-  m.make_solve_buffers();
-  const SupernodalView V(L);
-  for (int k : m.reach) forward_supernode(V, k, y, m.work.data());
-  for (int k = n_super - 1; k >= 0; --k) backward_supernode(V, k, y, m.work.data());
-  for (int k = 0; k < n; ++k) x[perm ? perm[k] : k] = y[k];
-  std::fill(y, y + n, 0.0);
+  // L y = P b over the reach; L^T z = y over the whole factor; x = P^T z.
+  m.supernodal_solve(&m.reach, x);
 #endif
 }
 
