@@ -374,12 +374,13 @@ void bench_geodesics(const std::string& name, const Mesh& mesh, int n_sources) {
   // The precomputation three times, wall time (what a user waits for; CHOLMOD's own threads
   // included): the first in this process is reported apart, the median of the three is the row.
   std::unique_ptr<HeatGeodesics> heat;
+  // The last one's thread CPU time is the per-source row's precomputation.
   std::vector<double> pre_wall;
+  double pre = 0;
   for (int i = 0; i < 3; ++i) {
     heat.reset();
-    pre_wall.push_back(wall_ms([&] { heat.reset(new HeatGeodesics(mesh)); }));
+    pre = time_ms([&] { pre_wall.push_back(wall_ms([&] { heat.reset(new HeatGeodesics(mesh)); })); });
   }
-  const double pre = time_ms([&] { heat.reset(new HeatGeodesics(mesh)); });
   std::vector<double> t;
   for (int i = 0; i < n_sources; ++i) {
     const int s = int((long(i) * 7919 * 104729) % mesh.n_vertices());
@@ -483,7 +484,8 @@ void bench_geodesics(const std::string& name, const Mesh& mesh, int n_sources) {
     // the two factors are), read as one source reads its factors (vectorized sums, huge pages),
     // median of 9; the row indices and CHOLMOD's explicit zeros come on top.
     const size_t lnz = size_t(chol.factor_nonzeros());
-    const auto heat_values = uninitialized_on_huge_pages<double>(lnz), poisson_values = uninitialized_on_huge_pages<double>(lnz);
+    const auto heat_values = uninitialized_on_huge_pages<double>(lnz);
+    const auto poisson_values = uninitialized_on_huge_pages<double>(lnz);
     for (size_t k = 0; k < lnz; ++k) heat_values[k] = poisson_values[k] = 1.0 / double(k + 1);
     auto read = [&](const std::unique_ptr<double[]>& a) {
       return Eigen::Map<const Eigen::VectorXd>(a.get(), Eigen::Index(lnz)).sum();
@@ -680,7 +682,7 @@ void bench_volume_threads(const std::string& name, const VolumeMesh& mesh, int r
   // one just freed, which are cheaper to fault in than pages freed long ago on a virtual machine.
   // One untimed pair first, reported apart: the process's first ~2 GB of huge pages come from
   // the kernel's compaction of other memory, which serializes faults and is not the assembly's
-  // cost (measured: 1.08x in a cold process, 1.6-2.1x afterwards, docs/benchmarks.md).
+  // cost (measured: the first pair ~1.0x, later pairs 1.6-2.4x, docs/benchmarks.md).
   std::vector<double> w1, wT, c1, cT;
   const std::string load_before = load_note();
   const double cold1 = wall_ms([&] { run(1, L1); }), coldT = wall_ms([&] { run(T, LT); });

@@ -81,9 +81,10 @@ void normalize_block(double* x, int n, int stride) {
 // [1e-280, 1e280] (or not finite) contribute nothing there and take normalize_block's rescaled
 // path afterwards. The arrays do not overlap (i != j on a fan triangle of non-zero area); sq and
 // inv are scratch of m values.
-[[gnu::always_inline]] inline void fan_columns(int m, double a, const double* q, const double* __restrict ui, const double* __restrict uj,
-                 const double* __restrict uf, double* __restrict bi, double* __restrict bj, double* __restrict acc,
-                 double* __restrict sq, double* __restrict inv) {
+[[gnu::always_inline]] inline void fan_columns(int m, double a, const double* q, const double* __restrict ui,
+                                               const double* __restrict uj, const double* __restrict uf,
+                                               double* __restrict bi, double* __restrict bj, double* __restrict acc,
+                                               double* __restrict sq, double* __restrict inv) {
   const double q0 = q[0], q1 = q[1], q2 = q[2], q3 = q[3], q4 = q[4], q5 = q[5];
   for (int c = 0; c < m; ++c) {
     const double di = ui[c] - uf[c], dj = uj[c] - uf[c];
