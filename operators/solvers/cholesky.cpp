@@ -16,6 +16,7 @@
 #include <thread>
 
 #include "polydec/dec/detail/huge_pages.h"
+#include "polydec/dec/detail/simd.h"
 
 #ifdef POLYDEC_HAVE_CHOLMOD
 #include <cholmod.h>
@@ -81,75 +82,112 @@ cholmod_sparse view_lower(const SpMat& A) {
 // a surface mesh's factor: one FINE SPHERE solve took ~10 ms against ~2 ms to stream the factor's
 // values, and ~6 ms with these loops (docs/benchmarks.md). A supernode's nsrow x nscol block is
 // column-major at px, its diagonal block on top, the rows below listed in s; `work` holds at least
-// the largest supernode's row count.
+// twice the largest supernode's row count.
 struct SupernodalView {
   const int *super, *pi, *px, *s;
   const double* x;
-  explicit SupernodalView(const cholmod_factor& L)
+  const double* inv;  // 1 / L_jj, in the factor's column order
+  SupernodalView(const cholmod_factor& L, const std::vector<double>& inverse_diagonal)
       : super(static_cast<const int*>(L.super)), pi(static_cast<const int*>(L.pi)),
-        px(static_cast<const int*>(L.px)), s(static_cast<const int*>(L.s)), x(static_cast<const double*>(L.x)) {}
+        px(static_cast<const int*>(L.px)), s(static_cast<const int*>(L.s)), x(static_cast<const double*>(L.x)),
+        inv(inverse_diagonal.data()) {}
 };
 
-// L y = y for supernode k (forward elimination). Plain loops that GCC vectorizes, compiled for
-// AVX2 too and chosen at load time (target_clones): the library's baseline is SSE2.
-__attribute__((target_clones("avx2", "default"))) void forward_supernode(const SupernodalView& L, int k, double* y,
-                                                                         double* work) {
-  const int k1 = L.super[k], n_col = L.super[k + 1] - k1, n_row = L.pi[k + 1] - L.pi[k], m = n_row - n_col;
-  const double* block = L.x + L.px[k];
-  double* __restrict yd = y + k1;
-  double* __restrict t = work;
-  for (int i = 0; i < m; ++i) t[i] = 0.0;
-  for (int j = 0; j < n_col; ++j) {
-    const double* __restrict c = block + size_t(j) * size_t(n_row);
-    const double yj = (yd[j] /= c[j]);
-    for (int i = j + 1; i < n_col; ++i) yd[i] -= c[i] * yj;
-    const double* __restrict below = c + n_col;
-    for (int i = 0; i < m; ++i) t[i] += below[i] * yj;
-  }
-  const int* r = L.s + L.pi[k] + n_col;
-  for (int i = 0; i < m; ++i) y[r[i]] -= t[i];
+// The kernels below are plain loops that GCC vectorizes, compiled for AVX2 with FMA and for the
+// SSE2 baseline (dec/detail/simd.h). They multiply by the reciprocals of L's diagonal (kept per
+// factorization) instead of dividing: a division sits on each column's dependency chain.
+
+// x[0..n) . y[0..n) with eight partial sums (GCC does not reorder a floating-point sum by itself;
+// these let it vectorize and keep two AVX2 accumulators in flight).
+[[gnu::always_inline]] inline double dot(const double* __restrict x, const double* __restrict y, int n) {
+  double a[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+  int i = 0;
+  for (; i + 8 <= n; i += 8)
+    for (int l = 0; l < 8; ++l) a[l] += x[i + l] * y[i + l];
+  for (; i < n; ++i) a[0] += x[i] * y[i];
+  return ((a[0] + a[1]) + (a[2] + a[3])) + ((a[4] + a[5]) + (a[6] + a[7]));
 }
 
-// L^T z = z for supernode k (backward substitution; the supernodes after k are done).
-__attribute__((target_clones("avx2", "default"))) void backward_supernode(const SupernodalView& L, int k, double* z,
-                                                                          double* work) {
-  const int k1 = L.super[k], n_col = L.super[k + 1] - k1, n_row = L.pi[k + 1] - L.pi[k], m = n_row - n_col;
+// L y = y for supernode k (forward elimination), in `work` (the supernode's rows: its own columns,
+// then the rows below): one update of the whole column below each diagonal entry, then the rows
+// below scattered back once.
+[[gnu::always_inline]] inline void forward_supernode(const SupernodalView& L, int k, double* y, double* work) {
+  const int k1 = L.super[k], n_col = L.super[k + 1] - k1, n_row = L.pi[k + 1] - L.pi[k];
   const double* block = L.x + L.px[k];
-  const int* r = L.s + L.pi[k] + n_col;
-  double* __restrict g = work;
-  for (int i = 0; i < m; ++i) g[i] = z[r[i]];
-  double* __restrict zd = z + k1;
+  const double* inv = L.inv + k1;
+  double* __restrict t = work;
+  for (int i = 0; i < n_col; ++i) t[i] = y[k1 + i];
+  for (int i = n_col; i < n_row; ++i) t[i] = 0.0;
+  for (int j = 0; j < n_col; ++j) {
+    const double* __restrict c = block + size_t(j) * size_t(n_row);
+    const double yj = t[j] * inv[j];
+    t[j] = yj;
+    for (int i = j + 1; i < n_row; ++i) t[i] -= c[i] * yj;
+  }
+  for (int i = 0; i < n_col; ++i) y[k1 + i] = t[i];
+  const int* r = L.s + L.pi[k];
+  for (int i = n_col; i < n_row; ++i) y[r[i]] += t[i];
+}
+
+// L^T z = z for supernode k (backward substitution; the supernodes after k are done), in `work`
+// (its own columns, the rows below gathered, then one sum per column). First the rows below,
+// column after column in storage order (the factor streams forward, as the hardware prefetches
+// it), then the diagonal block from its last column back; in each column's dot product the
+// newest value (its right neighbour) is added last, so that the rest of the sum does not wait.
+[[gnu::always_inline]] inline void backward_supernode(const SupernodalView& L, int k, double* z, double* work) {
+  const int k1 = L.super[k], n_col = L.super[k + 1] - k1, n_row = L.pi[k + 1] - L.pi[k], nb = n_row - n_col;
+  const double* block = L.x + L.px[k];
+  const double* inv = L.inv + k1;
+  const int* r = L.s + L.pi[k];
+  double* __restrict t = work;
+  double* __restrict below = work + n_row;
+  for (int i = 0; i < n_col; ++i) t[i] = z[k1 + i];
+  for (int i = n_col; i < n_row; ++i) t[i] = z[r[i]];
+  for (int j = 0; j < n_col; ++j) below[j] = dot(block + size_t(j) * size_t(n_row) + n_col, t + n_col, nb);
   for (int j = n_col - 1; j >= 0; --j) {
     const double* __restrict c = block + size_t(j) * size_t(n_row);
-    const double* __restrict below = c + n_col;
-    // Four partial sums: GCC does not reorder a floating-point sum by itself, this lets it vectorize.
-    double a0 = 0, a1 = 0, a2 = 0, a3 = 0;
-    int i = 0;
-    for (; i + 4 <= m; i += 4) {
-      a0 += below[i] * g[i];
-      a1 += below[i + 1] * g[i + 1];
-      a2 += below[i + 2] * g[i + 2];
-      a3 += below[i + 3] * g[i + 3];
-    }
-    for (; i < m; ++i) a0 += below[i] * g[i];
-    double acc = (a0 + a1) + (a2 + a3);
-    for (int q = j + 1; q < n_col; ++q) acc += c[q] * zd[q];
-    zd[j] = (zd[j] - acc) / c[j];
+    double acc = below[j] + (j + 2 < n_col ? dot(c + j + 2, t + j + 2, n_col - j - 2) : 0.0);
+    if (j + 1 < n_col) acc += c[j + 1] * t[j + 1];
+    t[j] = (t[j] - acc) * inv[j];
+  }
+  for (int i = 0; i < n_col; ++i) z[k1 + i] = t[i];
+}
+
+// One-column passes: forward over the supernodes `list` names (all n_super when null), backward
+// over all.
+[[gnu::always_inline]] inline void forward_pass_body(const SupernodalView& L, const int* list, int count, double* y,
+                                                     double* work) {
+  for (int q = 0; q < count; ++q) forward_supernode(L, list ? list[q] : q, y, work);
+}
+// The backward pass visits the supernodes last to first, so the factor's values go by in
+// descending blocks that the hardware prefetcher does not follow: they are prefetched
+// kPrefetchBytes ahead.
+constexpr long kPrefetchBytes = 16384;
+[[gnu::always_inline]] inline void backward_pass_body(const SupernodalView& L, int n_super, double* z, double* work) {
+  const char* base = reinterpret_cast<const char*>(L.x);
+  const char* next = base + sizeof(double) * size_t(n_super > 0 ? L.px[n_super] : 0);  // lowest address prefetched
+  for (int k = n_super - 1; k >= 0; --k) {
+    const char* ahead = base + sizeof(double) * size_t(L.px[k]) - kPrefetchBytes;
+    for (; next > ahead && next > base; next -= 64) __builtin_prefetch(next - 64);
+    backward_supernode(L, k, z, work);
   }
 }
+POLYDEC_SIMD_VARIANTS(forward_pass, (const SupernodalView& L, const int* list, int count, double* y, double* work),
+                      (L, list, count, y, work), forward_pass_body)
+POLYDEC_SIMD_VARIANTS(backward_pass, (const SupernodalView& L, int n_super, double* z, double* work),
+                      (L, n_super, z, work), backward_pass_body)
 
 // The same for m right-hand sides stored row by row (row v's m values at W + v m): every factor
 // entry updates one row of m values, contiguous, so the loops vectorize across the columns.
-__attribute__((target_clones("avx2", "default"))) void forward_supernode_rows(const SupernodalView& L, int k,
-                                                                              double* W, int m) {
+[[gnu::always_inline]] inline void forward_supernode_rows(const SupernodalView& L, int k, double* W, int m) {
   const int k1 = L.super[k], n_col = L.super[k + 1] - k1, n_row = L.pi[k + 1] - L.pi[k], nb = n_row - n_col;
   const double* block = L.x + L.px[k];
   const int* r = L.s + L.pi[k] + n_col;
   for (int j = 0; j < n_col; ++j) {
     const double* c = block + size_t(j) * size_t(n_row);
     double* __restrict yj = W + size_t(k1 + j) * m;
-    const double d = c[j];
-    for (int q = 0; q < m; ++q) yj[q] /= d;
+    const double d = L.inv[k1 + j];
+    for (int q = 0; q < m; ++q) yj[q] *= d;
     for (int i = j + 1; i < n_col; ++i) {
       double* __restrict yi = W + size_t(k1 + i) * m;
       const double l = c[i];
@@ -166,8 +204,7 @@ __attribute__((target_clones("avx2", "default"))) void forward_supernode_rows(co
   }
 }
 
-__attribute__((target_clones("avx2", "default"))) void backward_supernode_rows(const SupernodalView& L, int k,
-                                                                               double* W, int m) {
+[[gnu::always_inline]] inline void backward_supernode_rows(const SupernodalView& L, int k, double* W, int m) {
   const int k1 = L.super[k], n_col = L.super[k + 1] - k1, n_row = L.pi[k + 1] - L.pi[k], nb = n_row - n_col;
   const double* block = L.x + L.px[k];
   const int* r = L.s + L.pi[k] + n_col;
@@ -188,10 +225,17 @@ __attribute__((target_clones("avx2", "default"))) void backward_supernode_rows(c
       const double* __restrict zi = W + size_t(k1 + i) * m;
       for (int q = 0; q < m; ++q) zj[q] -= l * zi[q];
     }
-    const double d = c[j];
-    for (int q = 0; q < m; ++q) zj[q] /= d;
+    const double d = L.inv[k1 + j];
+    for (int q = 0; q < m; ++q) zj[q] *= d;
   }
 }
+
+[[gnu::always_inline]] inline void rows_solve_body(const SupernodalView& L, int n_super, double* W, int m) {
+  for (int k = 0; k < n_super; ++k) forward_supernode_rows(L, k, W, m);
+  for (int k = n_super - 1; k >= 0; --k) backward_supernode_rows(L, k, W, m);
+}
+POLYDEC_SIMD_VARIANTS(rows_solve, (const SupernodalView& L, int n_super, double* W, int m), (L, n_super, W, m),
+                      rows_solve_body)
 
 // CHOLMOD allocates its factors, solutions and workspaces through SuiteSparse_config. With
 // glibc's malloc and calloc there, blocks of 2 MB and more are advised onto transparent huge pages
@@ -279,6 +323,23 @@ struct SparseCholesky::Impl {
   // One-column solves (forward_supernode, backward_supernode): the permuted vector and the
   // gather/scatter scratch of the largest supernode, made on the first call.
   mutable std::vector<double> w, work;
+  // The reciprocals of L's diagonal in its column order, for the own solves; set by each
+  // factorization.
+  std::vector<double> inverse_diagonal;
+  void set_inverse_diagonal() {
+    inverse_diagonal.clear();
+    if (!own_solve()) return;
+    inverse_diagonal.resize(L->n);
+    const int* super = static_cast<const int*>(L->super);
+    const int* pi = static_cast<const int*>(L->pi);
+    const int* px = static_cast<const int*>(L->px);
+    const double* x = static_cast<const double*>(L->x);
+    for (size_t k = 0; k < L->nsuper; ++k) {
+      const int n_row = pi[k + 1] - pi[k];
+      for (int j = 0; j < super[k + 1] - super[k]; ++j)
+        inverse_diagonal[size_t(super[k] + j)] = 1.0 / x[px[k] + size_t(j) * size_t(n_row) + size_t(j)];
+    }
+  }
   // solve_rows: the permuted rows, on huge pages, kept for the next call of the same size.
   mutable std::unique_ptr<double[]> rows_block;
   mutable size_t rows_block_size = 0;
@@ -288,19 +349,17 @@ struct SparseCholesky::Impl {
     int widest = 1;
     const int* pi = static_cast<const int*>(L->pi);
     for (size_t k = 0; k < L->nsuper; ++k) widest = std::max(widest, pi[k + 1] - pi[k]);
-    work.assign(size_t(widest), 0.0);
+    work.assign(2 * size_t(widest), 0.0);
     w.assign(L->n, 0.0);
   }
   // L y = w over the supernodes `forward` lists (all when null), L^T z = y over all of them, in
   // place in the permuted w; then x = P^T z.
   void supernodal_solve(const std::vector<int>* forward, double* x) const {
-    const SupernodalView V(*L);
+    const SupernodalView V(*L, inverse_diagonal);
     const int n_super = int(L->nsuper);
-    if (forward)
-      for (int k : *forward) forward_supernode(V, k, w.data(), work.data());
-    else
-      for (int k = 0; k < n_super; ++k) forward_supernode(V, k, w.data(), work.data());
-    for (int k = n_super - 1; k >= 0; --k) backward_supernode(V, k, w.data(), work.data());
+    forward_pass(V, forward ? forward->data() : nullptr, forward ? int(forward->size()) : n_super, w.data(),
+                 work.data());
+    backward_pass(V, n_super, w.data(), work.data());
     const int* perm = static_cast<const int*>(L->Perm);
     for (size_t k = 0; k < L->n; ++k) x[perm ? perm[k] : int(k)] = w[k];
   }
@@ -421,6 +480,7 @@ void SparseCholesky::refactor(const Eigen::SparseMatrix<double>& A_in) {
   const double rc = cholmod_rcond(impl_->L, &c);
   if (!(rc > kSingularPivot) || !std::isfinite(rc))
     throw SolverError("Cholesky factorization of " + name_ + " failed: matrix is singular or not finite");
+  impl_->set_inverse_diagonal();
 #endif
 }
 
@@ -523,10 +583,7 @@ void SparseCholesky::solve_rows(double* X, int n_columns) const {
     double* W = im.rows_block.get();
     const int* perm = static_cast<const int*>(im.L->Perm);
     for (size_t k = 0; k < n; ++k) std::copy_n(X + size_t(perm ? perm[k] : int(k)) * m, m, W + k * m);
-    const SupernodalView V(*im.L);
-    const int n_super = int(im.L->nsuper);
-    for (int k = 0; k < n_super; ++k) forward_supernode_rows(V, k, W, n_columns);
-    for (int k = n_super - 1; k >= 0; --k) backward_supernode_rows(V, k, W, n_columns);
+    rows_solve(SupernodalView(*im.L, im.inverse_diagonal), int(im.L->nsuper), W, n_columns);
     for (size_t k = 0; k < n; ++k) std::copy_n(W + k * m, m, X + size_t(perm ? perm[k] : int(k)) * m);
     return;
   }
