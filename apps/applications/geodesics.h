@@ -94,7 +94,8 @@ class HeatGeodesics {
   std::unique_ptr<SparseCholesky> heat_, poisson_;
   // For operator sets that carry their refinement (OperatorSet::refinement: "ours" and the other
   // one-virtual-vertex methods): per fan triangle of ops_.domain the hat gradients of its two
-  // polygon corners and its area (7 values, zero when degenerate), so that with the refinement's
+  // polygon corners and its area (7 values, zero when degenerate; a face of n corners holds seven
+  // rows of n values at 7 times its first halfedge), so that with the refinement's
   // corner weights eqs. (32)-(33)'s gradient, normalization and divergence run face by face
   // without reading G and D. Empty for other operator sets (their G and D are used).
   std::vector<double> fan_;
