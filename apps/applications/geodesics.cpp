@@ -200,11 +200,11 @@ template <int N>
 
 // fan_gradient_divergence for one column (distance()): face by face, quads, triangles, pentagons
 // and hexagons with their fan triangles side by side.
-[[gnu::always_inline]] inline void fan_gradient_divergence_one(const Mesh& mesh, const std::vector<double>& weights,
+[[gnu::always_inline]] inline void fan_gradient_divergence_one(const Mesh& mesh, const int* fi,
+                                                               const std::vector<double>& weights,
                                                                const std::vector<double>& fan, const double* u,
                                                                double* b) {
   const int* fo = mesh.face_offsets().data();
-  const int* fi = mesh.face_indices().data();
   const double* w = weights.data();
   for (int f = 0; f < mesh.n_faces(); ++f) {
     const int h0 = fo[f], n = fo[f + 1] - h0;
@@ -220,21 +220,22 @@ template <int N>
 }
 
 // b += -D g for g = -grad u / |grad u| on every fan triangle (eqs. 32-33; D = -G^T W), face by
-// face from the fan data of HeatGeodesics: m columns at once, vertex-major (vertex v's m values of
-// u at U + v m, of b at B + v m). The gradient on the fan triangle (x_i, x_j, x_f) is
+// face from the fan data of HeatGeodesics: m columns at once, row-major (the m values of u and b
+// at the corner of halfedge h at U + fi[h] m and B + fi[h] m: fi the mesh's face indices, or their
+// rows in another order). The gradient on the fan triangle (x_i, x_j, x_f) is
 // (u_i - u_f) g_i + (u_j - u_f) g_j with u_f the weighted corner values; the virtual vertex's share
 // of the divergence goes to the corners by the weights. `scratch` holds 4 m values.
-[[gnu::always_inline]] inline void fan_gradient_divergence_body(const Mesh& mesh, const std::vector<double>& weights,
+[[gnu::always_inline]] inline void fan_gradient_divergence_body(const Mesh& mesh, const int* fi,
+                                                                const std::vector<double>& weights,
                                                                 const std::vector<double>& fan, const double* U, int m,
                                                                 double* B, std::vector<double>& scratch) {
-  if (m == 1) return fan_gradient_divergence_one(mesh, weights, fan, U, B);
+  if (m == 1) return fan_gradient_divergence_one(mesh, fi, weights, fan, U, B);
   scratch.assign(4 * size_t(m), 0.0);
   double* uf = scratch.data();
   double* acc = uf + m;
   double* sq = acc + m;
   double* inv = sq + m;
   const int* fo = mesh.face_offsets().data();
-  const int* fi = mesh.face_indices().data();
   for (int f = 0; f < mesh.n_faces(); ++f) {
     const int b0 = fo[f], n = fo[f + 1] - b0;
     const FanFace face{fan.data() + 7 * size_t(b0), n};
@@ -263,9 +264,10 @@ template <int N>
   }
 }
 POLYDEC_SIMD_VARIANTS(fan_gradient_divergence,
-                      (const Mesh& mesh, const std::vector<double>& weights, const std::vector<double>& fan,
-                       const double* U, int m, double* B, std::vector<double>& scratch),
-                      (mesh, weights, fan, U, m, B, scratch), fan_gradient_divergence_body)
+                      (const Mesh& mesh, const int* fi, const std::vector<double>& weights,
+                       const std::vector<double>& fan, const double* U, int m, double* B,
+                       std::vector<double>& scratch),
+                      (mesh, fi, weights, fan, U, m, B, scratch), fan_gradient_divergence_body)
 
 }  // namespace
 
@@ -424,7 +426,8 @@ Eigen::VectorXd HeatGeodesics::distance(std::span<const int> sources, HeatDiagno
   Eigen::VectorXd& b = work_b_;
   if (!fan_.empty()) {
     b.setZero(nv);
-    fan_gradient_divergence(ops_.domain, ops_.refinement->weights, fan_, u.data(), 1, b.data(), work_scratch_);
+    fan_gradient_divergence(ops_.domain, ops_.domain.face_indices().data(), ops_.refinement->weights, fan_, u.data(),
+                            1, b.data(), work_scratch_);
   } else {
     Eigen::VectorXd g = ops_.G * u;
     const int n_blocks = ops_.G_blocks.empty() ? int(g.size() / 3) : int(ops_.G_blocks.size()) - 1;
@@ -476,6 +479,26 @@ Eigen::MatrixXd HeatGeodesics::distances(std::span<const int> sources, int block
   if (block < 1) throw std::invalid_argument(fmt::format("heat geodesics: block size {} must be positive", block));
   check_sources(sources);
   const std::lock_guard guard(*lock_);
+  // The blocks stay in the factors' row order (both factors share one analysis) from the
+  // right-hand sides to the distances: row[v] is vertex v's row. The solves then need no copies
+  // (SparseCholesky::solve_rows_in_factor_order), and the passes over faces read through row[].
+  const std::span<const int> order = heat_->factor_order();
+  const std::span<const int> poisson_order = poisson_->factor_order();
+  const bool ordered = !order.empty() && std::equal(order.begin(), order.end(), poisson_order.begin(), poisson_order.end());
+  std::vector<int> row(static_cast<size_t>(nv));
+  for (int q = 0; q < nv; ++q) row[size_t(ordered ? order[size_t(q)] : q)] = q;
+  auto solve = [&](const SparseCholesky& chol, double* X, int m) {
+    if (ordered)
+      chol.solve_rows_in_factor_order(X, m);
+    else
+      chol.solve_rows(X, m);  // row[] is the identity
+  };
+  std::vector<int> corner_rows;
+  if (!fan_.empty()) {
+    const std::vector<int>& fi = ops_.domain.face_indices();
+    corner_rows.resize(fi.size());
+    for (size_t h = 0; h < fi.size(); ++h) corner_rows[h] = row[size_t(fi[h])];
+  }
   // G row by row (a gather per gradient entry) and D column by column (a scatter into the small
   // right-hand side): one pass over both for all columns of a block. The paper's operator runs
   // face by face instead and needs no copy of G.
@@ -488,33 +511,36 @@ Eigen::MatrixXd HeatGeodesics::distances(std::span<const int> sources, int block
   Eigen::MatrixXd out(n_out, k);
   advise_huge_pages(out.data(), sizeof(double) * size_t(out.size()));
   // Two blocks of nv x width values for the whole call, on huge pages (fresh 4 KB pages cost ~13
-  // us each here: 49 MB a block of 64 columns on FINE SPHERE), vertex-major (the m values of a
-  // vertex contiguous): U the heat step's right-hand sides and solutions, B the Poisson step's,
-  // both solved in place (SparseCholesky::solve_rows) and read by the fused pass.
+  // us each here: 49 MB a block of 64 columns on FINE SPHERE), row-major (the m values of a row
+  // contiguous): U the heat step's right-hand sides and solutions, B the Poisson step's, both
+  // solved in place and read by the fused pass.
   const int width = std::min(block, k);
   const size_t cells = size_t(nv) * size_t(width);
   const std::unique_ptr<double[]> Ub = uninitialized_on_huge_pages<double>(cells);
   const std::unique_ptr<double[]> Bb = uninitialized_on_huge_pages<double>(cells);
   std::vector<double> g(size_t(widest) * size_t(width));  // block row i's m values at g + i m
+  std::vector<double> cmin(static_cast<size_t>(width));
+  std::vector<int> reached(static_cast<size_t>(width));
   for (int c0 = 0; c0 < k; c0 += block) {
     const int m = std::min(block, k - c0);
-    double* U = Ub.get();  // vertex v's m values at U + v m
+    double* U = Ub.get();  // vertex v's m values at U + row[v] m
     double* Bv = Bb.get();
     // (31) for m sources at once.
     std::fill(U, U + size_t(nv) * size_t(m), 0.0);
     for (int c = 0; c < m; ++c) {
       const int s = sources[size_t(c0 + c)];
       if (!options_.mass_weighted_source)
-        U[size_t(s) * m + c] = 1.0;
+        U[size_t(row[size_t(s)]) * m + c] = 1.0;
       else if (options_.lumped_mass)
-        U[size_t(s) * m + c] = ops_.M_lumped[s];
+        U[size_t(row[size_t(s)]) * m + c] = ops_.M_lumped[s];
       else
         for (SparseMatrix::InnerIterator it(ops_.M, s); it; ++it)
-          if (component_[it.row()] >= 0) U[size_t(it.row()) * m + c] = it.value();
+          if (component_[it.row()] >= 0) U[size_t(row[size_t(it.row())]) * m + c] = it.value();
     }
-    heat_->solve_rows(U, m);
+    solve(*heat_, U, m);
     std::fill(Bv, Bv + size_t(nv) * size_t(m), 0.0);
-    if (!fan_.empty()) fan_gradient_divergence(ops_.domain, ops_.refinement->weights, fan_, U, m, Bv, g);
+    if (!fan_.empty())
+      fan_gradient_divergence(ops_.domain, corner_rows.data(), ops_.refinement->weights, fan_, U, m, Bv, g);
     for (int h = 0; h < n_blocks && fan_.empty(); ++h) {
       const int b0 = ops_.G_blocks.empty() ? 3 * h : ops_.G_blocks[h];
       const int b1 = ops_.G_blocks.empty() ? 3 * h + 3 : ops_.G_blocks[h + 1];
@@ -523,7 +549,7 @@ Eigen::MatrixXd HeatGeodesics::distances(std::span<const int> sources, int block
         std::fill(gr, gr + m, 0.0);
         for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(Gr, r); it; ++it) {
           const double a = it.value();
-          const double* u = U + it.col() * long(m);
+          const double* u = U + size_t(row[size_t(it.col())]) * m;
           for (int c = 0; c < m; ++c) gr[c] += a * u[c];
         }
       }
@@ -532,22 +558,40 @@ Eigen::MatrixXd HeatGeodesics::distances(std::span<const int> sources, int block
         const double* gr = g.data() + size_t(r - b0) * m;
         for (SparseMatrix::InnerIterator it(ops_.D, r); it; ++it) {
           const double a = it.value();
-          double* b = Bv + it.row() * long(m);
+          double* b = Bv + size_t(row[size_t(it.row())]) * m;
           for (int c = 0; c < m; ++c) b[c] -= a * gr[c];
         }
       }
     }
     // (33) for the m right-hand sides, pinned rows zero.
     for (int v = 0; v < nv; ++v)
-      if (pinned_[v]) std::fill(Bv + size_t(v) * m, Bv + size_t(v + 1) * m, 0.0);
-    poisson_->solve_rows(Bv, m);
-    for (int c = 0; c < m; ++c) {
-      const int reached = component_[sources[size_t(c0 + c)]];
-      double cmin = std::numeric_limits<double>::infinity();
-      for (int v = 0; v < n_out; ++v)
-        if (component_[v] == reached) cmin = std::min(cmin, Bv[size_t(v) * m + c]);
-      for (int v = 0; v < n_out; ++v)
-        out(v, c0 + c) = component_[v] == reached ? Bv[size_t(v) * m + c] - cmin : std::numeric_limits<double>::infinity();
+      if (pinned_[v]) std::fill(Bv + size_t(row[size_t(v)]) * m, Bv + size_t(row[size_t(v)] + 1) * m, 0.0);
+    solve(*poisson_, Bv, m);
+    // Each column shifted to zero at its minimum over its source's component (one pass over the
+    // rows for all columns), written column by column eight vertices at a time.
+    for (int c = 0; c < m; ++c) reached[size_t(c)] = component_[sources[size_t(c0 + c)]];
+    const bool one_component = std::all_of(reached.begin(), reached.begin() + m, [&](int r) { return r == reached[0]; });
+    std::fill(cmin.begin(), cmin.begin() + m, std::numeric_limits<double>::infinity());
+    for (int v = 0; v < n_out; ++v) {
+      const int comp = component_[v];
+      const double* x = Bv + size_t(row[size_t(v)]) * m;
+      if (one_component) {
+        if (comp == reached[0])
+          for (int c = 0; c < m; ++c) cmin[size_t(c)] = std::min(cmin[size_t(c)], x[c]);
+      } else {
+        for (int c = 0; c < m; ++c)
+          if (comp == reached[size_t(c)]) cmin[size_t(c)] = std::min(cmin[size_t(c)], x[c]);
+      }
+    }
+    constexpr int kRun = 8;  // vertices per column run: one cache line of out
+    for (int v0 = 0; v0 < n_out; v0 += kRun) {
+      const int v1 = std::min(n_out, v0 + kRun);
+      for (int c = 0; c < m; ++c) {
+        double* o = out.data() + size_t(c0 + c) * size_t(n_out);
+        for (int v = v0; v < v1; ++v)
+          o[v] = component_[v] == reached[size_t(c)] ? Bv[size_t(row[size_t(v)]) * m + c] - cmin[size_t(c)]
+                                                     : std::numeric_limits<double>::infinity();
+      }
     }
   }
   return out;

@@ -177,56 +177,74 @@ POLYDEC_SIMD_VARIANTS(forward_pass, (const SupernodalView& L, const int* list, i
 POLYDEC_SIMD_VARIANTS(backward_pass, (const SupernodalView& L, int n_super, double* z, double* work),
                       (L, n_super, z, work), backward_pass_body)
 
-// The same for m right-hand sides stored row by row (row v's m values at W + v m): every factor
-// entry updates one row of m values, contiguous, so the loops vectorize across the columns.
-[[gnu::always_inline]] inline void forward_supernode_rows(const SupernodalView& L, int k, double* W, int m) {
-  const int k1 = L.super[k], n_col = L.super[k + 1] - k1, n_row = L.pi[k + 1] - L.pi[k], nb = n_row - n_col;
-  const double* block = L.x + L.px[k];
-  const int* r = L.s + L.pi[k] + n_col;
-  for (int j = 0; j < n_col; ++j) {
-    const double* c = block + size_t(j) * size_t(n_row);
-    double* __restrict yj = W + size_t(k1 + j) * m;
-    const double d = L.inv[k1 + j];
-    for (int q = 0; q < m; ++q) yj[q] *= d;
-    for (int i = j + 1; i < n_col; ++i) {
-      double* __restrict yi = W + size_t(k1 + i) * m;
-      const double l = c[i];
-      for (int q = 0; q < m; ++q) yi[q] -= l * yj[q];
+// The same for m right-hand sides stored row by row (row v's m values at W + v m). Everything is
+// one kernel, dst -= sum_t coef[t cs] src(t) over rows of m values (update_row): each output row
+// is held in registers, 32 values at a time, while the count source rows stream past, instead of
+// being loaded and stored once per factor entry.
+typedef double Lanes __attribute__((vector_size(32), aligned(8), may_alias));  // four doubles, any address
+
+template <class Src>
+[[gnu::always_inline]] inline void update_row(double* __restrict dst, int m, const double* __restrict coef, size_t cs,
+                                              Src src, int count) {
+  int q = 0;
+  for (; q + 32 <= m; q += 32) {
+    Lanes* d = reinterpret_cast<Lanes*>(dst + q);
+    Lanes a0 = d[0], a1 = d[1], a2 = d[2], a3 = d[3], a4 = d[4], a5 = d[5], a6 = d[6], a7 = d[7];
+    for (int t = 0; t < count; ++t) {
+      const double l = coef[size_t(t) * cs];
+      const Lanes* x = reinterpret_cast<const Lanes*>(src(t) + q);
+      a0 -= l * x[0], a1 -= l * x[1], a2 -= l * x[2], a3 -= l * x[3];
+      a4 -= l * x[4], a5 -= l * x[5], a6 -= l * x[6], a7 -= l * x[7];
     }
+    d[0] = a0, d[1] = a1, d[2] = a2, d[3] = a3, d[4] = a4, d[5] = a5, d[6] = a6, d[7] = a7;
   }
-  for (int i = 0; i < nb; ++i) {
-    double* __restrict dst = W + size_t(r[i]) * m;
-    for (int j = 0; j < n_col; ++j) {
-      const double l = block[size_t(j) * size_t(n_row) + size_t(n_col + i)];
-      const double* __restrict src = W + size_t(k1 + j) * m;
-      for (int q = 0; q < m; ++q) dst[q] -= l * src[q];
-    }
+  for (; q + 4 <= m; q += 4) {
+    Lanes* d = reinterpret_cast<Lanes*>(dst + q);
+    Lanes a = *d;
+    for (int t = 0; t < count; ++t) a -= coef[size_t(t) * cs] * *reinterpret_cast<const Lanes*>(src(t) + q);
+    *d = a;
+  }
+  for (; q < m; ++q) {
+    double a = dst[q];
+    for (int t = 0; t < count; ++t) a -= coef[size_t(t) * cs] * src(t)[q];
+    dst[q] = a;
   }
 }
 
+[[gnu::always_inline]] inline void scale_row(double* __restrict x, int m, double d) {
+  for (int q = 0; q < m; ++q) x[q] *= d;
+}
+
+// L Y = Y for supernode k: its rows in order (row i less the earlier ones, times 1 / L_ii), then
+// each row below less the supernode's rows.
+[[gnu::always_inline]] inline void forward_supernode_rows(const SupernodalView& L, int k, double* W, int m) {
+  const int k1 = L.super[k], n_col = L.super[k + 1] - k1, n_row = L.pi[k + 1] - L.pi[k];
+  const double* block = L.x + L.px[k];
+  const int* r = L.s + L.pi[k];
+  double* Y = W + size_t(k1) * m;
+  auto own = [&](int t) { return Y + size_t(t) * m; };
+  for (int i = 0; i < n_col; ++i) {
+    update_row(Y + size_t(i) * m, m, block + i, size_t(n_row), own, i);
+    scale_row(Y + size_t(i) * m, m, L.inv[k1 + i]);
+  }
+  for (int i = n_col; i < n_row; ++i) update_row(W + size_t(r[i]) * m, m, block + i, size_t(n_row), own, n_col);
+}
+
+// L^T Z = Z for supernode k: each of its rows less the rows below, then its rows from the last
+// (row j less the later ones, times 1 / L_jj).
 [[gnu::always_inline]] inline void backward_supernode_rows(const SupernodalView& L, int k, double* W, int m) {
-  const int k1 = L.super[k], n_col = L.super[k + 1] - k1, n_row = L.pi[k + 1] - L.pi[k], nb = n_row - n_col;
+  const int k1 = L.super[k], n_col = L.super[k + 1] - k1, n_row = L.pi[k + 1] - L.pi[k];
   const double* block = L.x + L.px[k];
   const int* r = L.s + L.pi[k] + n_col;
-  for (int j = 0; j < n_col; ++j) {
-    double* __restrict zj = W + size_t(k1 + j) * m;
-    const double* below = block + size_t(j) * size_t(n_row) + n_col;
-    for (int i = 0; i < nb; ++i) {
-      const double l = below[i];
-      const double* __restrict src = W + size_t(r[i]) * m;
-      for (int q = 0; q < m; ++q) zj[q] -= l * src[q];
-    }
-  }
+  double* Z = W + size_t(k1) * m;
+  auto below = [&](int t) { return W + size_t(r[t]) * m; };
+  auto own = [&](int t) { return Z + size_t(t) * m; };
+  for (int j = 0; j < n_col; ++j)
+    update_row(Z + size_t(j) * m, m, block + size_t(j) * n_row + n_col, 1, below, n_row - n_col);
   for (int j = n_col - 1; j >= 0; --j) {
-    const double* c = block + size_t(j) * size_t(n_row);
-    double* __restrict zj = W + size_t(k1 + j) * m;
-    for (int i = j + 1; i < n_col; ++i) {
-      const double l = c[i];
-      const double* __restrict zi = W + size_t(k1 + i) * m;
-      for (int q = 0; q < m; ++q) zj[q] -= l * zi[q];
-    }
-    const double d = L.inv[k1 + j];
-    for (int q = 0; q < m; ++q) zj[q] *= d;
+    const double* c = block + size_t(j) * n_row;
+    update_row(Z + size_t(j) * m, m, c + j + 1, 1, [&](int t) { return own(j + 1 + t); }, n_col - j - 1);
+    scale_row(Z + size_t(j) * m, m, L.inv[k1 + j]);
   }
 }
 
@@ -583,7 +601,7 @@ void SparseCholesky::solve_rows(double* X, int n_columns) const {
     double* W = im.rows_block.get();
     const int* perm = static_cast<const int*>(im.L->Perm);
     for (size_t k = 0; k < n; ++k) std::copy_n(X + size_t(perm ? perm[k] : int(k)) * m, m, W + k * m);
-    rows_solve(SupernodalView(*im.L, im.inverse_diagonal), int(im.L->nsuper), W, n_columns);
+    solve_rows_in_factor_order(W, n_columns);
     for (size_t k = 0; k < n; ++k) std::copy_n(W + k * m, m, X + size_t(perm ? perm[k] : int(k)) * m);
     return;
   }
@@ -593,6 +611,26 @@ void SparseCholesky::solve_rows(double* X, int n_columns) const {
       X, rows_, n_columns);
   solve(B.data(), B.data(), n_columns);
   Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(X, rows_, n_columns) = B;
+}
+
+std::span<const int> SparseCholesky::factor_order() const {
+#ifdef POLYDEC_HAVE_CHOLMOD
+  if (impl_->use_cholmod && impl_->own_solve() && impl_->L->Perm)
+    return {static_cast<const int*>(impl_->L->Perm), size_t(rows_)};
+#endif
+  return {};
+}
+
+void SparseCholesky::solve_rows_in_factor_order(double* X, int n_columns) const {
+  if (n_columns < 1) return;
+#ifdef POLYDEC_HAVE_CHOLMOD
+  const Impl& im = *impl_;
+  if (im.use_cholmod && im.own_solve()) {
+    rows_solve(SupernodalView(*im.L, im.inverse_diagonal), int(im.L->nsuper), X, n_columns);
+    return;
+  }
+#endif
+  solve_rows(X, n_columns);  // no order of its own: A's
 }
 
 Eigen::VectorXd SparseCholesky::solve_sparse(std::span<const int> rows, std::span<const double> values) const {

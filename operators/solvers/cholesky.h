@@ -113,6 +113,12 @@ class SparseCholesky {
   // values at X + v n_columns (a vertex's values together, as per-vertex passes want them). With
   // CHOLMOD, supernode by supernode with the columns' updates vectorized across the row.
   void solve_rows(double* X, int n_columns) const;
+  // The factorization's fill-reducing order: row k of the factor is row factor_order()[k] of A;
+  // empty when the solves take A's own order (the Eigen backend). with_values keeps it.
+  std::span<const int> factor_order() const;
+  // solve_rows on rows in factor_order() (row k's values at X + k n_columns are those of A's row
+  // factor_order()[k]), without the copies into and out of that order that solve_rows makes.
+  void solve_rows_in_factor_order(double* X, int n_columns) const;
   // Solves A x = b for a right-hand side with few non-zeros, b(rows[i]) = values[i] (rows distinct,
   // in [0, rows()); std::invalid_argument otherwise), zero elsewhere. With CHOLMOD the forward solve
   // runs over the rows' reach only (the supernodes from theirs to the root of the supernodal
