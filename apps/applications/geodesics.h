@@ -73,11 +73,16 @@ class HeatGeodesics {
 
   // One distance field per source (unlike distance(sources), the distance to the set): column c
   // holds the distances from sources[c], |V| x k, equal to distance(sources[c]) up to round-off.
-  // Solved as blocks of up to `block` right-hand sides stored vertex by vertex
-  // (SparseCholesky::solve_rows), and the normalized gradient (eq. 32) and its divergence fused in
-  // one pass: face by face for a set that carries its refinement, else over a row-major copy of G
-  // made for the call. Throws as distance() does; std::invalid_argument for block < 1.
+  // Solved as blocks of up to `block` right-hand sides stored row by row in the factors' order
+  // (SparseCholesky::solve_rows_in_factor_order), and the normalized gradient (eq. 32) and its
+  // divergence fused in one pass: face by face for a set that carries its refinement, else over a
+  // row-major copy of G made for the call. The two blocks (2 |V| min(block, k) doubles: 98 MB for
+  // 64 columns on FINE SPHERE) are kept for the next call of the same width, as fresh pages cost
+  // more than the passes that fill them; release_blocks() frees them. Throws as distance() does;
+  // std::invalid_argument for block < 1.
   Eigen::MatrixXd distances(std::span<const int> sources, int block = 64) const;
+  // Frees the blocks distances() keeps.
+  void release_blocks() const;
 
   double time_step() const { return t_; }
   const OperatorSet& operators() const { return ops_; }
@@ -106,6 +111,9 @@ class HeatGeodesics {
   mutable std::vector<int> work_rows_;
   mutable std::vector<double> work_values_, work_scratch_;
   mutable Eigen::VectorXd work_u_, work_b_, work_d_;
+  // distances()'s two blocks of block_cells_ values each, on huge pages.
+  mutable std::unique_ptr<double[]> block_u_, block_b_;
+  mutable size_t block_cells_ = 0;
 };
 
 // Root-mean-square of (a - b).
