@@ -586,9 +586,11 @@ Eigen::MatrixXd HeatGeodesics::distances(std::span<const int> sources, int block
     for (int c = 0; c < m; ++c) reached[size_t(c)] = component_[sources[size_t(c0 + c)]];
     const bool one_component = std::all_of(reached.begin(), reached.begin() + m, [&](int r) { return r == reached[0]; });
     std::fill(cmin.begin(), cmin.begin() + m, std::numeric_limits<double>::infinity());
-    for (int v = 0; v < n_out; ++v) {
+    for (int q = 0; q < nv; ++q) {  // in storage order
+      const int v = ordered ? order[size_t(q)] : q;
+      if (v >= n_out) continue;
       const int comp = component_[v];
-      const double* x = Bv + size_t(row[size_t(v)]) * m;
+      const double* x = Bv + size_t(q) * m;
       if (one_component) {
         if (comp == reached[0])
           for (int c = 0; c < m; ++c) cmin[size_t(c)] = std::min(cmin[size_t(c)], x[c]);
@@ -600,6 +602,8 @@ Eigen::MatrixXd HeatGeodesics::distances(std::span<const int> sources, int block
     constexpr int kRun = 8;  // vertices per column run: one cache line of out
     for (int v0 = 0; v0 < n_out; v0 += kRun) {
       const int v1 = std::min(n_out, v0 + kRun);
+      for (int v = v0 + kRun; v < std::min(n_out, v0 + 2 * kRun); ++v)  // the next run's rows
+        for (int c = 0; c < m; c += 8) __builtin_prefetch(Bv + size_t(row[size_t(v)]) * m + c);
       for (int c = 0; c < m; ++c) {
         double* o = out.data() + size_t(c0 + c) * size_t(n_out);
         for (int v = v0; v < v1; ++v)
