@@ -319,7 +319,7 @@ HeatGeodesics::HeatGeodesics(OperatorSet operators, double mean_edge_length, con
   }
   // CHOLMOD's default supernodes: each source costs two solves, and a solve is ~30% faster than
   // with the relaxed amalgamation (FINE SPHERE: 10.1 vs 14.0 ms) for a somewhat slower
-  // factorization. The ordering with the smaller factor of AMD and METIS: every solve reads the
+  // factorization. The ordering with the smaller factor of AMD and nested dissection: every solve reads the
   // whole factor, and the one analysis serves both matrices (docs/benchmarks.md).
   CholeskyOptions copt;
   copt.relaxed_supernodes = false;

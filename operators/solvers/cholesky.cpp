@@ -448,7 +448,7 @@ SparseCholesky::SparseCholesky(const Eigen::SparseMatrix<double>& A_in, std::str
     case CholeskyOrdering::BestFill:
       c.nmethods = 2;
       c.method[0].ordering = CHOLMOD_AMD;
-      c.method[1].ordering = CHOLMOD_METIS;
+      c.method[1].ordering = CHOLMOD_NESDIS;
       break;
   }
   const SpMat A = A_in.isCompressed() ? SpMat() : SpMat(A_in);
@@ -458,7 +458,7 @@ SparseCholesky::SparseCholesky(const Eigen::SparseMatrix<double>& A_in, std::str
   if (!impl_->L || c.status < CHOLMOD_OK)
     throw SolverError("Cholesky analysis of " + name_ + " failed (CHOLMOD status " + std::to_string(c.status) + ")");
   if (options.ordering == CholeskyOrdering::BestFill)
-    impl_->ordering = c.method[c.selected].ordering == CHOLMOD_METIS ? "metis" : "amd";
+    impl_->ordering = c.method[c.selected].ordering == CHOLMOD_NESDIS ? "nesdis" : "amd";
   impl_->lnz = c.lnz;
   impl_->pattern = lower_pattern_hash(Ac);
   refactor(Ac);

@@ -30,9 +30,10 @@ enum class CholeskyBackend {
 // (NESDIS) cuts the flops from 1.2 to 0.65 GFLOP and the numeric factorization by ~20%, but its
 // analysis costs ~0.5 s more, so AMD is faster whenever a matrix is factored fewer than a
 // handful of times; pass NestedDissection for many refactorizations of one pattern. BestFill
-// orders by AMD and by METIS and keeps the one whose factor has fewer non-zeros (CHOLMOD's own
-// comparison of the two analyses): worth its ~0.5 s when a factor serves many solves, or its
-// analysis several matrices (SparseCholesky::with_values).
+// orders by AMD and by CHOLMOD's nested dissection (NESDIS) and keeps the one whose factor has
+// fewer non-zeros (CHOLMOD's own comparison of the two analyses): worth its ~0.5 s when a factor
+// serves many solves, or its analysis several matrices (SparseCholesky::with_values). On FINE
+// SPHERE's heat operator NESDIS gives 3.41M non-zeros, METIS 3.56M, AMD 4.14M (docs/benchmarks.md).
 enum class CholeskyOrdering { Automatic, Amd, Metis, NestedDissection, BestFill };
 
 struct CholeskyOptions {
