@@ -496,9 +496,9 @@ Eigen::MatrixXd HeatGeodesics::distances(std::span<const int> sources, int block
   const bool ordered = !order.empty() && std::equal(order.begin(), order.end(), poisson_order.begin(), poisson_order.end());
   std::vector<int> row(static_cast<size_t>(nv));
   for (int q = 0; q < nv; ++q) row[size_t(ordered ? order[size_t(q)] : q)] = q;
-  auto solve = [&](const SparseCholesky& chol, double* X, int m) {
+  auto solve = [&](const SparseCholesky& chol, double* X, int m, std::span<const int> nonzero_rows) {
     if (ordered)
-      chol.solve_rows_in_factor_order(X, m);
+      chol.solve_rows_in_factor_order(X, m, nonzero_rows);
     else
       chol.solve_rows(X, m);  // row[] is the identity
   };
@@ -534,24 +534,28 @@ Eigen::MatrixXd HeatGeodesics::distances(std::span<const int> sources, int block
   }
   std::vector<double> g(size_t(widest) * size_t(width));  // block row i's m values at g + i m
   std::vector<double> cmin(static_cast<size_t>(width));
-  std::vector<int> reached(static_cast<size_t>(width));
+  std::vector<int> reached(static_cast<size_t>(width)), rhs_rows;
   for (int c0 = 0; c0 < k; c0 += block) {
     const int m = std::min(block, k - c0);
     double* U = block_u_.get();  // vertex v's m values at U + row[v] m
     double* Bv = block_b_.get();
-    // (31) for m sources at once.
+    // (31) for m sources at once; the forward solve over the reach of the right-hand sides' rows.
     std::fill(U, U + size_t(nv) * size_t(m), 0.0);
+    rhs_rows.clear();
     for (int c = 0; c < m; ++c) {
       const int s = sources[size_t(c0 + c)];
-      if (!options_.mass_weighted_source)
-        U[size_t(row[size_t(s)]) * m + c] = 1.0;
-      else if (options_.lumped_mass)
-        U[size_t(row[size_t(s)]) * m + c] = ops_.M_lumped[s];
-      else
+      if (!options_.mass_weighted_source || options_.lumped_mass) {
+        rhs_rows.push_back(row[size_t(s)]);
+        U[size_t(row[size_t(s)]) * m + c] = options_.mass_weighted_source ? ops_.M_lumped[s] : 1.0;
+      } else {
         for (SparseMatrix::InnerIterator it(ops_.M, s); it; ++it)
-          if (component_[it.row()] >= 0) U[size_t(row[size_t(it.row())]) * m + c] = it.value();
+          if (component_[it.row()] >= 0) {
+            rhs_rows.push_back(row[size_t(it.row())]);
+            U[size_t(row[size_t(it.row())]) * m + c] = it.value();
+          }
+      }
     }
-    solve(*heat_, U, m);
+    solve(*heat_, U, m, rhs_rows);
     std::fill(Bv, Bv + size_t(nv) * size_t(m), 0.0);
     if (!fan_.empty())
       fan_gradient_divergence(ops_.domain, corner_rows.data(), ops_.refinement->weights, fan_, U, m, Bv, g);
@@ -580,7 +584,7 @@ Eigen::MatrixXd HeatGeodesics::distances(std::span<const int> sources, int block
     // (33) for the m right-hand sides, pinned rows zero.
     for (int v = 0; v < nv; ++v)
       if (pinned_[v]) std::fill(Bv + size_t(row[size_t(v)]) * m, Bv + size_t(row[size_t(v)] + 1) * m, 0.0);
-    solve(*poisson_, Bv, m);
+    solve(*poisson_, Bv, m, {});
     // Each column shifted to zero at its minimum over its source's component (one pass over the
     // rows for all columns), written column by column eight vertices at a time.
     for (int c = 0; c < m; ++c) reached[size_t(c)] = component_[sources[size_t(c0 + c)]];

@@ -248,12 +248,14 @@ template <class Src>
   }
 }
 
-[[gnu::always_inline]] inline void rows_solve_body(const SupernodalView& L, int n_super, double* W, int m) {
-  for (int k = 0; k < n_super; ++k) forward_supernode_rows(L, k, W, m);
+// Forward over the supernodes `list` names (all n_super when null), backward over all.
+[[gnu::always_inline]] inline void rows_solve_body(const SupernodalView& L, const int* list, int count, int n_super,
+                                                   double* W, int m) {
+  for (int q = 0; q < count; ++q) forward_supernode_rows(L, list ? list[q] : q, W, m);
   for (int k = n_super - 1; k >= 0; --k) backward_supernode_rows(L, k, W, m);
 }
-POLYDEC_SIMD_VARIANTS(rows_solve, (const SupernodalView& L, int n_super, double* W, int m), (L, n_super, W, m),
-                      rows_solve_body)
+POLYDEC_SIMD_VARIANTS(rows_solve, (const SupernodalView& L, const int* list, int count, int n_super, double* W, int m),
+                      (L, list, count, n_super, W, m), rows_solve_body)
 
 // CHOLMOD allocates its factors, solutions and workspaces through SuiteSparse_config. With
 // glibc's malloc and calloc there, blocks of 2 MB and more are advised onto transparent huge pages
@@ -380,6 +382,43 @@ struct SparseCholesky::Impl {
     backward_pass(V, n_super, w.data(), work.data());
     const int* perm = static_cast<const int*>(L->Perm);
     for (size_t k = 0; k < L->n; ++k) x[perm ? perm[k] : int(k)] = w[k];
+  }
+  // The supernodal elimination tree and the inverse permutation, made on the first call: a
+  // supernode's parent holds the first row below its diagonal block; parents come after their
+  // children.
+  void make_tree() const {
+    const int n = int(L->n), n_super = int(L->nsuper);
+    const int* super = static_cast<const int*>(L->super);
+    const int* pi = static_cast<const int*>(L->pi);
+    const int* s = static_cast<const int*>(L->s);
+    const int* perm = static_cast<const int*>(L->Perm);
+    if (super_of.empty()) {
+      super_of.resize(size_t(n));
+      for (int k = 0; k < n_super; ++k) std::fill(super_of.begin() + super[k], super_of.begin() + super[k + 1], k);
+      super_parent.assign(size_t(n_super), -1);
+      for (int k = 0; k < n_super; ++k) {
+        const int n_col = super[k + 1] - super[k];
+        if (pi[k + 1] - pi[k] > n_col) super_parent[size_t(k)] = super_of[size_t(s[pi[k] + n_col])];
+      }
+      iperm.resize(size_t(n));
+      for (int k = 0; k < n; ++k) iperm[size_t(perm ? perm[k] : k)] = k;
+      mark.assign(size_t(n_super), 0);
+    }
+  }
+  // The supernodes from those of the factor rows `rows` (in the factor's order) up to the root,
+  // in elimination order, into `reach` (after make_tree).
+  void find_reach(std::span<const int> rows) const {
+    if (++mark_now == std::numeric_limits<int>::max()) {
+      std::fill(mark.begin(), mark.end(), 0);
+      mark_now = 1;
+    }
+    reach.clear();
+    for (const int p : rows)
+      for (int j = super_of[size_t(p)]; j >= 0 && mark[size_t(j)] != mark_now; j = super_parent[size_t(j)]) {
+        mark[size_t(j)] = mark_now;
+        reach.push_back(j);
+      }
+    std::sort(reach.begin(), reach.end());
   }
   bool started = false;
   ~Impl() {
@@ -601,7 +640,7 @@ void SparseCholesky::solve_rows(double* X, int n_columns) const {
     double* W = im.rows_block.get();
     const int* perm = static_cast<const int*>(im.L->Perm);
     for (size_t k = 0; k < n; ++k) std::copy_n(X + size_t(perm ? perm[k] : int(k)) * m, m, W + k * m);
-    solve_rows_in_factor_order(W, n_columns);
+    solve_rows_in_factor_order(W, n_columns, {});
     for (size_t k = 0; k < n; ++k) std::copy_n(W + k * m, m, X + size_t(perm ? perm[k] : int(k)) * m);
     return;
   }
@@ -621,12 +660,24 @@ std::span<const int> SparseCholesky::factor_order() const {
   return {};
 }
 
-void SparseCholesky::solve_rows_in_factor_order(double* X, int n_columns) const {
+void SparseCholesky::solve_rows_in_factor_order(double* X, int n_columns, std::span<const int> nonzero_rows) const {
   if (n_columns < 1) return;
 #ifdef POLYDEC_HAVE_CHOLMOD
   const Impl& im = *impl_;
   if (im.use_cholmod && im.own_solve()) {
-    rows_solve(SupernodalView(*im.L, im.inverse_diagonal), int(im.L->nsuper), X, n_columns);
+    const SupernodalView V(*im.L, im.inverse_diagonal);
+    const int n_super = int(im.L->nsuper);
+    if (nonzero_rows.empty()) {
+      rows_solve(V, nullptr, n_super, n_super, X, n_columns);
+      return;
+    }
+    for (const int p : nonzero_rows)
+      if (p < 0 || p >= rows_)
+        throw std::invalid_argument("solve_rows_in_factor_order with " + name_ + ": row " + std::to_string(p) +
+                                    " out of range");
+    im.make_tree();
+    im.find_reach(nonzero_rows);
+    rows_solve(V, im.reach.data(), int(im.reach.size()), n_super, X, n_columns);
     return;
   }
 #endif
@@ -660,46 +711,18 @@ void SparseCholesky::solve_sparse(std::span<const int> rows, std::span<const dou
   }
 #ifdef POLYDEC_HAVE_CHOLMOD
   Impl& m = *impl_;
-  const cholmod_factor& L = *m.L;
-  const int n = rows_, n_super = int(L.nsuper);
-  const int* super = static_cast<const int*>(L.super);
-  const int* pi = static_cast<const int*>(L.pi);
-  const int* s = static_cast<const int*>(L.s);
-  const int* perm = static_cast<const int*>(L.Perm);
-  if (m.super_of.empty()) {
-    // The supernodal elimination tree: a supernode's parent holds the first row below its
-    // diagonal block; parents come after their children.
-    m.super_of.resize(size_t(n));
-    for (int k = 0; k < n_super; ++k) std::fill(m.super_of.begin() + super[k], m.super_of.begin() + super[k + 1], k);
-    m.super_parent.assign(size_t(n_super), -1);
-    for (int k = 0; k < n_super; ++k) {
-      const int n_col = super[k + 1] - super[k];
-      if (pi[k + 1] - pi[k] > n_col) m.super_parent[size_t(k)] = m.super_of[size_t(s[pi[k] + n_col])];
-    }
-    m.iperm.resize(size_t(n));
-    for (int k = 0; k < n; ++k) m.iperm[size_t(perm ? perm[k] : k)] = k;
-    m.mark.assign(size_t(n_super), 0);
-  }
   if (!m.own_solve())
     throw SolverError("sparse solve with " + name_ + ": the factor is not a real supernodal LL^T one");
   m.make_solve_buffers();
-  // The reach: the supernodes from each row's up to the root, in elimination order.
-  if (++m.mark_now == std::numeric_limits<int>::max()) {
-    std::fill(m.mark.begin(), m.mark.end(), 0);
-    m.mark_now = 1;
-  }
-  m.reach.clear();
+  m.make_tree();
   double* y = m.w.data();
-  std::fill(y, y + n, 0.0);
+  std::fill(y, y + rows_, 0.0);
+  std::vector<int> factor_rows(rows.size());
   for (size_t k = 0; k < rows.size(); ++k) {
-    const int p = m.iperm[size_t(rows[k])];
-    y[p] = values[k];
-    for (int j = m.super_of[size_t(p)]; j >= 0 && m.mark[size_t(j)] != m.mark_now; j = m.super_parent[size_t(j)]) {
-      m.mark[size_t(j)] = m.mark_now;
-      m.reach.push_back(j);
-    }
+    factor_rows[k] = m.iperm[size_t(rows[k])];
+    y[factor_rows[k]] = values[k];
   }
-  std::sort(m.reach.begin(), m.reach.end());
+  m.find_reach(factor_rows);
   // L y = P b over the reach; L^T z = y over the whole factor; x = P^T z.
   m.supernodal_solve(&m.reach, x);
 #endif

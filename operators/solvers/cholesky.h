@@ -119,7 +119,9 @@ class SparseCholesky {
   std::span<const int> factor_order() const;
   // solve_rows on rows in factor_order() (row k's values at X + k n_columns are those of A's row
   // factor_order()[k]), without the copies into and out of that order that solve_rows makes.
-  void solve_rows_in_factor_order(double* X, int n_columns) const;
+  // With `nonzero_rows` (in that order; X zero in every other row; std::invalid_argument for one
+  // outside [0, rows())), the forward solve runs over their reach only, as solve_sparse's does.
+  void solve_rows_in_factor_order(double* X, int n_columns, std::span<const int> nonzero_rows = {}) const;
   // Solves A x = b for a right-hand side with few non-zeros, b(rows[i]) = values[i] (rows distinct,
   // in [0, rows()); std::invalid_argument otherwise), zero elsewhere. With CHOLMOD the forward solve
   // runs over the rows' reach only (the supernodes from theirs to the root of the supernodal

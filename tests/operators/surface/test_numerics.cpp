@@ -374,6 +374,28 @@ TEST_CASE("Cholesky: row-major blocks solved in place equal the column-major sol
           Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> R = B;
           c->solve_rows(R.data(), m);
           CHECK((Eigen::MatrixXd(R) - X).cwiseAbs().maxCoeff() <= 1e-12 * X.cwiseAbs().maxCoeff());
+          // The same rows in the factor's order, solved in place; with a few non-zero rows named,
+          // the forward solve over their reach only.
+          const std::span<const int> order = c->factor_order();
+          auto at = [&](int k) { return order.empty() ? k : order[size_t(k)]; };
+          Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> P(n, m), Q(n, m);
+          for (int k = 0; k < n; ++k) P.row(k) = B.row(at(k));
+          c->solve_rows_in_factor_order(P.data(), m);
+          double e = 0;
+          for (int k = 0; k < n; ++k) e = std::max(e, (P.row(k) - X.row(at(k))).cwiseAbs().maxCoeff());
+          CHECK(e <= 1e-12 * X.cwiseAbs().maxCoeff());
+          const std::vector<int> few = {3, n / 2, 3, n - 1};  // a repeated row is allowed
+          Q.setZero();
+          for (int k : few) Q.row(k) = P.row(0);
+          Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(n, m);
+          for (int k : few) dense.row(at(k)) = P.row(0);
+          const Eigen::MatrixXd Xd = c->solve(dense);
+          c->solve_rows_in_factor_order(Q.data(), m, few);
+          e = 0;
+          for (int k = 0; k < n; ++k) e = std::max(e, (Q.row(k) - Xd.row(at(k))).cwiseAbs().maxCoeff());
+          CHECK(e <= 1e-12 * Xd.cwiseAbs().maxCoeff());
+          if (!order.empty())
+            CHECK_THROWS_AS(c->solve_rows_in_factor_order(Q.data(), m, std::vector<int>{n}), std::invalid_argument);
         }
       }
     }
