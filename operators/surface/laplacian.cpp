@@ -106,6 +106,7 @@ struct Assembler {
   const int* outer;  // the pattern's column starts
   double* sv;        // stiffness values or null
   double* mv;        // mass values or null
+  double* lv;        // lumped mass summed face by face (when M is not assembled; zeroed) or null
   const int* offsets = mesh.face_offsets().data();
   const int* indices = mesh.face_indices().data();
 
@@ -125,15 +126,19 @@ struct Assembler {
     detail::polygon_compact<N>(x, n, r.weights.data() + h0, xf, r.fan.data() + h0, cs, cm);
   }
 
-  // Adds face f's columns whose vertex v passes keep(v) to the value arrays.
+  // Adds face f's columns whose vertex v passes keep(v) to the value arrays, and their sums to
+  // the lumped mass lv. col: n doubles, sums: n doubles.
   template <int N, class Keep>
-  void scatter(int f, const double* cs, const double* cm, Keep keep, double* col) const {
+  void scatter(int f, const double* cs, const double* cm, Keep keep, double* col, double* sums) const {
     const int h0 = offsets[f], n = N > 0 ? N : offsets[f + 1] - h0;
     const double* w = r.weights.data() + h0;
     const Slot* slot = table.slots + table.start(f);
+    if (lv) detail::column_sums<N>(n, w, cm, sums);
     for (int b = 0; b < n; ++b) {
       const int v = indices[h0 + b];
       if (!keep(v)) continue;
+      if (lv) lv[v] += sums[b];
+      if (!sv && !mv) continue;
       const long base = SlotTable<Slot>::relative ? outer[v] : 0;
       if (sv) {
         detail::expand_column<N>(n, b, w, cs, col);
@@ -158,24 +163,27 @@ struct Assembler {
     }
   }
 
+  // lumped: the lumped mass to take from M's column sums (mv), or null.
   void run_serial(Eigen::VectorXd* lumped) const {
     const int nmax = mesh.max_face_size(), nv = mesh.n_vertices();
-    std::vector<double> buf(10 * size_t(nmax));
+    std::vector<double> buf(11 * size_t(nmax));
     double* x = buf.data();
     double* cs = x + 3 * nmax;
     double* cm = cs + 3 * nmax;
     double* col = cm + 3 * nmax;
+    double* sums = col + nmax;
     double* want_s = sv ? cs : nullptr;
-    double* want_m = mv ? cm : nullptr;
+    double* want_m = mv || lv ? cm : nullptr;
     for (int f = 0; f < mesh.n_faces(); ++f)
       with_size(offsets[f + 1] - offsets[f], [&](auto N) {
         compact<decltype(N)::value>(f, x, want_s, want_m);
         scatter<decltype(N)::value>(
-            f, cs, cm, [](int) { return true; }, col);
+            f, cs, cm, [](int) { return true; }, col, sums);
       });
     if (lumped) lump(*lumped, 0, nv);
   }
 
+  // lumped: as in run_serial.
   void run_parallel(int T, Eigen::VectorXd* lumped) const {
     const int nf = mesh.n_faces(), nv = mesh.n_vertices(), nmax = mesh.max_face_size();
     // Thread of face f: its breadth-first rank (FacePattern::face_rank) split into T equal ranges.
@@ -192,19 +200,20 @@ struct Assembler {
     }
     // Faces in ascending order: those of thread t (t >= 0), or those touching a seam vertex (t < 0).
     auto faces = [&](int t, auto keep) {
-      std::vector<double> scratch(10 * size_t(nmax));
+      std::vector<double> scratch(11 * size_t(nmax));
       double* x = scratch.data();
       double* cs = x + 3 * nmax;
       double* cm = cs + 3 * nmax;
       double* col = cm + 3 * nmax;
+      double* sums = col + nmax;
       for (int f = 0; f < nf; ++f) {
         if (t >= 0 ? thread_of(f) != t
                    : std::none_of(indices + offsets[f], indices + offsets[f + 1],
                                   [&](int v) { return owner[v] == kSeam; }))
           continue;
         with_size(offsets[f + 1] - offsets[f], [&](auto N) {
-          compact<decltype(N)::value>(f, x, sv ? cs : nullptr, mv ? cm : nullptr);
-          scatter<decltype(N)::value>(f, cs, cm, keep, col);
+          compact<decltype(N)::value>(f, x, sv ? cs : nullptr, mv || lv ? cm : nullptr);
+          scatter<decltype(N)::value>(f, cs, cm, keep, col, sums);
         });
       }
     };
@@ -229,7 +238,9 @@ int thread_count(const AssemblyOptions& options, const Mesh& mesh) {
 }
 
 // Assembles the requested parts of L on the sparsity structure `structure` (a FacePattern's
-// pattern, or a matrix of L that holds it) with the faces' slots in `table`.
+// pattern, or a matrix of L that holds it) with the faces' slots in `table`. The lumped mass is
+// M's column sums when M is assembled, else the sum over the faces around each vertex, in
+// ascending face order, of the local mass matrices' row sums: no nnz-sized mass buffer.
 template <class Slot>
 void assemble_values(const Mesh& mesh, const Refinement& refinement, SlotTable<Slot> table, const int* face_rank,
                      const SparseMatrix& structure, LaplacianParts parts, Laplacian& L,
@@ -248,25 +259,23 @@ void assemble_values(const Mesh& mesh, const Refinement& refinement, SlotTable<S
     std::fill(A.valuePtr(), A.valuePtr() + nnz, 0.0);
   };
   L.quality = refinement.quality;
+  if (!parts.stiffness && !parts.mass && !parts.lumped_mass) return;
   if (parts.stiffness) prepare(L.S);
-  std::vector<double> mass_only;  // M's values when only the lumped mass is wanted
-  double* mv = nullptr;
-  if (parts.mass) {
-    prepare(L.M);
-    mv = L.M.valuePtr();
-  } else if (parts.lumped_mass) {
-    mass_only.reserve(nnz);
-    advise_huge_pages(mass_only.data(), sizeof(double) * nnz);
-    mass_only.assign(nnz, 0.0);
-    mv = mass_only.data();
-  }
+  if (parts.mass) prepare(L.M);
   if (parts.lumped_mass) {
     L.M_lumped.resize(mesh.n_vertices());
     advise_huge_pages(L.M_lumped.data(), sizeof(double) * mesh.n_vertices());
+    if (!parts.mass) L.M_lumped.setZero();
   }
-  const Assembler<Slot> as{mesh,    refinement, table, face_rank, structure.outerIndexPtr(),
-                           parts.stiffness ? L.S.valuePtr() : nullptr, mv};
-  Eigen::VectorXd* lumped = parts.lumped_mass ? &L.M_lumped : nullptr;
+  const Assembler<Slot> as{mesh,
+                           refinement,
+                           table,
+                           face_rank,
+                           structure.outerIndexPtr(),
+                           parts.stiffness ? L.S.valuePtr() : nullptr,
+                           parts.mass ? L.M.valuePtr() : nullptr,
+                           parts.lumped_mass && !parts.mass ? L.M_lumped.data() : nullptr};
+  Eigen::VectorXd* lumped = parts.lumped_mass && parts.mass ? &L.M_lumped : nullptr;
   const int T = thread_count(options, mesh);
   if (T == 1)
     as.run_serial(lumped);
@@ -397,13 +406,12 @@ RelativePattern<Slot> relative_pattern(const Mesh& mesh, SparseMatrix& A) {
   return rp;
 }
 
-// A one-off assembly with slots of type Slot (relative_pattern) on the matrix `host` of L (or a
-// pattern of its own when neither S nor M is wanted).
+// A one-off assembly of S or M (and the other parts asked for) with slots of type Slot
+// (relative_pattern), the pattern built in S (or M).
 template <class Slot>
 void assemble_fresh(const Mesh& mesh, const Refinement& refinement, LaplacianParts parts, Laplacian& L,
                     const AssemblyOptions& options) {
-  SparseMatrix own;
-  SparseMatrix& A = parts.stiffness ? L.S : parts.mass ? L.M : own;
+  SparseMatrix& A = parts.stiffness ? L.S : L.M;
   const RelativePattern<Slot> rp = relative_pattern<Slot>(mesh, A);
   assemble_values<Slot>(mesh, refinement, {rp.slots.get(), rp.starts.empty() ? nullptr : rp.starts.data(), rp.uniform},
                         nullptr, A, parts, L, options);
@@ -427,6 +435,12 @@ Laplacian assemble_laplacian(const Mesh& mesh, const Refinement& refinement, Lap
   }
   if (long(refinement.weights.size()) != mesh.n_halfedges() || refinement.virtual_points.rows() != mesh.n_faces())
     throw std::invalid_argument("assemble_laplacian: the refinement does not belong to this mesh");
+  if (!parts.stiffness && !parts.mass) {
+    // The lumped mass alone is summed face by face: no pattern (`none` is never read).
+    const SparseMatrix none;
+    assemble_values<int>(mesh, refinement, {nullptr, nullptr, 0}, nullptr, none, parts, L, options);
+    return L;
+  }
   // The threads split the faces in file order: the breadth-first patches (face_pattern(mesh, T))
   // cost more than they save in a one-off assembly (~0.3 s serial on 1.5M quads); they pay off
   // when the pattern is kept for re-assembly.
@@ -439,9 +453,9 @@ Laplacian assemble_laplacian(const Mesh& mesh, const Refinement& refinement, Lap
     FacePattern own = face_pattern(mesh);
     // The pattern's storage becomes S's (or M's) instead of being copied (swap: Eigen 3.4's
     // SparseMatrix has no move assignment, std::move would copy).
-    SparseMatrix* host = parts.stiffness ? &L.S : parts.mass ? &L.M : &own.pattern;
-    if (host != &own.pattern) host->swap(own.pattern);
-    assemble_into(mesh, refinement, own, *host, parts, L, options);
+    SparseMatrix& host = parts.stiffness ? L.S : L.M;
+    host.swap(own.pattern);
+    assemble_into(mesh, refinement, own, host, parts, L, options);
   }
   return L;
 }

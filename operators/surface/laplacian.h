@@ -35,7 +35,10 @@ struct FacePattern {
 // The breadth-first pass is serial and costs about as much as the pattern itself.
 FacePattern face_pattern(const Mesh& mesh, int threads = 1);
 
-// What assemble_laplacian computes.
+// What assemble_laplacian computes. The lumped mass is M's column sums when M is asked for, else
+// summed face by face from the local mass matrices' row sums, without an nnz-sized mass buffer (and
+// without a pattern when S is not asked for either): then equal to M's row sums up to rounding, and
+// bitwise the same for any thread count and pattern.
 struct LaplacianParts {
   bool stiffness = true;
   bool mass = true;  // unlumped Galerkin mass

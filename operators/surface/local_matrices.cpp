@@ -23,6 +23,10 @@ void expand_local_column(int n, int b, const double* w, const double* c, double*
   detail::expand_column<0>(n, b, w, c, out);
 }
 
+void local_column_sums(int n, const double* w, const double* c, double* out) {
+  detail::column_sums<0>(n, w, c, out);
+}
+
 void polygon_matrices(const PolygonPositions& X, const Eigen::VectorXd& w, const Eigen::Vector3d& xf,
                       const FanTriangle* fan, Eigen::MatrixXd* S, Eigen::MatrixXd* M) {
   const int n = int(X.rows());

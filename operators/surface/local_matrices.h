@@ -35,6 +35,10 @@ void polygon_matrices_compact(const double* x, int n, const double* w, const dou
 // Every assembly path uses this one expression, so results are bitwise reproducible.
 void expand_local_column(int n, int b, const double* w, const double* c, double* out);
 
+// The n column sums (= row sums: the matrix is symmetric) of the local matrix from its compact
+// form: out[b] = t_b sum(w) + w_b sum(t) + d_b + o_b + o_{b-1}, for any weights w.
+void local_column_sums(int n, const double* w, const double* c, double* out);
+
 namespace detail {
 
 // The kernels behind the two functions above, for a face size N fixed at compile time
@@ -97,6 +101,20 @@ template <int N>
   out[b] += d[b];
   out[next] += o[b];
   out[prev] += o[prev];
+}
+
+template <int N>
+[[gnu::always_inline]] inline void column_sums(int n_dyn, const double* w, const double* c, double* out) {
+  const int n = N > 0 ? N : n_dyn;
+  const double* d = c;
+  const double* o = c + n;
+  const double* t = c + 2 * n;
+  double sw = 0.0, st = 0.0;
+  for (int a = 0; a < n; ++a) {
+    sw += w[a];
+    st += t[a];
+  }
+  for (int b = 0; b < n; ++b) out[b] = t[b] * sw + w[b] * st + d[b] + o[b] + o[b == 0 ? n - 1 : b - 1];
 }
 
 }  // namespace detail

@@ -130,6 +130,53 @@ TEST_CASE("fast assembly equals the explicit route P^T S^f P on the refined mesh
   }
 }
 
+TEST_CASE("the lumped mass alone equals the row sums of the assembled M", "[laplacian]") {
+  std::vector<Case> cases = test_meshes();
+  cases.push_back({"triangle grid", triangle_grid(5, 4)});
+  cases.push_back({"noisy cube sphere", add_noise(cube_sphere(6), 0.2, 4)});
+  cases.push_back({"chevron grid (non-convex hexagons)", chevron_grid(5, 4)});
+  cases.push_back({"noisy genus 2", add_noise(genus2(1), 0.2, 9)});
+  {
+    const Mesh grid = quad_grid(3, 2);  // plus one vertex in no face
+    PolygonSoup soup;
+    soup.positions.resize(grid.n_vertices() + 1, 3);
+    soup.positions << grid.positions(), Eigen::RowVector3d(0.5, 0.5, 1.0);
+    for (int f = 0; f < grid.n_faces(); ++f) soup.add_face(grid.face(f));
+    cases.push_back({"quad grid with an unreferenced vertex", Mesh(std::move(soup))});
+  }
+  for (const auto& [name, mesh] : cases) {
+    INFO(name);
+    const int nv = mesh.n_vertices();
+    const Refinement r = refine(mesh);
+    const Laplacian full = assemble_laplacian(mesh, r);
+    // With M: its column sums, stored values in row order.
+    bool column_sums = true;
+    for (int j = 0; j < nv; ++j) {
+      double s = 0.0;
+      for (SparseMatrix::InnerIterator it(full.M, j); it; ++it) s += it.value();
+      column_sums = column_sums && full.M_lumped[j] == s;
+    }
+    CHECK(column_sums);
+    // Without M: per face, the same for every route that asks for no M.
+    const Laplacian alone = assemble_laplacian(mesh, r, {false, false, true});
+    CHECK(alone.S.nonZeros() == 0);
+    CHECK(alone.M.nonZeros() == 0);
+    const Eigen::VectorXd rows = full.M * Eigen::VectorXd::Ones(nv);
+    CHECK((alone.M_lumped - rows).cwiseAbs().maxCoeff() <= 1e-14 * rows.cwiseAbs().maxCoeff());
+    for (int v = 0; v < nv; ++v)
+      if (mesh.vertex_faces(v).empty()) CHECK(alone.M_lumped[v] == 0.0);
+    const Laplacian with_S = assemble_laplacian(mesh, r, {true, false, true});
+    CHECK(with_S.M_lumped == alone.M_lumped);
+    CHECK(with_S.M.nonZeros() == 0);
+    CHECK(relative_difference(with_S.S, full.S) == 0.0);
+    CHECK(lumped_mass(mesh, r) == alone.M_lumped);
+    const FacePattern fp = face_pattern(mesh);
+    Laplacian again;
+    reassemble_laplacian(mesh, r, fp, {false, false, true}, again);
+    CHECK(again.M_lumped == alone.M_lumped);
+  }
+}
+
 TEST_CASE("S = D G and D = -G^T W", "[laplacian]") {
   for (const auto& [name, mesh] : test_meshes()) {
     INFO(name);

@@ -179,6 +179,31 @@ TEST_CASE("local matrices: the compact form expands to the dense one", "[local-m
   CHECK((M - L.M).norm() <= 1e-14 * L.M.norm());
 }
 
+TEST_CASE("local matrices: the compact form's column sums equal the expanded columns' sums",
+          "[local-matrices]") {
+  const PolygonPositions X = nonplanar_hexagon();
+  const Local L = kernel(X);
+  const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> x = X;
+  const std::vector<FanTriangle> fan(6, FanTriangle::Valid);
+  // The paper's weights, and weights that are not affine (the sums hold for any weights).
+  Eigen::VectorXd skewed = L.w;
+  skewed[2] += 0.4;
+  skewed[5] -= 0.1;
+  for (const Eigen::VectorXd& w : {L.w, skewed}) {
+    double cS[18], cM[18], sums[6];
+    polygon_matrices_compact(x.data(), 6, w.data(), L.xf.data(), fan.data(), cS, cM);
+    for (const double* c : {cS, cM}) {
+      Eigen::MatrixXd A(6, 6);
+      for (int b = 0; b < 6; ++b) expand_local_column(6, b, w.data(), c, A.col(b).data());
+      local_column_sums(6, w.data(), c, sums);
+      const Eigen::VectorXd expected = A.colwise().sum().transpose();
+      CHECK((Eigen::Map<const Eigen::VectorXd>(sums, 6) - expected).cwiseAbs().maxCoeff() <=
+            1e-14 * A.cwiseAbs().maxCoeff());
+      CHECK((A.rowwise().sum() - expected).cwiseAbs().maxCoeff() <= 1e-14 * A.cwiseAbs().maxCoeff());
+    }
+  }
+}
+
 TEST_CASE("local matrices: equal the assembled S and M of a one-face mesh", "[local-matrices]") {
   for (const PolygonPositions& X : {planar_hexagon(), nonplanar_hexagon()}) {
     PolygonSoup soup;
