@@ -530,12 +530,17 @@ class HeatGeodesics:
         sources[c] (distance(sources) is the distance to the whole set): equal to k calls of
         distance() up to round-off, solved as blocks of up to `block` right-hand sides, several
         times cheaper per source. An all-pairs matrix: D = distances(range(|V|)), then
-        0.5 * (D + D.T) (the heat method is not exactly symmetric).
+        0.5 * (D + D.T) (the heat method is not exactly symmetric). The object keeps the call's two
+        blocks (2 |V| min(block, k) doubles) for the next call; release_blocks() frees them.
 
         >>> polydec.HeatGeodesics(polydec.quad_grid(4, 4)).distances([0, 24]).shape
         (25, 2)
         """
         return self._solver.distances(_convert.sources(sources, self._n), _convert.size(block, "block", 1))
+
+    def release_blocks(self):
+        """Frees the blocks distances() keeps between calls."""
+        self._solver.release_blocks()
 
     @property
     def time_step(self):

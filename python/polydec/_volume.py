@@ -574,6 +574,10 @@ class VolumeHeatGeodesics:
         """One distance field per source -> (|V|, k), as HeatGeodesics.distances."""
         return self._solver.distances(_convert.sources(sources, self._n), _convert.size(block, "block", 1))
 
+    def release_blocks(self):
+        """Frees the blocks distances() keeps between calls."""
+        self._solver.release_blocks()
+
     @property
     def time_step(self):
         return self._solver.time_step

@@ -58,6 +58,11 @@ void register_solvers(py::module_& m) {
              py::gil_scoped_release release;
              return h.distances(sources, block);
            })
+      .def("release_blocks",
+           [](const HeatGeodesics& h) {
+             py::gil_scoped_release release;
+             h.release_blocks();
+           })
       .def_property_readonly("time_step", &HeatGeodesics::time_step)
       .def_property_readonly("laplacian", [](const HeatGeodesics& h) { return h.operators().name; });
 

@@ -218,6 +218,8 @@ def test_heat_distances_per_source_equal_one_by_one():
     for c, s in enumerate(sources):
         assert np.abs(D[:, c] - heat.distance(s)).max() <= 1e-12 * scale
         assert D[s, c] == 0
+    heat.release_blocks()                          # the next call makes them again: the same bits
+    assert np.array_equal(heat.distances(sources, block=3), D)
     with pytest.raises(ValueError):
         heat.distances([V.shape[0]])
     with pytest.raises(ValueError):
