@@ -10,7 +10,6 @@
 #include "polydec/dec/detail/huge_pages.h"
 #include "polydec/dec/detail/simd.h"
 #include "polydec/dec/surface/refinement.h"
-#include "polydec/dec/surface/whitney.h"
 
 namespace polydec {
 
@@ -75,208 +74,180 @@ void normalize_block(double* x, int n, int stride) {
   for (int i = 0; i < n; ++i) x[i * stride] = -x[i * stride] / norm;
 }
 
-// One fan triangle (hat gradients q[0..2], q[3..5] of corners i and j, area a) for m columns:
-// eq. (32) and its divergence added to b_i, b_j and the virtual vertex's acc. Without branches in
-// the main loops so that they vectorize: the squared norms, -1 / |g| (std::sqrt vectorizes: the
-// library is built with -fno-math-errno), the divergence; columns with |g|^2 outside
-// [1e-280, 1e280] (or not finite) contribute nothing there and take normalize_block's rescaled
-// path afterwards. The arrays do not overlap (i != j on a fan triangle of non-zero area); sq and
-// inv are scratch of m values.
-[[gnu::always_inline]] inline void fan_columns(int m, double a, const double* q, const double* __restrict ui,
+// Eqs. (32)-(33) on a fan triangle (x_i, x_j, x_f) from the vectors r_i = x_f - x_i and
+// r_j = x_f - x_j alone. With u_f = sum_k w_k u_k, di = u_i - u_f and dj = u_j - u_f, the gradient
+// is N x w / |N|^2 for w = di r_j - dj r_i and N the triangle's normal (twice its area); its hat
+// gradients are N x r_j / |N|^2 and -N x r_i / |N|^2. So the divergence of -grad u / |grad u|
+// times the area sends si = -(w . r_j) / (2 |w|) to corner i and sj = (w . r_i) / (2 |w|) to
+// corner j (and minus their sum to the virtual vertex): no normal, area or hat gradient is needed.
+// Zero where w vanishes or |w|^2 leaves [1e-280, 1e280] without a finite rescaling.
+[[gnu::always_inline]] inline bool fan_shares(double di, double dj, const double* ri, const double* rj, double& si,
+                                              double& sj) {
+  double w[3] = {di * rj[0] - dj * ri[0], di * rj[1] - dj * ri[1], di * rj[2] - dj * ri[2]};
+  double ww = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
+  if (!(ww > 1e-280 && ww < 1e280)) {  // far from the source u underflows: rescale first
+    const double mx = std::max({std::abs(w[0]), std::abs(w[1]), std::abs(w[2])});
+    if (!(mx > 0) || !std::isfinite(mx)) return false;
+    for (double& x : w) x /= mx;
+    ww = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
+  }
+  const double h = 0.5 / std::sqrt(ww);
+  si = -h * (w[0] * rj[0] + w[1] * rj[1] + w[2] * rj[2]);
+  sj = h * (w[0] * ri[0] + w[1] * ri[1] + w[2] * ri[2]);
+  return true;
+}
+
+// One fan triangle for m columns (fan_shares for each), added to b_i, b_j and the virtual vertex's
+// acc. Without branches in the main loops so that they vectorize (std::sqrt does: the library is
+// built with -fno-math-errno); columns with |w|^2 outside [1e-280, 1e280] contribute nothing there
+// and take fan_shares afterwards. The arrays do not overlap (i != j on a fan triangle of non-zero
+// area); ww and h are scratch of m values.
+[[gnu::always_inline]] inline void fan_columns(int m, const double* ri, const double* rj, const double* __restrict ui,
                                                const double* __restrict uj, const double* __restrict uf,
                                                double* __restrict bi, double* __restrict bj, double* __restrict acc,
-                                               double* __restrict sq, double* __restrict inv) {
-  const double q0 = q[0], q1 = q[1], q2 = q[2], q3 = q[3], q4 = q[4], q5 = q[5];
+                                               double* __restrict ww, double* __restrict h) {
+  const double i0 = ri[0], i1 = ri[1], i2 = ri[2], j0 = rj[0], j1 = rj[1], j2 = rj[2];
   for (int c = 0; c < m; ++c) {
     const double di = ui[c] - uf[c], dj = uj[c] - uf[c];
-    const double g0 = di * q0 + dj * q3, g1 = di * q1 + dj * q4, g2 = di * q2 + dj * q5;
-    sq[c] = g0 * g0 + g1 * g1 + g2 * g2;
+    const double w0 = di * j0 - dj * i0, w1 = di * j1 - dj * i1, w2 = di * j2 - dj * i2;
+    ww[c] = w0 * w0 + w1 * w1 + w2 * w2;
   }
-  for (int c = 0; c < m; ++c) inv[c] = -(1.0 / std::sqrt(sq[c]));
+  for (int c = 0; c < m; ++c) h[c] = 0.5 / std::sqrt(ww[c]);
   int out_of_range = 0;
   for (int c = 0; c < m; ++c) {
-    const bool in_range = sq[c] > 1e-280 && sq[c] < 1e280;
+    const bool in_range = ww[c] > 1e-280 && ww[c] < 1e280;
     out_of_range += !in_range;
-    inv[c] = in_range ? inv[c] : 0.0;
+    h[c] = in_range ? h[c] : 0.0;
   }
   for (int c = 0; c < m; ++c) {
-    const double di = ui[c] - uf[c], dj = uj[c] - uf[c], f = inv[c];
-    const double g0 = (di * q0 + dj * q3) * f, g1 = (di * q1 + dj * q4) * f, g2 = (di * q2 + dj * q5) * f;
-    const double si = a * (g0 * q0 + g1 * q1 + g2 * q2);
-    const double sj = a * (g0 * q3 + g1 * q4 + g2 * q5);
+    const double di = ui[c] - uf[c], dj = uj[c] - uf[c], f = h[c];
+    const double w0 = di * j0 - dj * i0, w1 = di * j1 - dj * i1, w2 = di * j2 - dj * i2;
+    const double si = -f * (w0 * j0 + w1 * j1 + w2 * j2);
+    const double sj = f * (w0 * i0 + w1 * i1 + w2 * i2);
     bi[c] += si;
     bj[c] += sj;
-    acc[c] -= si + sj;  // the virtual vertex's hat gradient is -(g_i + g_j)
+    acc[c] -= si + sj;
   }
   for (int c = 0; c < m && out_of_range > 0; ++c) {
-    if (sq[c] > 1e-280 && sq[c] < 1e280) continue;
-    const double di = ui[c] - uf[c], dj = uj[c] - uf[c];
-    double g[3] = {di * q0 + dj * q3, di * q1 + dj * q4, di * q2 + dj * q5};
-    normalize_block(g, 3, 1);
-    const double si = a * (g[0] * q0 + g[1] * q1 + g[2] * q2);
-    const double sj = a * (g[0] * q3 + g[1] * q4 + g[2] * q5);
+    if (ww[c] > 1e-280 && ww[c] < 1e280) continue;
+    double si, sj;
+    if (!fan_shares(ui[c] - uf[c], uj[c] - uf[c], ri, rj, si, sj)) continue;
     bi[c] += si;
     bj[c] += sj;
     acc[c] -= si + sj;
   }
 }
 
-// The fan data of a face with n corners (HeatGeodesics::fan_): seven rows of n values, the hat
-// gradients' components q0 q1 q2 of corner k, q3 q4 q5 of corner k + 1, and the area of fan triangle k.
-struct FanFace {
-  const double* F;
-  int n;
-  double q(int c, int k) const { return F[c * n + k]; }
-};
-
-// One face of the one-column pass, any number of corners: a fan triangle at a time.
-[[gnu::always_inline]] inline void fan_face_scalar(FanFace fan, const int* idx, const double* w, const double* u,
-                                                   double* b) {
-  const int n = fan.n;
-  double uf = 0, acc = 0;
-  for (int k = 0; k < n; ++k) uf += w[k] * u[idx[k]];
-  for (int k = 0; k < n; ++k) {
-    const double a = fan.q(6, k);
-    if (a == 0) continue;  // degenerate: no gradient, no divergence
-    const int i = idx[k], j = idx[k + 1 == n ? 0 : k + 1];
-    const double di = u[i] - uf, dj = u[j] - uf;
-    double g[3] = {di * fan.q(0, k) + dj * fan.q(3, k), di * fan.q(1, k) + dj * fan.q(4, k),
-                   di * fan.q(2, k) + dj * fan.q(5, k)};
-    const double sq = g[0] * g[0] + g[1] * g[1] + g[2] * g[2];
-    if (sq > 1e-280 && sq < 1e280) {
-      const double inv = -(1.0 / std::sqrt(sq));
-      g[0] *= inv, g[1] *= inv, g[2] *= inv;
-    } else {
-      normalize_block(g, 3, 1);
-    }
-    const double si = a * (g[0] * fan.q(0, k) + g[1] * fan.q(1, k) + g[2] * fan.q(2, k));
-    const double sj = a * (g[0] * fan.q(3, k) + g[1] * fan.q(4, k) + g[2] * fan.q(5, k));
-    b[i] += si;
-    b[j] += sj;
-    acc -= si + sj;  // the virtual vertex's hat gradient is -(g_i + g_j)
-  }
-  for (int k = 0; k < n; ++k) b[idx[k]] += w[k] * acc;
-}
-
-// The same for a face of N corners, unrolled: each corner's u read once and its b written once
-// (measured on FINE SPHERE, ~0.5 ms less per source than a triangle at a time; GCC does not
-// vectorize these loops inside the loop over faces, and the vectorized form was slower). A face
-// with a gradient outside [1e-280, 1e280] in |g|^2 takes the scalar path.
+// One face of the one-column pass, n corners (N > 0: n = N, unrolled): R holds r_k = x_f - x_k
+// for its corners (3 n values), skip[k] marks degenerate fan triangles (no gradient, no
+// divergence). Each corner's u is read once and its b written once.
 template <int N>
-[[gnu::always_inline]] inline void fan_face_fixed(FanFace fan, const int* idx, const double* w, const double* u,
-                                                  double* b) {
-  const double *q0 = fan.F, *q1 = q0 + N, *q2 = q1 + N, *q3 = q2 + N, *q4 = q3 + N, *q5 = q4 + N, *a = q5 + N;
-  double uk[N], di[N], dj[N], g0[N], g1[N], g2[N], sq[N], si[N], sj[N];
+[[gnu::always_inline]] inline void fan_face(int n_any, const double* R, const FanTriangle* skip, const int* idx,
+                                            const double* w, const double* u, double* b) {
+  constexpr int kMax = N > 0 ? N : 1;
+  const int n = N > 0 ? N : n_any;
+  if (N == 0) {  // any size: a fan triangle at a time
+    double uf = 0, acc = 0;
+    for (int k = 0; k < n; ++k) uf += w[k] * u[idx[k]];
+    for (int k = 0; k < n; ++k) {
+      const int k1 = k + 1 == n ? 0 : k + 1;
+      double si, sj;
+      if (skip[k] == FanTriangle::Degenerate ||
+          !fan_shares(u[idx[k]] - uf, u[idx[k1]] - uf, R + 3 * k, R + 3 * k1, si, sj))
+        continue;
+      b[idx[k]] += si;
+      b[idx[k1]] += sj;
+      acc -= si + sj;  // the virtual vertex's hat gradient is -(g_i + g_j)
+    }
+    for (int k = 0; k < n; ++k) b[idx[k]] += w[k] * acc;
+    return;
+  }
+  double uk[kMax], si[kMax], sj[kMax];
   for (int k = 0; k < N; ++k) uk[k] = u[idx[k]];
   double uf = 0;
   for (int k = 0; k < N; ++k) uf += w[k] * uk[k];
-  for (int k = 0; k < N; ++k) di[k] = uk[k] - uf;
-  for (int k = 0; k < N; ++k) dj[k] = uk[k + 1 == N ? 0 : k + 1] - uf;
   for (int k = 0; k < N; ++k) {
-    g0[k] = di[k] * q0[k] + dj[k] * q3[k];
-    g1[k] = di[k] * q1[k] + dj[k] * q4[k];
-    g2[k] = di[k] * q2[k] + dj[k] * q5[k];
-    sq[k] = g0[k] * g0[k] + g1[k] * g1[k] + g2[k] * g2[k];
-  }
-  int out_of_range = 0;
-  for (int k = 0; k < N; ++k) out_of_range += (a[k] != 0) & !((sq[k] > 1e-280) & (sq[k] < 1e280));
-  if (out_of_range) return fan_face_scalar(fan, idx, w, u, b);
-  for (int k = 0; k < N; ++k) {
-    const double inv = -(1.0 / std::sqrt(sq[k]));
-    const double n0 = g0[k] * inv, n1 = g1[k] * inv, n2 = g2[k] * inv;
-    si[k] = a[k] * (n0 * q0[k] + n1 * q1[k] + n2 * q2[k]);
-    sj[k] = a[k] * (n0 * q3[k] + n1 * q4[k] + n2 * q5[k]);
-  }
-  for (int k = 0; k < N; ++k) {  // degenerate (zero area): nothing, whatever its unused gradients hold
-    si[k] = a[k] != 0 ? si[k] : 0.0;
-    sj[k] = a[k] != 0 ? sj[k] : 0.0;
+    const int k1 = k + 1 == N ? 0 : k + 1;
+    si[k] = sj[k] = 0;
+    if (skip[k] != FanTriangle::Degenerate) fan_shares(uk[k] - uf, uk[k1] - uf, R + 3 * k, R + 3 * k1, si[k], sj[k]);
   }
   double acc = 0;
-  for (int k = 0; k < N; ++k) acc -= si[k] + sj[k];  // the virtual vertex's hat gradient is -(g_i + g_j)
+  for (int k = 0; k < N; ++k) acc -= si[k] + sj[k];
   // Corner k: fan triangle k's share as its first corner, triangle k - 1's as its second, and its
   // weight's share of the virtual vertex's.
   for (int k = 0; k < N; ++k) b[idx[k]] += (si[k] + sj[k == 0 ? N - 1 : k - 1]) + w[k] * acc;
 }
 
-// fan_gradient_divergence for one column (distance()): face by face, quads, triangles, pentagons
-// and hexagons with their fan triangles side by side.
-[[gnu::always_inline]] inline void fan_gradient_divergence_one(const Mesh& mesh, const int* fi,
-                                                               const std::vector<double>& weights,
+// fan_gradient_divergence for one column (distance()): face by face, unrolled for 3 to 6 corners.
+[[gnu::always_inline]] inline void fan_gradient_divergence_one(const Mesh& mesh, const int* fi, const Refinement& r,
                                                                const std::vector<double>& fan, const double* u,
                                                                double* b) {
   const int* fo = mesh.face_offsets().data();
-  const double* w = weights.data();
+  const double* w = r.weights.data();
+  const FanTriangle* skip = r.fan.data();
   for (int f = 0; f < mesh.n_faces(); ++f) {
     const int h0 = fo[f], n = fo[f + 1] - h0;
-    const FanFace face{fan.data() + 7 * size_t(h0), n};
+    const double* R = fan.data() + 3 * size_t(h0);
     switch (n) {
-      case 4: fan_face_fixed<4>(face, fi + h0, w + h0, u, b); break;
-      case 3: fan_face_fixed<3>(face, fi + h0, w + h0, u, b); break;
-      case 5: fan_face_fixed<5>(face, fi + h0, w + h0, u, b); break;
-      case 6: fan_face_fixed<6>(face, fi + h0, w + h0, u, b); break;
-      default: fan_face_scalar(face, fi + h0, w + h0, u, b); break;
+      case 4: fan_face<4>(n, R, skip + h0, fi + h0, w + h0, u, b); break;
+      case 3: fan_face<3>(n, R, skip + h0, fi + h0, w + h0, u, b); break;
+      case 5: fan_face<5>(n, R, skip + h0, fi + h0, w + h0, u, b); break;
+      case 6: fan_face<6>(n, R, skip + h0, fi + h0, w + h0, u, b); break;
+      default: fan_face<0>(n, R, skip + h0, fi + h0, w + h0, u, b); break;
     }
   }
 }
 
 // b += -D g for g = -grad u / |grad u| on every fan triangle (eqs. 32-33; D = -G^T W), face by
-// face from the fan data of HeatGeodesics: m columns at once, row-major (the m values of u and b
-// at the corner of halfedge h at U + fi[h] m and B + fi[h] m: fi the mesh's face indices, or their
-// rows in another order). The gradient on the fan triangle (x_i, x_j, x_f) is
-// (u_i - u_f) g_i + (u_j - u_f) g_j with u_f the weighted corner values; the virtual vertex's share
-// of the divergence goes to the corners by the weights. `scratch` holds 4 m values.
+// face from the fan data of HeatGeodesics (r_h = x_f - x_h per halfedge, fan_shares): m columns at
+// once, row-major (the m values of u and b at the corner of halfedge h at U + fi[h] m and
+// B + fi[h] m: fi the mesh's face indices, or their rows in another order). The virtual vertex's
+// share goes to the corners by the weights. `scratch` holds 4 m values.
 constexpr int kPrefetchFaces = 2;
-[[gnu::always_inline]] inline void fan_gradient_divergence_body(const Mesh& mesh, const int* fi,
-                                                                const std::vector<double>& weights,
+[[gnu::always_inline]] inline void fan_gradient_divergence_body(const Mesh& mesh, const int* fi, const Refinement& r,
                                                                 const std::vector<double>& fan, const double* U, int m,
                                                                 double* B, std::vector<double>& scratch) {
-  if (m == 1) return fan_gradient_divergence_one(mesh, fi, weights, fan, U, B);
+  if (m == 1) return fan_gradient_divergence_one(mesh, fi, r, fan, U, B);
   scratch.assign(4 * size_t(m), 0.0);
   double* uf = scratch.data();
   double* acc = uf + m;
-  double* sq = acc + m;
-  double* inv = sq + m;
+  double* ww = acc + m;
+  double* h = ww + m;
   const int* fo = mesh.face_offsets().data();
   const int nf = mesh.n_faces();
   for (int f = 0; f < nf; ++f) {
     const int b0 = fo[f], n = fo[f + 1] - b0;
-    const FanFace face{fan.data() + 7 * size_t(b0), n};
     // The rows of the face kPrefetchFaces ahead, which the mesh's order scatters over the blocks.
     if (f + kPrefetchFaces < nf)
-      for (int h = fo[f + kPrefetchFaces]; h < fo[f + kPrefetchFaces + 1]; ++h)
+      for (int e = fo[f + kPrefetchFaces]; e < fo[f + kPrefetchFaces + 1]; ++e)
         for (int c = 0; c < m; c += 8) {
-          __builtin_prefetch(U + size_t(fi[h]) * m + c);
-          __builtin_prefetch(B + size_t(fi[h]) * m + c, 1);
+          __builtin_prefetch(U + size_t(fi[e]) * m + c);
+          __builtin_prefetch(B + size_t(fi[e]) * m + c, 1);
         }
     std::fill(uf, uf + 2 * m, 0.0);
     for (int k = 0; k < n; ++k) {
-      const double w = weights[size_t(b0 + k)];
+      const double w = r.weights[size_t(b0 + k)];
       const double* u = U + size_t(fi[b0 + k]) * m;
       for (int c = 0; c < m; ++c) uf[c] += w * u[c];
     }
     for (int k = 0; k < n; ++k) {
-      const double q[7] = {face.q(0, k), face.q(1, k), face.q(2, k), face.q(3, k),
-                           face.q(4, k), face.q(5, k), face.q(6, k)};
-      if (q[6] == 0) continue;  // degenerate: no gradient, no divergence
-      const int i = fi[b0 + k], j = fi[b0 + (k + 1) % n];
-      const double* ui = U + size_t(i) * m;
-      const double* uj = U + size_t(j) * m;
-      double* bi = B + size_t(i) * m;
-      double* bj = B + size_t(j) * m;
-      fan_columns(m, q[6], q, ui, uj, uf, bi, bj, acc, sq, inv);
+      if (r.fan[size_t(b0 + k)] == FanTriangle::Degenerate) continue;  // no gradient, no divergence
+      const int k1 = (k + 1) % n;
+      const int i = fi[b0 + k], j = fi[b0 + k1];
+      fan_columns(m, fan.data() + 3 * size_t(b0 + k), fan.data() + 3 * size_t(b0 + k1), U + size_t(i) * m,
+                  U + size_t(j) * m, uf, B + size_t(i) * m, B + size_t(j) * m, acc, ww, h);
     }
     for (int k = 0; k < n; ++k) {
-      const double w = weights[size_t(b0 + k)];
+      const double w = r.weights[size_t(b0 + k)];
       double* b = B + size_t(fi[b0 + k]) * m;
       for (int c = 0; c < m; ++c) b[c] += w * acc[c];
     }
   }
 }
 POLYDEC_SIMD_VARIANTS(fan_gradient_divergence,
-                      (const Mesh& mesh, const int* fi, const std::vector<double>& weights,
-                       const std::vector<double>& fan, const double* U, int m, double* B,
-                       std::vector<double>& scratch),
-                      (mesh, fi, weights, fan, U, m, B, scratch), fan_gradient_divergence_body)
+                      (const Mesh& mesh, const int* fi, const Refinement& r, const std::vector<double>& fan,
+                       const double* U, int m, double* B, std::vector<double>& scratch),
+                      (mesh, fi, r, fan, U, m, B, scratch), fan_gradient_divergence_body)
 
 }  // namespace
 
@@ -344,20 +315,13 @@ HeatGeodesics::HeatGeodesics(OperatorSet operators, double mean_edge_length, con
   if (face_wise) {
     const Refinement& r = *ops_.refinement;
     check_refinement(domain, r, "HeatGeodesics");
-    assign_on_huge_pages(fan_, 7 * size_t(domain.n_halfedges()), 0.0);
+    assign_on_huge_pages(fan_, 3 * size_t(domain.n_halfedges()), 0.0);
     for (int f = 0; f < domain.n_faces(); ++f) {
       const auto face = domain.face(f);
-      const int n = int(face.size()), h0 = domain.face_offsets()[f];
-      const Eigen::Vector3d xf = r.virtual_points.row(f).transpose();
-      for (int k = 0; k < n; ++k) {
-        const int h = h0 + k;
-        if (r.fan[h] == FanTriangle::Degenerate) continue;
-        const Eigen::Vector3d xi = domain.position(face[k]), xj = domain.position(face[(k + 1) % n]);
-        const Eigen::Matrix3d G = hat_gradients(xi, xj, xf);
-        double* q = fan_.data() + 7 * size_t(h0) + k;  // row c of the face's seven at q + c n
-        for (int c = 0; c < 3; ++c) q[c * n] = G(c, 0), q[(3 + c) * n] = G(c, 1);
-        q[6 * n] = 0.5 * (xi - xf).cross(xj - xf).norm();
-      }
+      const int h0 = domain.face_offsets()[f];
+      for (int k = 0; k < int(face.size()); ++k)
+        for (int c = 0; c < 3; ++c)
+          fan_[3 * size_t(h0 + k) + size_t(c)] = r.virtual_points(f, c) - domain.positions()(face[k], c);
     }
   }
 }
@@ -435,8 +399,8 @@ Eigen::VectorXd HeatGeodesics::distance(std::span<const int> sources, HeatDiagno
   Eigen::VectorXd& b = work_b_;
   if (!fan_.empty()) {
     b.setZero(nv);
-    fan_gradient_divergence(ops_.domain, ops_.domain.face_indices().data(), ops_.refinement->weights, fan_, u.data(),
-                            1, b.data(), work_scratch_);
+    fan_gradient_divergence(ops_.domain, ops_.domain.face_indices().data(), *ops_.refinement, fan_, u.data(), 1,
+                            b.data(), work_scratch_);
   } else {
     Eigen::VectorXd g = ops_.G * u;
     const int n_blocks = ops_.G_blocks.empty() ? int(g.size() / 3) : int(ops_.G_blocks.size()) - 1;
@@ -558,7 +522,7 @@ Eigen::MatrixXd HeatGeodesics::distances(std::span<const int> sources, int block
     solve(*heat_, U, m, rhs_rows);
     std::fill(Bv, Bv + size_t(nv) * size_t(m), 0.0);
     if (!fan_.empty())
-      fan_gradient_divergence(ops_.domain, corner_rows.data(), ops_.refinement->weights, fan_, U, m, Bv, g);
+      fan_gradient_divergence(ops_.domain, corner_rows.data(), *ops_.refinement, fan_, U, m, Bv, g);
     for (int h = 0; h < n_blocks && fan_.empty(); ++h) {
       const int b0 = ops_.G_blocks.empty() ? 3 * h : ops_.G_blocks[h];
       const int b1 = ops_.G_blocks.empty() ? 3 * h + 3 : ops_.G_blocks[h + 1];
