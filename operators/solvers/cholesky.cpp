@@ -76,11 +76,11 @@ cholmod_sparse view_lower(const SpMat& A) {
   return s;
 }
 
-// One right-hand side through CHOLMOD's supernodal LL^T factor, supernode by supernode: the
+// Solves through CHOLMOD's supernodal LL^T factor with our own loops, supernode by supernode: the
 // diagonal block's triangular solve and one update with the rows below (gathered or scattered
 // once per row). cholmod_solve2 makes two BLAS calls per supernode on the many small supernodes of
-// a surface mesh's factor: one FINE SPHERE solve took ~10 ms against ~2 ms to stream the factor's
-// values, and ~6 ms with these loops (docs/benchmarks.md). A supernode's nsrow x nscol block is
+// a surface mesh's factor: one FINE SPHERE solve took ~10 ms, ~4 ms with these loops
+// (docs/benchmarks.md). A supernode's nsrow x nscol block is
 // column-major at px, its diagonal block on top, the rows below listed in s; `work` holds at least
 // twice the largest supernode's row count.
 struct SupernodalView {
