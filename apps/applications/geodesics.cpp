@@ -290,8 +290,8 @@ HeatGeodesics::HeatGeodesics(OperatorSet operators, double mean_edge_length, con
   }
   // CHOLMOD's default supernodes: each source costs two solves, and a solve is ~30% faster than
   // with the relaxed amalgamation (FINE SPHERE: 10.1 vs 14.0 ms) for a somewhat slower
-  // factorization. The ordering with the smaller factor of AMD and nested dissection: every solve reads the
-  // whole factor, and the one analysis serves both matrices (docs/benchmarks.md).
+  // factorization. The ordering with the smaller factor of AMD and nested dissection: every solve
+  // reads the whole factor, and the one analysis serves both matrices (docs/benchmarks.md).
   CholeskyOptions copt;
   copt.relaxed_supernodes = false;
   copt.ordering = CholeskyOrdering::BestFill;
@@ -457,7 +457,8 @@ Eigen::MatrixXd HeatGeodesics::distances(std::span<const int> sources, int block
   // (SparseCholesky::solve_rows_in_factor_order), and the passes over faces read through row[].
   const std::span<const int> order = heat_->factor_order();
   const std::span<const int> poisson_order = poisson_->factor_order();
-  const bool ordered = !order.empty() && std::equal(order.begin(), order.end(), poisson_order.begin(), poisson_order.end());
+  const bool ordered =
+      !order.empty() && std::equal(order.begin(), order.end(), poisson_order.begin(), poisson_order.end());
   std::vector<int> row(static_cast<size_t>(nv));
   for (int q = 0; q < nv; ++q) row[size_t(ordered ? order[size_t(q)] : q)] = q;
   auto solve = [&](const SparseCholesky& chol, double* X, int m, std::span<const int> nonzero_rows) {
@@ -552,7 +553,8 @@ Eigen::MatrixXd HeatGeodesics::distances(std::span<const int> sources, int block
     // Each column shifted to zero at its minimum over its source's component (one pass over the
     // rows for all columns), written column by column eight vertices at a time.
     for (int c = 0; c < m; ++c) reached[size_t(c)] = component_[sources[size_t(c0 + c)]];
-    const bool one_component = std::all_of(reached.begin(), reached.begin() + m, [&](int r) { return r == reached[0]; });
+    const bool one_component =
+        std::all_of(reached.begin(), reached.begin() + m, [&](int r) { return r == reached[0]; });
     std::fill(cmin.begin(), cmin.begin() + m, std::numeric_limits<double>::infinity());
     for (int q = 0; q < nv; ++q) {  // in storage order
       const int v = ordered ? order[size_t(q)] : q;
