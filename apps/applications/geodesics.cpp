@@ -142,11 +142,9 @@ void normalize_block(double* x, int n, int stride) {
 // for its corners (3 n values), skip[k] marks degenerate fan triangles (no gradient, no
 // divergence). Each corner's u is read once and its b written once.
 template <int N>
-[[gnu::always_inline]] inline void fan_face(int n_any, const double* R, const FanTriangle* skip, const int* idx,
-                                            const double* w, const double* u, double* b) {
-  constexpr int kMax = N > 0 ? N : 1;
-  const int n = N > 0 ? N : n_any;
-  if (N == 0) {  // any size: a fan triangle at a time
+[[gnu::always_inline]] inline void fan_face([[maybe_unused]] int n, const double* R, const FanTriangle* skip,
+                                            const int* idx, const double* w, const double* u, double* b) {
+  if constexpr (N == 0) {  // any size: a fan triangle at a time
     double uf = 0, acc = 0;
     for (int k = 0; k < n; ++k) uf += w[k] * u[idx[k]];
     for (int k = 0; k < n; ++k) {
@@ -160,22 +158,23 @@ template <int N>
       acc -= si + sj;  // the virtual vertex's hat gradient is -(g_i + g_j)
     }
     for (int k = 0; k < n; ++k) b[idx[k]] += w[k] * acc;
-    return;
+  } else {
+    double uk[N], si[N], sj[N];
+    for (int k = 0; k < N; ++k) uk[k] = u[idx[k]];
+    double uf = 0;
+    for (int k = 0; k < N; ++k) uf += w[k] * uk[k];
+    for (int k = 0; k < N; ++k) {
+      const int k1 = k + 1 == N ? 0 : k + 1;
+      si[k] = sj[k] = 0;
+      if (skip[k] != FanTriangle::Degenerate)
+        fan_shares(uk[k] - uf, uk[k1] - uf, R + 3 * k, R + 3 * k1, si[k], sj[k]);
+    }
+    double acc = 0;
+    for (int k = 0; k < N; ++k) acc -= si[k] + sj[k];
+    // Corner k: fan triangle k's share as its first corner, triangle k - 1's as its second, and
+    // its weight's share of the virtual vertex's.
+    for (int k = 0; k < N; ++k) b[idx[k]] += (si[k] + sj[k == 0 ? N - 1 : k - 1]) + w[k] * acc;
   }
-  double uk[kMax], si[kMax], sj[kMax];
-  for (int k = 0; k < N; ++k) uk[k] = u[idx[k]];
-  double uf = 0;
-  for (int k = 0; k < N; ++k) uf += w[k] * uk[k];
-  for (int k = 0; k < N; ++k) {
-    const int k1 = k + 1 == N ? 0 : k + 1;
-    si[k] = sj[k] = 0;
-    if (skip[k] != FanTriangle::Degenerate) fan_shares(uk[k] - uf, uk[k1] - uf, R + 3 * k, R + 3 * k1, si[k], sj[k]);
-  }
-  double acc = 0;
-  for (int k = 0; k < N; ++k) acc -= si[k] + sj[k];
-  // Corner k: fan triangle k's share as its first corner, triangle k - 1's as its second, and its
-  // weight's share of the virtual vertex's.
-  for (int k = 0; k < N; ++k) b[idx[k]] += (si[k] + sj[k == 0 ? N - 1 : k - 1]) + w[k] * acc;
 }
 
 // fan_gradient_divergence for one column (distance()): face by face, unrolled for 3 to 6 corners.

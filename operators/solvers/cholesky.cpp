@@ -387,23 +387,22 @@ struct SparseCholesky::Impl {
   // supernode's parent holds the first row below its diagonal block; parents come after their
   // children.
   void make_tree() const {
+    if (!super_of.empty()) return;
     const int n = int(L->n), n_super = int(L->nsuper);
     const int* super = static_cast<const int*>(L->super);
     const int* pi = static_cast<const int*>(L->pi);
     const int* s = static_cast<const int*>(L->s);
     const int* perm = static_cast<const int*>(L->Perm);
-    if (super_of.empty()) {
-      super_of.resize(size_t(n));
-      for (int k = 0; k < n_super; ++k) std::fill(super_of.begin() + super[k], super_of.begin() + super[k + 1], k);
-      super_parent.assign(size_t(n_super), -1);
-      for (int k = 0; k < n_super; ++k) {
-        const int n_col = super[k + 1] - super[k];
-        if (pi[k + 1] - pi[k] > n_col) super_parent[size_t(k)] = super_of[size_t(s[pi[k] + n_col])];
-      }
-      iperm.resize(size_t(n));
-      for (int k = 0; k < n; ++k) iperm[size_t(perm ? perm[k] : k)] = k;
-      mark.assign(size_t(n_super), 0);
+    super_of.resize(size_t(n));
+    for (int k = 0; k < n_super; ++k) std::fill(super_of.begin() + super[k], super_of.begin() + super[k + 1], k);
+    super_parent.assign(size_t(n_super), -1);
+    for (int k = 0; k < n_super; ++k) {
+      const int n_col = super[k + 1] - super[k];
+      if (pi[k + 1] - pi[k] > n_col) super_parent[size_t(k)] = super_of[size_t(s[pi[k] + n_col])];
     }
+    iperm.resize(size_t(n));
+    for (int k = 0; k < n; ++k) iperm[size_t(perm ? perm[k] : k)] = k;
+    mark.assign(size_t(n_super), 0);
   }
   // The supernodes from those of the factor rows `rows` (in the factor's order) up to the root,
   // in elimination order, into `reach` (after make_tree).
