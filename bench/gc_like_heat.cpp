@@ -141,11 +141,18 @@ Eigen::VectorXd GcLikeHeat::distance(int source) {
   rho[source] = 1.0;
   const Eigen::VectorXd X = m.solve(m.heat, rho, "heat right-hand side");
   Eigen::VectorXd Y = m.G * X;
-  // Each face's gradient to unit length. Where it is exactly zero (the heat underflowed far from
-  // the source) the block stays zero, where geometry-central's division would give NaN.
+  // Each face's gradient to unit length. Far from the source the heat value falls below 1e-154 and
+  // the gradient's squares underflow (past ~370 edge lengths at t = h^2): such a block is rescaled
+  // first, and a block that is exactly zero stays zero, where geometry-central's g / |g| gives NaN.
   for (Eigen::Index f = 0; f + 2 < Y.size(); f += 3) {
-    const double norm = Y.segment<3>(f).norm();
-    if (norm > 0) Y.segment<3>(f) /= norm;
+    double norm = Y.segment<3>(f).norm();
+    if (norm < 1e-150) {
+      const double m = Y.segment<3>(f).cwiseAbs().maxCoeff();
+      if (!(m > 0)) continue;
+      Y.segment<3>(f) /= m;
+      norm = Y.segment<3>(f).norm();
+    }
+    Y.segment<3>(f) /= norm;
   }
   // geometry-central's right-hand side -Div Y is D Y in our convention (D = -G^T W, S = D G + ...):
   // then (-S) d = D Y gives d growing away from the source.
