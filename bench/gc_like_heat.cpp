@@ -126,6 +126,7 @@ GcLikeHeat::GcLikeHeat(const polydec::Mesh& mesh, bool supernodal) : impl_(std::
   m.supernodal = m.heat->is_super && m.poisson->is_super;
 }
 
+// Frees both factors and CHOLMOD's workspace.
 GcLikeHeat::~GcLikeHeat() {
   cholmod_l_free_factor(&impl_->heat, &impl_->common);
   cholmod_l_free_factor(&impl_->poisson, &impl_->common);

@@ -1,7 +1,7 @@
 // bench/polydec_bench.cpp — the benchmark behind docs/benchmarks.md. Every figure is a ratio
 // against a baseline timed in the same process, interleaved run by run (the machines are shared
 // and noisy): the plain surface and volume Laplacians (bench/plain_surface_reference.cpp,
-// bench/plain_volume_reference.cpp),
+// bench/plain_volume_reference.cpp), a geometry-central-like heat-geodesics path (bench/gc_like_heat.cpp),
 // a first assembly, single-threaded assembly, Eigen's SimplicialLLT, or our own
 // precomputation. Prints a Markdown table on stdout.
 //
