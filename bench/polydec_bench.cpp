@@ -1,13 +1,16 @@
 // bench/polydec_bench.cpp — the benchmark behind docs/benchmarks.md. Every figure is a ratio
 // against a baseline timed in the same process, interleaved run by run (the machines are shared
 // and noisy): the plain surface and volume Laplacians (bench/plain_surface_reference.cpp,
-// bench/plain_volume_reference.cpp),
+// bench/plain_volume_reference.cpp), a geometry-central-like heat-geodesics path (bench/gc_like_heat.cpp),
 // a first assembly, single-threaded assembly, Eigen's SimplicialLLT, or our own
 // precomputation. Prints a Markdown table on stdout.
 //
 //   polydec_bench [--big N] [--no-big] [--quick] [--reps K] [--blas-threads N] [--no-big-geodesics]
 //                 [--only spectrum|feec|geodesics|cholesky|form-spectrum|volume|dec]   (one section on FINE SPHERE;
 //                 form-spectrum: a 100k-face quad sphere)
+//   polydec_bench --only geodesics-big [--big N]   (the geodesics section on cube_sphere(N) alone, default 500)
+//   --gc-like-simplicial   (the geometry-central-like heat path with simplicial factors on the big mesh too:
+//                 CHOLMOD's simplicial factorization of the 1.5M-quad sphere takes minutes)
 //   polydec_bench --only dec [--no-big]   (DEC bundles, each in a child process: HEX SPHERE on both
 //                 complexes; the mesh complex on a 1M-quad sphere, a jittered 32^3 hex grid, BCC Voronoi
 //                 cells and the 100^3 grid)
@@ -26,6 +29,9 @@
 #include "polydec/apps/applications/spectrum.h"
 #include "bench/plain_surface_reference.h"
 #include "bench/plain_volume_reference.h"
+#ifdef POLYDEC_HAVE_GC_LIKE_HEAT
+#include "bench/gc_like_heat.h"
+#endif
 #include "polydec/dec/detail/huge_pages.h"
 #include "polydec/dec/surface/complex.h"
 #include "polydec/dec/mesh/generators.h"
@@ -41,6 +47,7 @@
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fmt/format.h>
@@ -49,6 +56,7 @@
 #include <functional>
 #include <ctime>
 #include <malloc.h>
+#include <memory>
 #include <signal.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -399,6 +407,73 @@ void bench_cholesky(const std::string& name, const Laplacian& L, int reps) {
                      solvers[k]->factor_nonzeros() / 1e6, solvers[0]->factor_nonzeros() / 1e6, 3 * reps)});
 }
 
+// --gc-like-simplicial: the geometry-central-like path's factors simplicial on every mesh (default:
+// supernodal from kGcLikeSupernodalVertices vertices on).
+bool gc_like_always_simplicial = false;
+// CHOLMOD's simplicial factorization of the 1.5M-quad sphere's two matrices took 208 s of thread CPU
+// time (361 s wall; the big geodesics section 11.5 min), so meshes this large get supernodal factors.
+constexpr int kGcLikeSupernodalVertices = 500000;
+
+// polydec's HeatGeodesics against the geometry-central-like path of bench/gc_like_heat.cpp (a stand-in
+// for geometry-central's PolygonMeshHeatSolver, written here), per source, timed interleaved on the
+// same sources: ratio = reference / ours, target 2 (ours at most half). The note carries the
+// reference's precomputation, its factors' size and, as a sanity check only (two discretizations),
+// the largest difference between the two fields where ours is resolved (HeatDiagnostics), relative
+// to the largest distance there.
+void bench_gc_like_heat(const std::string& name, const Mesh& mesh, const HeatGeodesics& heat, int n_sources) {
+  const std::string target = "heat geodesics per source vs geometry-central-like path (timed)";
+#ifdef POLYDEC_HAVE_GC_LIKE_HEAT
+  // Simplicial, as geometry-central factors, except on very large meshes (see above).
+  const bool supernodal = !gc_like_always_simplicial && mesh.n_vertices() >= kGcLikeSupernodalVertices;
+  std::unique_ptr<gc_like_heat::GcLikeHeat> ref;
+  double pre_wall = 0;
+  const double pre = time_ms([&] {
+    pre_wall = wall_ms([&] { ref = std::make_unique<gc_like_heat::GcLikeHeat>(mesh, supernodal); });
+  });
+  std::vector<double> tref, tours;
+  double diff = 0, dmax = 0;
+  int unresolved = 0;
+  for (int i = 0; i < n_sources; ++i) {
+    const int s = int((long(i) * 7919 * 104729) % mesh.n_vertices());
+    Eigen::VectorXd a, b;
+    tref.push_back(time_ms([&] { b = ref->distance(s); }));
+    tours.push_back(time_ms([&] { a = heat.distance(s); }));
+    // Compared where ours resolves the heat step (beyond ~650 edge lengths both fields are noise).
+    HeatDiagnostics diagnostics;
+    (void)heat.distance(std::span<const int>(&s, 1), &diagnostics);
+    unresolved = std::max(unresolved, diagnostics.unresolved_vertices);
+    for (Eigen::Index v = 0; v < a.size(); ++v)
+      if (a[v] <= diagnostics.resolved_radius) {
+        diff = std::max(diff, std::abs(a[v] - b[v]));
+        dmax = std::max(dmax, a[v]);
+      }
+  }
+  std::string note = fmt::format(
+      "ratio = reference / ours, median of {} sources each, interleaved, thread CPU time; reference: de Goes et al. "
+      "operators (lambda 1), CHOLMOD {} of M + tL and L (one vertex pinned; long interface, default orderings), "
+      "dense solves; its precomputation {:.0f} ms thread CPU ({:.0f} ms wall), factors {:.1f}M non-zeros together; "
+      "max |difference| of the fields {:.1f}% of the max distance {:.3g} (two discretizations: a sanity check only)",
+      n_sources, ref->supernodal() ? "supernodal LL^T (simplicial LDL^T too slow here)" : "simplicial LDL^T", pre,
+      pre_wall, ref->factor_nonzeros() / 1e6, 100 * diff / dmax, dmax);
+  if (unresolved > 0)
+    note += fmt::format(" over the vertices ours resolves (up to {} unresolved per source)", unresolved);
+  if (name == "FINE SPHERE") {
+    // Recorded, see the rows "per source vs geometry-central" and "precomputation vs geometry-central".
+    constexpr double kGeometryCentralMs = 23.5, kGeometryCentralTotalMs = 2570;
+    note += fmt::format("; calibration: the reference's {:.1f} ms per source against geometry-central's recorded "
+                        "23.5 ms ({:.2f}x), its precomputation + first source {:.0f} ms wall against the recorded "
+                        "2570 ms ({:.2f}x)",
+                        median(tref), median(tref) / kGeometryCentralMs, pre_wall + tref[0],
+                        (pre_wall + tref[0]) / kGeometryCentralTotalMs);
+  }
+  add({target, name, "geometry-central-like (timed)", "HeatGeodesics::distance", median(tref), median(tours), 0, 2,
+       note});
+#else
+  (void)mesh, (void)heat, (void)n_sources;
+  add({target, name, "", "", 0, 0, 0, 0, "skipped: built without CHOLMOD"});
+#endif
+}
+
 void bench_geodesics(const std::string& name, const Mesh& mesh, int n_sources) {
   // The operator set alone (S, M, lumped M, G, D), to split the precomputation.
   std::unique_ptr<OperatorSet> ops;
@@ -445,6 +520,7 @@ void bench_geodesics(const std::string& name, const Mesh& mesh, int n_sources) {
          "beside polydec's 38.5 ms then), not timed in this run: the ratio depends on the machine and its load; "
          "ours: the median above, thread CPU time"});
   }
+  bench_gc_like_heat(name, mesh, *heat, n_sources);
   // The face-wise gradient-normalization-divergence pass against the route through G and D, with
   // the same factors (an operator set without its refinement keeps the matrices), interleaved.
   {
@@ -990,7 +1066,7 @@ int main(int argc, char** argv) {
   bool with_big = true, quick = false, big_geodesics = true;  // --quick: assembly rows on HEX and FINE only
   std::string cli = POLYDEC_CLI;  // --cli PATH: the polydec CLI timed by --only blas-load
   std::string only;  // --only spectrum|feec|geodesics|cholesky: that section alone, on FINE SPHERE;
-                     // form-spectrum: on a 100k-face quad sphere
+                     // form-spectrum: on a 100k-face quad sphere; geodesics-big: on cube_sphere(big)
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--memory-child" && i + 1 < argc) return memory_child(std::stoi(argv[i + 1]));
@@ -1027,13 +1103,16 @@ int main(int argc, char** argv) {
     else if (a == "--volume-big" && i + 1 < argc) volume_big = std::stoi(argv[++i]);
     else if (a == "--quick") quick = true;
     else if (a == "--no-big-geodesics") big_geodesics = false;
+    else if (a == "--gc-like-simplicial") gc_like_always_simplicial = true;
     else if (a == "--only" && i + 1 < argc) only = argv[++i];
     else if (a == "--blas-threads" && i + 1 < argc) blas_threads = std::stoi(argv[++i]);
     else if (a == "--cli" && i + 1 < argc) cli = argv[++i];
     else if (a == "--reps" && i + 1 < argc) reps = std::stoi(argv[++i]);
     else {
       std::fprintf(stderr, "usage: polydec_bench [--big N] [--no-big] [--quick] [--reps K] [--blas-threads N] [--no-big-geodesics] [--only SECTION] [--volume-big N] [--cli PATH]\n"
-                           "  SECTION: spectrum|form-spectrum|feec|geodesics|cholesky|assembly|volume|dec|blas-load (blas-load runs only when asked for)\n");
+                           "  [--gc-like-simplicial]\n"
+                           "  SECTION: spectrum|form-spectrum|feec|geodesics|geodesics-big|cholesky|assembly|volume|\n"
+                           "  dec|blas-load (blas-load runs only when asked for)\n");
       return 2;
     }
   }
@@ -1075,7 +1154,16 @@ int main(int argc, char** argv) {
       bench_mesh_star1("FINE SPHERE", fine, reps, false);
       print_table();
     }
-    else if (only == "geodesics") bench_geodesics("FINE SPHERE", fine, 9);
+    else if (only == "geodesics") {
+      bench_geodesics("FINE SPHERE", fine, 9);
+      print_table();
+    }
+    else if (only == "geodesics-big") {
+      std::fprintf(stderr, "generating cube_sphere(%d)...\n", big);
+      const Mesh quad = cube_sphere(big);
+      bench_geodesics(fmt::format("QUAD {}k", quad.n_faces() / 1000), quad, 5);  // 5 sources, as the full run
+      print_table();
+    }
     else if (only == "dec") {
       bench_dec(with_big);
       print_table();
