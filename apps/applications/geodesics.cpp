@@ -114,8 +114,9 @@ void normalize_block(double* x, int n, int stride) {
 
 // One fan triangle for m columns (fan_shares for each), added to b_i, b_j and the virtual vertex's
 // acc, in one loop without branches so that it vectorizes (the library is built with
-// -fno-math-errno -fno-trapping-math, so std::sqrt and the select do); columns with |w|^2 outside [1e-280, 1e280] contribute nothing there and
-// take fan_shares afterwards. The arrays do not overlap (i != j on a fan triangle of non-zero area).
+// -fno-math-errno -fno-trapping-math, so std::sqrt and the select do); columns with |w|^2 outside
+// [1e-280, 1e280] contribute nothing there and take fan_shares afterwards. The arrays do not
+// overlap (i != j on a fan triangle of non-zero area).
 [[gnu::always_inline]] inline void fan_columns(int m, const double* pqs, const double* __restrict ui,
                                                const double* __restrict uj, const double* __restrict uf,
                                                double* __restrict bi, double* __restrict bj, double* __restrict acc) {
