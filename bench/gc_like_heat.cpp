@@ -148,9 +148,9 @@ Eigen::VectorXd GcLikeHeat::distance(int source) {
   for (Eigen::Index f = 0; f + 2 < Y.size(); f += 3) {
     double norm = Y.segment<3>(f).norm();
     if (norm < 1e-150) {
-      const double m = Y.segment<3>(f).cwiseAbs().maxCoeff();
-      if (!(m > 0)) continue;
-      Y.segment<3>(f) /= m;
+      const double largest = Y.segment<3>(f).cwiseAbs().maxCoeff();
+      if (!(largest > 0)) continue;
+      Y.segment<3>(f) /= largest;
       norm = Y.segment<3>(f).norm();
     }
     Y.segment<3>(f) /= norm;

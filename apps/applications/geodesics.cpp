@@ -80,66 +80,77 @@ void normalize_block(double* x, int n, int stride) {
 // gradients are N x r_j / |N|^2 and -N x r_i / |N|^2. So the divergence of -grad u / |grad u|
 // times the area sends si = -(w . r_j) / (2 |w|) to corner i and sj = (w . r_i) / (2 |w|) to
 // corner j (and minus their sum to the virtual vertex): no normal, area or hat gradient is needed.
-// Zero where w vanishes or |w|^2 leaves [1e-280, 1e280] without a finite rescaling.
-[[gnu::always_inline]] inline bool fan_shares(double di, double dj, const double* ri, const double* rj, double& si,
-                                              double& sj) {
-  double w[3] = {di * rj[0] - dj * ri[0], di * rj[1] - dj * ri[1], di * rj[2] - dj * ri[2]};
-  double ww = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
+// Only inner products of r_i, r_j and w enter, so they are taken in the triangle's own plane, in
+// the frame where r_i = (p, 0) and r_j = (q, s): p = |r_i|, q = r_i . r_j / p, s = |r_i x r_j| / p
+// (fan_frame, 3 values per fan triangle). Then w = (x, y) with x = di q - dj p, y = di s, and
+// si = -(x q + y s) / (2 |w|), sj = x p / (2 |w|).
+[[gnu::always_inline]] inline void fan_frame(const double* ri, const double* rj, double* pqs) {
+  const double p = std::sqrt(ri[0] * ri[0] + ri[1] * ri[1] + ri[2] * ri[2]);
+  const double c[3] = {ri[1] * rj[2] - ri[2] * rj[1], ri[2] * rj[0] - ri[0] * rj[2], ri[0] * rj[1] - ri[1] * rj[0]};
+  const bool flat = !(p > 0);  // the virtual vertex on corner i: a degenerate fan triangle
+  pqs[0] = flat ? 0.0 : p;
+  pqs[1] = flat ? 0.0 : (ri[0] * rj[0] + ri[1] * rj[1] + ri[2] * rj[2]) / p;
+  pqs[2] = flat ? 0.0 : std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) / p;
+}
+
+// si and sj of one fan triangle from its frame pqs = (p, q, s). Zero where w vanishes or |w|^2
+// leaves [1e-280, 1e280] without a finite rescaling.
+[[gnu::always_inline]] inline bool fan_shares(double di, double dj, const double* pqs, double& si, double& sj) {
+  const double p = pqs[0], q = pqs[1], s = pqs[2];
+  double x = di * q - dj * p, y = di * s;
+  double ww = x * x + y * y;
   if (!(ww > 1e-280 && ww < 1e280)) {  // far from the source u underflows: rescale first
-    const double mx = std::max({std::abs(w[0]), std::abs(w[1]), std::abs(w[2])});
+    const double mx = std::max(std::abs(x), std::abs(y));
     if (!(mx > 0) || !std::isfinite(mx)) return false;
-    for (double& x : w) x /= mx;
-    ww = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
+    x /= mx;
+    y /= mx;
+    ww = x * x + y * y;
   }
   const double h = 0.5 / std::sqrt(ww);
-  si = -h * (w[0] * rj[0] + w[1] * rj[1] + w[2] * rj[2]);
-  sj = h * (w[0] * ri[0] + w[1] * ri[1] + w[2] * ri[2]);
+  si = -h * (x * q + y * s);
+  sj = h * x * p;
   return true;
 }
 
 // One fan triangle for m columns (fan_shares for each), added to b_i, b_j and the virtual vertex's
-// acc. Without branches in the main loops so that they vectorize (std::sqrt does: the library is
-// built with -fno-math-errno); columns with |w|^2 outside [1e-280, 1e280] contribute nothing there
-// and take fan_shares afterwards. The arrays do not overlap (i != j on a fan triangle of non-zero
-// area); ww and h are scratch of m values.
-[[gnu::always_inline]] inline void fan_columns(int m, const double* ri, const double* rj, const double* __restrict ui,
+// acc, in one loop without branches so that it vectorizes (the library is built with
+// -fno-math-errno -fno-trapping-math, so std::sqrt and the select do); columns with |w|^2 outside
+// [1e-280, 1e280] contribute nothing there and take fan_shares afterwards. The arrays do not
+// overlap (i != j on a fan triangle of non-zero area).
+[[gnu::always_inline]] inline void fan_columns(int m, const double* pqs, const double* __restrict ui,
                                                const double* __restrict uj, const double* __restrict uf,
-                                               double* __restrict bi, double* __restrict bj, double* __restrict acc,
-                                               double* __restrict ww, double* __restrict h) {
-  const double i0 = ri[0], i1 = ri[1], i2 = ri[2], j0 = rj[0], j1 = rj[1], j2 = rj[2];
+                                               double* __restrict bi, double* __restrict bj, double* __restrict acc) {
+  const double p = pqs[0], q = pqs[1], s = pqs[2];
+  long out_of_range = 0;
   for (int c = 0; c < m; ++c) {
     const double di = ui[c] - uf[c], dj = uj[c] - uf[c];
-    const double w0 = di * j0 - dj * i0, w1 = di * j1 - dj * i1, w2 = di * j2 - dj * i2;
-    ww[c] = w0 * w0 + w1 * w1 + w2 * w2;
-  }
-  for (int c = 0; c < m; ++c) h[c] = 0.5 / std::sqrt(ww[c]);
-  int out_of_range = 0;
-  for (int c = 0; c < m; ++c) {
-    const bool in_range = ww[c] > 1e-280 && ww[c] < 1e280;
-    out_of_range += !in_range;
-    h[c] = in_range ? h[c] : 0.0;
-  }
-  for (int c = 0; c < m; ++c) {
-    const double di = ui[c] - uf[c], dj = uj[c] - uf[c], f = h[c];
-    const double w0 = di * j0 - dj * i0, w1 = di * j1 - dj * i1, w2 = di * j2 - dj * i2;
-    const double si = -f * (w0 * j0 + w1 * j1 + w2 * j2);
-    const double sj = f * (w0 * i0 + w1 * i1 + w2 * i2);
+    const double x = di * q - dj * p, y = di * s;
+    const double ww = x * x + y * y;
+    const double h = 0.5 / std::sqrt(ww);
+    const bool in_range = ww > 1e-280 && ww < 1e280;
+    out_of_range |= long(!in_range);
+    const double f = in_range ? h : 0.0;
+    const double si = -f * (x * q + y * s);
+    const double sj = f * x * p;
     bi[c] += si;
     bj[c] += sj;
     acc[c] -= si + sj;
   }
-  for (int c = 0; c < m && out_of_range > 0; ++c) {
-    if (ww[c] > 1e-280 && ww[c] < 1e280) continue;
+  for (int c = 0; c < m && out_of_range != 0; ++c) {
+    const double di = ui[c] - uf[c], dj = uj[c] - uf[c];
+    const double x = di * q - dj * p, y = di * s;
+    const double ww = x * x + y * y;
+    if (ww > 1e-280 && ww < 1e280) continue;
     double si, sj;
-    if (!fan_shares(ui[c] - uf[c], uj[c] - uf[c], ri, rj, si, sj)) continue;
+    if (!fan_shares(di, dj, pqs, si, sj)) continue;
     bi[c] += si;
     bj[c] += sj;
     acc[c] -= si + sj;
   }
 }
 
-// One face of the one-column pass, n corners (N > 0: n = N, unrolled): R holds r_k = x_f - x_k
-// for its corners (3 n values), skip[k] marks degenerate fan triangles (no gradient, no
+// One face of the one-column pass, n corners (N > 0: n = N, unrolled): R holds the frames of its
+// fan triangles (fan_frame, 3 n values), skip[k] marks degenerate fan triangles (no gradient, no
 // divergence). Each corner's u is read once and its b written once.
 template <int N>
 [[gnu::always_inline]] inline void fan_face([[maybe_unused]] int n, const double* R, const FanTriangle* skip,
@@ -151,7 +162,7 @@ template <int N>
       const int k1 = k + 1 == n ? 0 : k + 1;
       double si, sj;
       if (skip[k] == FanTriangle::Degenerate ||
-          !fan_shares(u[idx[k]] - uf, u[idx[k1]] - uf, R + 3 * k, R + 3 * k1, si, sj))
+          !fan_shares(u[idx[k]] - uf, u[idx[k1]] - uf, R + 3 * k, si, sj))
         continue;
       b[idx[k]] += si;
       b[idx[k1]] += sj;
@@ -167,7 +178,7 @@ template <int N>
       const int k1 = k + 1 == N ? 0 : k + 1;
       si[k] = sj[k] = 0;
       if (skip[k] != FanTriangle::Degenerate)
-        fan_shares(uk[k] - uf, uk[k1] - uf, R + 3 * k, R + 3 * k1, si[k], sj[k]);
+        fan_shares(uk[k] - uf, uk[k1] - uf, R + 3 * k, si[k], sj[k]);
     }
     double acc = 0;
     for (int k = 0; k < N; ++k) acc -= si[k] + sj[k];
@@ -198,20 +209,18 @@ template <int N>
 }
 
 // b += -D g for g = -grad u / |grad u| on every fan triangle (eqs. 32-33; D = -G^T W), face by
-// face from the fan data of HeatGeodesics (r_h = x_f - x_h per halfedge, fan_shares): m columns at
+// face from the fan data of HeatGeodesics (fan_frame per fan triangle, fan_shares): m columns at
 // once, row-major (the m values of u and b at the corner of halfedge h at U + fi[h] m and
 // B + fi[h] m: fi the mesh's face indices, or their rows in another order). The virtual vertex's
-// share goes to the corners by the weights. `scratch` holds 4 m values.
+// share goes to the corners by the weights. `scratch` holds 2 m values.
 constexpr int kPrefetchFaces = 2;
 [[gnu::always_inline]] inline void fan_gradient_divergence_body(const Mesh& mesh, const int* fi, const Refinement& r,
                                                                 const std::vector<double>& fan, const double* U, int m,
                                                                 double* B, std::vector<double>& scratch) {
   if (m == 1) return fan_gradient_divergence_one(mesh, fi, r, fan, U, B);
-  scratch.assign(4 * size_t(m), 0.0);
+  scratch.assign(2 * size_t(m), 0.0);
   double* uf = scratch.data();
   double* acc = uf + m;
-  double* ww = acc + m;
-  double* h = ww + m;
   const int* fo = mesh.face_offsets().data();
   const int nf = mesh.n_faces();
   for (int f = 0; f < nf; ++f) {
@@ -233,8 +242,8 @@ constexpr int kPrefetchFaces = 2;
       if (r.fan[size_t(b0 + k)] == FanTriangle::Degenerate) continue;  // no gradient, no divergence
       const int k1 = (k + 1) % n;
       const int i = fi[b0 + k], j = fi[b0 + k1];
-      fan_columns(m, fan.data() + 3 * size_t(b0 + k), fan.data() + 3 * size_t(b0 + k1), U + size_t(i) * m,
-                  U + size_t(j) * m, uf, B + size_t(i) * m, B + size_t(j) * m, acc, ww, h);
+      fan_columns(m, fan.data() + 3 * size_t(b0 + k), U + size_t(i) * m, U + size_t(j) * m, uf, B + size_t(i) * m,
+                  B + size_t(j) * m, acc);
     }
     for (int k = 0; k < n; ++k) {
       const double w = r.weights[size_t(b0 + k)];
@@ -317,10 +326,16 @@ HeatGeodesics::HeatGeodesics(OperatorSet operators, double mean_edge_length, con
     assign_on_huge_pages(fan_, 3 * size_t(domain.n_halfedges()), 0.0);
     for (int f = 0; f < domain.n_faces(); ++f) {
       const auto face = domain.face(f);
-      const int h0 = domain.face_offsets()[f];
-      for (int k = 0; k < int(face.size()); ++k)
-        for (int c = 0; c < 3; ++c)
-          fan_[3 * size_t(h0 + k) + size_t(c)] = r.virtual_points(f, c) - domain.positions()(face[k], c);
+      const int h0 = domain.face_offsets()[f], n = int(face.size());
+      for (int k = 0; k < n; ++k) {
+        const int k1 = k + 1 == n ? 0 : k + 1;
+        double ri[3], rj[3];
+        for (int c = 0; c < 3; ++c) {
+          ri[c] = r.virtual_points(f, c) - domain.positions()(face[k], c);
+          rj[c] = r.virtual_points(f, c) - domain.positions()(face[k1], c);
+        }
+        fan_frame(ri, rj, fan_.data() + 3 * size_t(h0 + k));
+      }
     }
   }
 }

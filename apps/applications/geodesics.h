@@ -98,10 +98,11 @@ class HeatGeodesics {
   std::vector<unsigned char> pinned_;  // vertices fixed to 0 in the Poisson solve
   std::unique_ptr<SparseCholesky> heat_, poisson_;
   // For operator sets that carry their refinement (OperatorSet::refinement: "ours" and the other
-  // one-virtual-vertex methods): per halfedge h of ops_.domain the vector x_f - x_h from its
-  // corner to its face's virtual vertex (3 values), from which, with the refinement's corner
-  // weights and degenerate-triangle marks, eqs. (32)-(33)'s gradient, normalization and divergence
-  // run face by face without reading G and D. Empty for other operator sets (their G and D are used).
+  // one-virtual-vertex methods): per halfedge h of ops_.domain the fan triangle from its corner,
+  // the next corner and its face's virtual vertex in the triangle's own frame (3 values), from
+  // which, with the refinement's corner weights and degenerate-triangle marks, eqs. (32)-(33)'s
+  // gradient, normalization and divergence run face by face without reading G and D. Empty for
+  // other operator sets (their G and D are used).
   std::vector<double> fan_;
   // distance()'s buffers, kept between calls: the heat step's right-hand side, u, the Poisson
   // right-hand side, its solution and the face-wise pass's scratch; the lock that serializes
