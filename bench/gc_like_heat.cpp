@@ -8,8 +8,10 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "polydec/operators/registry/laplacians.h"
+#include "polydec/operators/solvers/cholesky.h"
 
 namespace gc_like_heat {
 
@@ -41,16 +43,6 @@ cholmod_sparse* lower_to_cholmod(const SparseMatrix& A, cholmod_common* c) {
   }
   p[n] = k;
   return S;
-}
-
-// A with row and column v replaced by those of the identity.
-SparseMatrix pin_vertex(const SparseMatrix& A, int v) {
-  SparseMatrix P = A;
-  for (int j = 0; j < P.outerSize(); ++j)
-    for (SparseMatrix::InnerIterator it(P, j); it; ++it)
-      if (it.row() == v || it.col() == v) it.valueRef() = it.row() == it.col() ? 1.0 : 0.0;
-  P.prune(0.0);
-  return P;
 }
 
 // Throws unless every entry of x is finite (geometry-central checks each right-hand side).
@@ -122,7 +114,9 @@ GcLikeHeat::GcLikeHeat(const polydec::Mesh& mesh, bool supernodal) : impl_(std::
   SparseMatrix heat = -t * ops.S;
   for (int v = 0; v < heat.rows(); ++v) heat.coeffRef(v, v) += ops.M_lumped[v];
   m.heat = m.factor(heat, "heat operator");
-  m.poisson = m.factor(pin_vertex(-ops.S, 0), "Poisson operator");
+  std::vector<unsigned char> pinned(size_t(m.n), 0);
+  pinned[0] = 1;
+  m.poisson = m.factor(polydec::pin_to_identity(-ops.S, pinned), "Poisson operator");
   m.supernodal = m.heat->is_super && m.poisson->is_super;
 }
 
