@@ -15,6 +15,8 @@ namespace polydec {
 
 namespace {
 
+using FanTable = detail::HeatFanTable;
+
 // Component id per vertex by flood fill over the non-zero off-diagonal entries of S (symmetric);
 // -1 for vertices S does not couple to any other (unreferenced vertices, and vertices that only
 // zero-area faces hold: their fan triangles are degenerate and carry no stiffness). Faces alone
@@ -153,7 +155,7 @@ void normalize_block(double* x, int n, int stride) {
 // fan triangles (fan_frame, 3 n values), skip[k] marks degenerate fan triangles (no gradient, no
 // divergence). Each corner's u is read once and its b written once.
 template <int N>
-[[gnu::always_inline]] inline void fan_face([[maybe_unused]] int n, const double* R, const FanTriangle* skip,
+[[gnu::always_inline]] inline void fan_face([[maybe_unused]] int n, const double* R, const unsigned char* skip,
                                             const int* idx, const double* w, const double* u, double* b) {
   if constexpr (N == 0) {  // any size: a fan triangle at a time
     double uf = 0, acc = 0;
@@ -161,7 +163,7 @@ template <int N>
     for (int k = 0; k < n; ++k) {
       const int k1 = k + 1 == n ? 0 : k + 1;
       double si, sj;
-      if (skip[k] == FanTriangle::Degenerate ||
+      if (skip[k] ||
           !fan_shares(u[idx[k]] - uf, u[idx[k1]] - uf, R + 3 * k, si, sj))
         continue;
       b[idx[k]] += si;
@@ -177,7 +179,7 @@ template <int N>
     for (int k = 0; k < N; ++k) {
       const int k1 = k + 1 == N ? 0 : k + 1;
       si[k] = sj[k] = 0;
-      if (skip[k] != FanTriangle::Degenerate)
+      if (!skip[k])
         fan_shares(uk[k] - uf, uk[k1] - uf, R + 3 * k, si[k], sj[k]);
     }
     double acc = 0;
@@ -189,15 +191,15 @@ template <int N>
 }
 
 // fan_gradient_divergence for one column (distance()): face by face, unrolled for 3 to 6 corners.
-[[gnu::always_inline]] inline void fan_gradient_divergence_one(const Mesh& mesh, const int* fi, const Refinement& r,
-                                                               const std::vector<double>& fan, const double* u,
+[[gnu::always_inline]] inline void fan_gradient_divergence_one(const FanTable& fan, const int* fi, const double* u,
                                                                double* b) {
-  const int* fo = mesh.face_offsets().data();
-  const double* w = r.weights.data();
-  const FanTriangle* skip = r.fan.data();
-  for (int f = 0; f < mesh.n_faces(); ++f) {
+  const int* fo = fan.offsets.data();
+  const double* w = fan.weights.data();
+  const unsigned char* skip = fan.degenerate.data();
+  const int nf = int(fan.offsets.size()) - 1;
+  for (int f = 0; f < nf; ++f) {
     const int h0 = fo[f], n = fo[f + 1] - h0;
-    const double* R = fan.data() + 3 * size_t(h0);
+    const double* R = fan.frames.data() + 3 * size_t(h0);
     switch (n) {
       case 4: fan_face<4>(n, R, skip + h0, fi + h0, w + h0, u, b); break;
       case 3: fan_face<3>(n, R, skip + h0, fi + h0, w + h0, u, b); break;
@@ -209,20 +211,20 @@ template <int N>
 }
 
 // b += -D g for g = -grad u / |grad u| on every fan triangle (eqs. 32-33; D = -G^T W), face by
-// face from the fan data of HeatGeodesics (fan_frame per fan triangle, fan_shares): m columns at
-// once, row-major (the m values of u and b at the corner of halfedge h at U + fi[h] m and
-// B + fi[h] m: fi the mesh's face indices, or their rows in another order). The virtual vertex's
-// share goes to the corners by the weights. `scratch` holds 2 m values.
+// face from HeatGeodesics' fan table (fan_frame per fan triangle, fan_shares): m columns at once,
+// row-major (the m values of u and b at corner h of the table at U + fi[h] m and B + fi[h] m: fi
+// the table's corners, or their rows in another order). The virtual vertex's share goes to the
+// corners by the weights. `scratch` holds 2 m values.
 constexpr int kPrefetchFaces = 2;
-[[gnu::always_inline]] inline void fan_gradient_divergence_body(const Mesh& mesh, const int* fi, const Refinement& r,
-                                                                const std::vector<double>& fan, const double* U, int m,
-                                                                double* B, std::vector<double>& scratch) {
-  if (m == 1) return fan_gradient_divergence_one(mesh, fi, r, fan, U, B);
+template <int Bytes>
+[[gnu::always_inline]] inline void fan_gradient_divergence_body(const FanTable& fan, const int* fi, const double* U,
+                                                                int m, double* B, std::vector<double>& scratch) {
+  if (m == 1) return fan_gradient_divergence_one(fan, fi, U, B);
   scratch.assign(2 * size_t(m), 0.0);
   double* uf = scratch.data();
   double* acc = uf + m;
-  const int* fo = mesh.face_offsets().data();
-  const int nf = mesh.n_faces();
+  const int* fo = fan.offsets.data();
+  const int nf = int(fan.offsets.size()) - 1;
   for (int f = 0; f < nf; ++f) {
     const int b0 = fo[f], n = fo[f + 1] - b0;
     // The rows of the face kPrefetchFaces ahead, which the mesh's order scatters over the blocks.
@@ -234,28 +236,28 @@ constexpr int kPrefetchFaces = 2;
         }
     std::fill(uf, uf + 2 * m, 0.0);
     for (int k = 0; k < n; ++k) {
-      const double w = r.weights[size_t(b0 + k)];
+      const double w = fan.weights[size_t(b0 + k)];
       const double* u = U + size_t(fi[b0 + k]) * m;
       for (int c = 0; c < m; ++c) uf[c] += w * u[c];
     }
     for (int k = 0; k < n; ++k) {
-      if (r.fan[size_t(b0 + k)] == FanTriangle::Degenerate) continue;  // no gradient, no divergence
+      if (fan.degenerate[size_t(b0 + k)]) continue;  // no gradient, no divergence
       const int k1 = (k + 1) % n;
       const int i = fi[b0 + k], j = fi[b0 + k1];
-      fan_columns(m, fan.data() + 3 * size_t(b0 + k), U + size_t(i) * m, U + size_t(j) * m, uf, B + size_t(i) * m,
+      fan_columns(m, fan.frames.data() + 3 * size_t(b0 + k), U + size_t(i) * m, U + size_t(j) * m, uf, B + size_t(i) * m,
                   B + size_t(j) * m, acc);
     }
     for (int k = 0; k < n; ++k) {
-      const double w = r.weights[size_t(b0 + k)];
+      const double w = fan.weights[size_t(b0 + k)];
       double* b = B + size_t(fi[b0 + k]) * m;
       for (int c = 0; c < m; ++c) b[c] += w * acc[c];
     }
   }
 }
-POLYDEC_SIMD_VARIANTS(fan_gradient_divergence,
-                      (const Mesh& mesh, const int* fi, const Refinement& r, const std::vector<double>& fan,
-                       const double* U, int m, double* B, std::vector<double>& scratch),
-                      (mesh, fi, r, fan, U, m, B, scratch), fan_gradient_divergence_body)
+POLYDEC_SIMD_WIDE_VARIANTS(fan_gradient_divergence,
+                      (const FanTable& fan, const int* fi, const double* U, int m, double* B,
+                       std::vector<double>& scratch),
+                      (fan, fi, U, m, B, scratch), fan_gradient_divergence_body)
 
 }  // namespace
 
@@ -323,19 +325,39 @@ HeatGeodesics::HeatGeodesics(OperatorSet operators, double mean_edge_length, con
   if (face_wise) {
     const Refinement& r = *ops_.refinement;
     check_refinement(domain, r, "HeatGeodesics");
-    assign_on_huge_pages(fan_, 3 * size_t(domain.n_halfedges()), 0.0);
-    for (int f = 0; f < domain.n_faces(); ++f) {
+    // The faces by their first row in the factors' order (a stable sort: ties keep the mesh's order).
+    const int nf = domain.n_faces();
+    const std::span<const int> order = heat_->factor_order();
+    std::vector<int> row(static_cast<size_t>(nv)), first(static_cast<size_t>(nf), nv), faces(static_cast<size_t>(nf));
+    for (int q = 0; q < nv; ++q) row[size_t(order.empty() ? q : order[size_t(q)])] = q;
+    for (int f = 0; f < nf; ++f)
+      for (int v : domain.face(f)) first[size_t(f)] = std::min(first[size_t(f)], row[size_t(v)]);
+    std::iota(faces.begin(), faces.end(), 0);
+    std::stable_sort(faces.begin(), faces.end(), [&](int a, int b) { return first[size_t(a)] < first[size_t(b)]; });
+    const size_t nh = size_t(domain.n_halfedges());
+    fan_.offsets.assign(size_t(nf) + 1, 0);
+    fan_.corners.resize(nh);
+    fan_.weights.resize(nh);
+    fan_.degenerate.resize(nh);
+    assign_on_huge_pages(fan_.frames, 3 * nh, 0.0);
+    size_t h = 0;
+    for (int q = 0; q < nf; ++q) {
+      const int f = faces[size_t(q)];
       const auto face = domain.face(f);
       const int h0 = domain.face_offsets()[f], n = int(face.size());
-      for (int k = 0; k < n; ++k) {
+      for (int k = 0; k < n; ++k, ++h) {
         const int k1 = k + 1 == n ? 0 : k + 1;
         double ri[3], rj[3];
         for (int c = 0; c < 3; ++c) {
           ri[c] = r.virtual_points(f, c) - domain.positions()(face[k], c);
           rj[c] = r.virtual_points(f, c) - domain.positions()(face[k1], c);
         }
-        fan_frame(ri, rj, fan_.data() + 3 * size_t(h0 + k));
+        fan_frame(ri, rj, fan_.frames.data() + 3 * h);
+        fan_.corners[h] = face[k];
+        fan_.weights[h] = r.weights[size_t(h0 + k)];
+        fan_.degenerate[h] = r.fan[size_t(h0 + k)] == FanTriangle::Degenerate;
       }
+      fan_.offsets[size_t(q) + 1] = int(h);
     }
   }
 }
@@ -411,10 +433,9 @@ Eigen::VectorXd HeatGeodesics::distance(std::span<const int> sources, HeatDiagno
   // (32): g = -grad u / |grad u| per element (fan triangle; or the blocks the operator set names);
   // zero where the gradient vanishes. (33): S d = D g, solved as (-S) d = -D g with pinned vertices.
   Eigen::VectorXd& b = work_b_;
-  if (!fan_.empty()) {
+  if (!fan_.frames.empty()) {
     b.setZero(nv);
-    fan_gradient_divergence(ops_.domain, ops_.domain.face_indices().data(), *ops_.refinement, fan_, u.data(), 1,
-                            b.data(), work_scratch_);
+    fan_gradient_divergence(fan_, fan_.corners.data(), u.data(), 1, b.data(), work_scratch_);
   } else {
     Eigen::VectorXd g = ops_.G * u;
     const int n_blocks = ops_.G_blocks.empty() ? int(g.size() / 3) : int(ops_.G_blocks.size()) - 1;
@@ -462,9 +483,21 @@ Eigen::VectorXd HeatGeodesics::distance(std::span<const int> sources, HeatDiagno
 }
 
 Eigen::MatrixXd HeatGeodesics::distances(std::span<const int> sources, int block) const {
+  if (block < 1) throw std::invalid_argument(fmt::format("heat geodesics: block size {} must be positive", block));
+  check_sources(sources);
+  Eigen::MatrixXd out(ops_.n_input_vertices, Eigen::Index(sources.size()));
+  advise_huge_pages(out.data(), sizeof(double) * size_t(out.size()));
+  distances(sources, out, block);
+  return out;
+}
+
+void HeatGeodesics::distances(std::span<const int> sources, Eigen::Ref<Eigen::MatrixXd> out, int block) const {
   const int nv = int(ops_.S.rows()), n_out = ops_.n_input_vertices, k = int(sources.size());
   if (block < 1) throw std::invalid_argument(fmt::format("heat geodesics: block size {} must be positive", block));
   check_sources(sources);
+  if (out.rows() != n_out || out.cols() != k)
+    throw std::invalid_argument(fmt::format("heat geodesics: the output is {} x {}, the distances from {} sources are {} x {}",
+                                            out.rows(), out.cols(), k, n_out, k));
   const std::lock_guard guard(*lock_);
   // The blocks stay in the factors' row order (both factors share one analysis) from the
   // right-hand sides to the distances: row[v] is vertex v's row. The solves then need no copies
@@ -482,8 +515,8 @@ Eigen::MatrixXd HeatGeodesics::distances(std::span<const int> sources, int block
       chol.solve_rows(X, m);  // row[] is the identity
   };
   std::vector<int> corner_rows;
-  if (!fan_.empty()) {
-    const std::vector<int>& fi = ops_.domain.face_indices();
+  if (!fan_.frames.empty()) {
+    const std::vector<int>& fi = fan_.corners;
     corner_rows.resize(fi.size());
     for (size_t h = 0; h < fi.size(); ++h) corner_rows[h] = row[size_t(fi[h])];
   }
@@ -491,13 +524,11 @@ Eigen::MatrixXd HeatGeodesics::distances(std::span<const int> sources, int block
   // right-hand side): one pass over both for all columns of a block. The paper's operator runs
   // face by face instead and needs no copy of G.
   Eigen::SparseMatrix<double, Eigen::RowMajor> Gr;
-  if (fan_.empty()) Gr = ops_.G;
+  if (fan_.frames.empty()) Gr = ops_.G;
   const int n_blocks = ops_.G_blocks.empty() ? int(ops_.G.rows() / 3) : int(ops_.G_blocks.size()) - 1;
   int widest = 3;
   for (int h = 0; h < n_blocks && !ops_.G_blocks.empty(); ++h)
     widest = std::max(widest, ops_.G_blocks[h + 1] - ops_.G_blocks[h]);
-  Eigen::MatrixXd out(n_out, k);
-  advise_huge_pages(out.data(), sizeof(double) * size_t(out.size()));
   // Two blocks of nv x width values, kept between calls, on huge pages (fresh 4 KB pages cost ~13
   // us each here: 49 MB a block of 64 columns on FINE SPHERE), row-major (the m values of a row
   // contiguous): U the heat step's right-hand sides and solutions, B the Poisson step's, both
@@ -536,9 +567,8 @@ Eigen::MatrixXd HeatGeodesics::distances(std::span<const int> sources, int block
     }
     solve(*heat_, U, m, rhs_rows);
     std::fill(Bv, Bv + size_t(nv) * size_t(m), 0.0);
-    if (!fan_.empty())
-      fan_gradient_divergence(ops_.domain, corner_rows.data(), *ops_.refinement, fan_, U, m, Bv, g);
-    for (int h = 0; h < n_blocks && fan_.empty(); ++h) {
+    if (!fan_.frames.empty()) fan_gradient_divergence(fan_, corner_rows.data(), U, m, Bv, g);
+    for (int h = 0; h < n_blocks && fan_.frames.empty(); ++h) {
       const int b0 = ops_.G_blocks.empty() ? 3 * h : ops_.G_blocks[h];
       const int b1 = ops_.G_blocks.empty() ? 3 * h + 3 : ops_.G_blocks[h + 1];
       for (int r = b0; r < b1; ++r) {
@@ -589,14 +619,13 @@ Eigen::MatrixXd HeatGeodesics::distances(std::span<const int> sources, int block
       for (int v = v0 + kRun; v < std::min(n_out, v0 + 2 * kRun); ++v)  // the next run's rows
         for (int c = 0; c < m; c += 8) __builtin_prefetch(Bv + size_t(row[size_t(v)]) * m + c);
       for (int c = 0; c < m; ++c) {
-        double* o = out.data() + size_t(c0 + c) * size_t(n_out);
+        double* o = out.col(c0 + c).data();
         for (int v = v0; v < v1; ++v)
           o[v] = component_[v] == reached[size_t(c)] ? Bv[size_t(row[size_t(v)]) * m + c] - cmin[size_t(c)]
                                                      : std::numeric_limits<double>::infinity();
       }
     }
   }
-  return out;
 }
 
 void HeatGeodesics::release_blocks() const {

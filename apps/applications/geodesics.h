@@ -21,6 +21,7 @@
 #include <memory>
 #include <mutex>
 #include <span>
+#include <vector>
 
 namespace polydec {
 
@@ -52,6 +53,19 @@ struct HeatDiagnostics {
 // resolves the [geodesics] strip.
 double suggested_time_factor(double factor, const HeatDiagnostics& diagnostics, double extent);
 
+namespace detail {
+// HeatGeodesics' fan triangles, face by face in the order of each face's first row in the factors'
+// order (so that consecutive faces read nearby rows of distances()'s blocks): per face the offset
+// of its corners; per corner its vertex, its weight in the face's virtual vertex, whether the fan
+// triangle from it to the next corner and the virtual vertex is degenerate, and that triangle in
+// its own frame (3 values).
+struct HeatFanTable {
+  std::vector<int> offsets, corners;
+  std::vector<double> weights, frames;
+  std::vector<unsigned char> degenerate;
+};
+}  // namespace detail
+
 class HeatGeodesics {
  public:
   // With the paper's operator ("ours"), built without G and D (the face-wise pass reads the fan
@@ -81,6 +95,11 @@ class HeatGeodesics {
   // more than the passes that fill them; release_blocks() frees them. Throws as distance() does;
   // std::invalid_argument for block < 1.
   Eigen::MatrixXd distances(std::span<const int> sources, int block = 64) const;
+  // The same written into `out` (|V| x k: a matrix, or k columns of a larger one, e.g. of an
+  // all-pairs matrix). No new matrix is made: a caller that reuses `out` pays no fresh pages (the
+  // returned matrix's first touch is ~8% of a 64-column call on FINE SPHERE). Throws as above, and
+  // std::invalid_argument when `out` has another shape.
+  void distances(std::span<const int> sources, Eigen::Ref<Eigen::MatrixXd> out, int block = 64) const;
   // Frees the blocks distances() keeps.
   void release_blocks() const;
 
@@ -98,12 +117,10 @@ class HeatGeodesics {
   std::vector<unsigned char> pinned_;  // vertices fixed to 0 in the Poisson solve
   std::unique_ptr<SparseCholesky> heat_, poisson_;
   // For operator sets that carry their refinement (OperatorSet::refinement: "ours" and the other
-  // one-virtual-vertex methods): per halfedge h of ops_.domain the fan triangle from its corner,
-  // the next corner and its face's virtual vertex in the triangle's own frame (3 values), from
-  // which, with the refinement's corner weights and degenerate-triangle marks, eqs. (32)-(33)'s
-  // gradient, normalization and divergence run face by face without reading G and D. Empty for
-  // other operator sets (their G and D are used).
-  std::vector<double> fan_;
+  // one-virtual-vertex methods): their fan triangles, from which eqs. (32)-(33)'s gradient,
+  // normalization and divergence run face by face without reading G and D. Empty for other
+  // operator sets (their G and D are used).
+  detail::HeatFanTable fan_;
   // distance()'s buffers, kept between calls: the heat step's right-hand side, u, the Poisson
   // right-hand side, its solution and the face-wise pass's scratch; the lock that serializes
   // distance() and distances() (the Python binding calls them without the GIL).

@@ -155,6 +155,7 @@ struct SupernodalView {
 
 // One-column passes: forward over the supernodes `list` names (all n_super when null), backward
 // over all.
+template <int Bytes>
 [[gnu::always_inline]] inline void forward_pass_body(const SupernodalView& L, const int* list, int count, double* y,
                                                      double* work) {
   for (int q = 0; q < count; ++q) forward_supernode(L, list ? list[q] : q, y, work);
@@ -163,6 +164,7 @@ struct SupernodalView {
 // descending blocks that the hardware prefetcher does not follow: they are prefetched
 // kPrefetchBytes ahead.
 constexpr long kPrefetchBytes = 16384;
+template <int Bytes>
 [[gnu::always_inline]] inline void backward_pass_body(const SupernodalView& L, int n_super, double* z, double* work) {
   const char* base = reinterpret_cast<const char*>(L.x);
   const char* next = base + sizeof(double) * size_t(n_super > 0 ? L.px[n_super] : 0);  // lowest address prefetched
@@ -172,32 +174,50 @@ constexpr long kPrefetchBytes = 16384;
     backward_supernode(L, k, z, work);
   }
 }
-POLYDEC_SIMD_VARIANTS(forward_pass, (const SupernodalView& L, const int* list, int count, double* y, double* work),
+POLYDEC_SIMD_WIDE_VARIANTS(forward_pass, (const SupernodalView& L, const int* list, int count, double* y, double* work),
                       (L, list, count, y, work), forward_pass_body)
-POLYDEC_SIMD_VARIANTS(backward_pass, (const SupernodalView& L, int n_super, double* z, double* work),
+POLYDEC_SIMD_WIDE_VARIANTS(backward_pass, (const SupernodalView& L, int n_super, double* z, double* work),
                       (L, n_super, z, work), backward_pass_body)
 
 // The same for m right-hand sides stored row by row (row v's m values at W + v m). Everything is
 // one kernel, dst -= sum_t coef[t cs] src(t) over rows of m values (update_row): each output row
-// is held in registers, 32 values at a time, while the count source rows stream past, instead of
-// being loaded and stored once per factor entry.
-typedef double Lanes __attribute__((vector_size(32), aligned(8), may_alias));  // four doubles, any address
+// is held in eight vector registers, 32 values at a time (64 with AVX-512, the registers' width
+// `Bytes`), while the count source rows stream past, instead of being loaded and stored once per
+// factor entry. With AVX-512 a 64-column block's row is one pass: each coefficient is read once
+// and each source row in one go (FINE SPHERE, 64 sources: ~15% less time per call,
+// docs/benchmarks.md).
+template <int Bytes>
+struct LanesOf {  // Bytes / 8 doubles, any address
+  typedef double type __attribute__((vector_size(Bytes), aligned(8), may_alias));
+};
+using Lanes = LanesOf<32>::type;
 
-template <class Src>
-[[gnu::always_inline]] inline void update_row(double* __restrict dst, int m, const double* __restrict coef, size_t cs,
-                                              Src src, int count) {
-  int q = 0;
-  for (; q + 32 <= m; q += 32) {
-    Lanes* d = reinterpret_cast<Lanes*>(dst + q);
-    Lanes a0 = d[0], a1 = d[1], a2 = d[2], a3 = d[3], a4 = d[4], a5 = d[5], a6 = d[6], a7 = d[7];
+// dst[q, q + 8 Bytes / 8) -= sum_t coef[t cs] src(t)[...] for every whole run of 8 registers of
+// `Bytes`, from q on; returns where it stopped.
+template <int Bytes, class Src>
+[[gnu::always_inline]] inline int update_runs(double* __restrict dst, int q, int m, const double* __restrict coef,
+                                              size_t cs, Src src, int count) {
+  using V = typename LanesOf<Bytes>::type;
+  constexpr int run = Bytes;  // 8 registers of Bytes / 8 doubles
+  for (; q + run <= m; q += run) {
+    V* d = reinterpret_cast<V*>(dst + q);
+    V a0 = d[0], a1 = d[1], a2 = d[2], a3 = d[3], a4 = d[4], a5 = d[5], a6 = d[6], a7 = d[7];
     for (int t = 0; t < count; ++t) {
       const double l = coef[size_t(t) * cs];
-      const Lanes* x = reinterpret_cast<const Lanes*>(src(t) + q);
+      const V* x = reinterpret_cast<const V*>(src(t) + q);
       a0 -= l * x[0], a1 -= l * x[1], a2 -= l * x[2], a3 -= l * x[3];
       a4 -= l * x[4], a5 -= l * x[5], a6 -= l * x[6], a7 -= l * x[7];
     }
     d[0] = a0, d[1] = a1, d[2] = a2, d[3] = a3, d[4] = a4, d[5] = a5, d[6] = a6, d[7] = a7;
   }
+  return q;
+}
+
+template <int Bytes, class Src>
+[[gnu::always_inline]] inline void update_row(double* __restrict dst, int m, const double* __restrict coef, size_t cs,
+                                              Src src, int count) {
+  int q = update_runs<Bytes>(dst, 0, m, coef, cs, src, count);
+  if constexpr (Bytes > 32) q = update_runs<32>(dst, q, m, coef, cs, src, count);
   for (; q + 4 <= m; q += 4) {
     Lanes* d = reinterpret_cast<Lanes*>(dst + q);
     Lanes a = *d;
@@ -217,6 +237,7 @@ template <class Src>
 
 // L Y = Y for supernode k: its rows in order (row i less the earlier ones, times 1 / L_ii), then
 // each row below less the supernode's rows.
+template <int Bytes>
 [[gnu::always_inline]] inline void forward_supernode_rows(const SupernodalView& L, int k, double* W, int m) {
   const int k1 = L.super[k], n_col = L.super[k + 1] - k1, n_row = L.pi[k + 1] - L.pi[k];
   const double* block = L.x + L.px[k];
@@ -224,14 +245,15 @@ template <class Src>
   double* Y = W + size_t(k1) * m;
   auto own = [&](int t) { return Y + size_t(t) * m; };
   for (int i = 0; i < n_col; ++i) {
-    update_row(Y + size_t(i) * m, m, block + i, size_t(n_row), own, i);
+    update_row<Bytes>(Y + size_t(i) * m, m, block + i, size_t(n_row), own, i);
     scale_row(Y + size_t(i) * m, m, L.inv[k1 + i]);
   }
-  for (int i = n_col; i < n_row; ++i) update_row(W + size_t(r[i]) * m, m, block + i, size_t(n_row), own, n_col);
+  for (int i = n_col; i < n_row; ++i) update_row<Bytes>(W + size_t(r[i]) * m, m, block + i, size_t(n_row), own, n_col);
 }
 
 // L^T Z = Z for supernode k: each of its rows less the rows below, then its rows from the last
 // (row j less the later ones, times 1 / L_jj).
+template <int Bytes>
 [[gnu::always_inline]] inline void backward_supernode_rows(const SupernodalView& L, int k, double* W, int m) {
   const int k1 = L.super[k], n_col = L.super[k + 1] - k1, n_row = L.pi[k + 1] - L.pi[k];
   const double* block = L.x + L.px[k];
@@ -240,22 +262,24 @@ template <class Src>
   auto below = [&](int t) { return W + size_t(r[t]) * m; };
   auto own = [&](int t) { return Z + size_t(t) * m; };
   for (int j = 0; j < n_col; ++j)
-    update_row(Z + size_t(j) * m, m, block + size_t(j) * n_row + n_col, 1, below, n_row - n_col);
+    update_row<Bytes>(Z + size_t(j) * m, m, block + size_t(j) * n_row + n_col, 1, below, n_row - n_col);
   for (int j = n_col - 1; j >= 0; --j) {
     const double* c = block + size_t(j) * n_row;
-    update_row(Z + size_t(j) * m, m, c + j + 1, 1, [&](int t) { return own(j + 1 + t); }, n_col - j - 1);
+    update_row<Bytes>(Z + size_t(j) * m, m, c + j + 1, 1, [&](int t) { return own(j + 1 + t); }, n_col - j - 1);
     scale_row(Z + size_t(j) * m, m, L.inv[k1 + j]);
   }
 }
 
 // Forward over the supernodes `list` names (all n_super when null), backward over all.
+template <int Bytes>
 [[gnu::always_inline]] inline void rows_solve_body(const SupernodalView& L, const int* list, int count, int n_super,
                                                    double* W, int m) {
-  for (int q = 0; q < count; ++q) forward_supernode_rows(L, list ? list[q] : q, W, m);
-  for (int k = n_super - 1; k >= 0; --k) backward_supernode_rows(L, k, W, m);
+  for (int q = 0; q < count; ++q) forward_supernode_rows<Bytes>(L, list ? list[q] : q, W, m);
+  for (int k = n_super - 1; k >= 0; --k) backward_supernode_rows<Bytes>(L, k, W, m);
 }
-POLYDEC_SIMD_VARIANTS(rows_solve, (const SupernodalView& L, const int* list, int count, int n_super, double* W, int m),
-                      (L, list, count, n_super, W, m), rows_solve_body)
+POLYDEC_SIMD_WIDE_VARIANTS(rows_solve,
+                           (const SupernodalView& L, const int* list, int count, int n_super, double* W, int m),
+                           (L, list, count, n_super, W, m), rows_solve_body)
 
 // CHOLMOD allocates its factors, solutions and workspaces through SuiteSparse_config. With
 // glibc's malloc and calloc there, blocks of 2 MB and more are advised onto transparent huge pages

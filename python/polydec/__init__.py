@@ -525,7 +525,7 @@ class HeatGeodesics:
         """
         return _convert.heat_distance(self._solver, self._n, sources, return_diagnostics)
 
-    def distances(self, sources, block=64):
+    def distances(self, sources, block=64, out=None):
         """One distance field per source -> (|V|, k) float64, column c the distances from
         sources[c] (distance(sources) is the distance to the whole set): equal to k calls of
         distance() up to round-off, solved as blocks of up to `block` right-hand sides, several
@@ -533,10 +533,24 @@ class HeatGeodesics:
         0.5 * (D + D.T) (the heat method is not exactly symmetric). The object keeps the call's two
         blocks (2 |V| min(block, k) doubles) for the next call; release_blocks() frees them.
 
+        out: a writeable float64 (|V|, k) array with contiguous columns (Fortran order, e.g.
+        D[:, c0:c1] of D = numpy.empty((n, m), order="F")) to write the distances into instead of
+        a new array; it is returned. ValueError for any other.
+
         >>> polydec.HeatGeodesics(polydec.quad_grid(4, 4)).distances([0, 24]).shape
         (25, 2)
         """
-        return self._solver.distances(_convert.sources(sources, self._n), _convert.size(block, "block", 1))
+        s = _convert.sources(sources, self._n)
+        block = _convert.size(block, "block", 1)
+        if out is None:
+            return self._solver.distances(s, block)
+        if not isinstance(out, np.ndarray) or out.dtype != np.float64 or out.shape != (self._n, len(s)):
+            raise ValueError(f"out must be a float64 array of shape ({self._n}, {len(s)}), got "
+                             f"{getattr(out, 'dtype', type(out).__name__)} {getattr(out, 'shape', '')}")
+        if not out.flags.writeable or (out.size > 0 and out.strides[0] != out.itemsize):
+            raise ValueError("out must be writeable with contiguous columns (Fortran order)")
+        self._solver.distances_into(s, out, block)
+        return out
 
     def release_blocks(self):
         """Frees the blocks distances() keeps between calls."""

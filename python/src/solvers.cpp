@@ -58,6 +58,13 @@ void register_solvers(py::module_& m) {
              py::gil_scoped_release release;
              return h.distances(sources, block);
            })
+      // Into a caller's Fortran-ordered float64 array (checked by the Python wrapper; pybind11
+      // refuses any array it cannot map without a copy).
+      .def("distances_into",
+           [](const HeatGeodesics& h, const std::vector<int>& sources, Eigen::Ref<Eigen::MatrixXd> out, int block) {
+             py::gil_scoped_release release;
+             h.distances(sources, out, block);
+           })
       .def("release_blocks",
            [](const HeatGeodesics& h) {
              py::gil_scoped_release release;

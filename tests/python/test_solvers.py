@@ -224,3 +224,17 @@ def test_heat_distances_per_source_equal_one_by_one():
         heat.distances([V.shape[0]])
     with pytest.raises(ValueError):
         heat.distances([0], block=0)
+    # Into columns of a caller's Fortran-ordered matrix: the same bits, the other columns untouched;
+    # an array of another shape, type or layout is refused and left as it was.
+    wide = np.full((V.shape[0], 6), -7.0, order="F")
+    assert heat.distances(sources, block=3, out=wide[:, 1:5]) is not None
+    assert np.array_equal(wide[:, 1:5], D)
+    assert np.all(wide[:, [0, 5]] == -7.0)
+    for bad in [np.zeros((V.shape[0], 4)),                        # C order: rows contiguous
+                np.zeros((V.shape[0], 3), order="F"),             # shape
+                np.zeros((V.shape[0], 4), dtype=np.float32, order="F"),
+                wide[::2, 1:5]]:                                  # strided rows
+        before = bad.copy()
+        with pytest.raises(ValueError):
+            heat.distances(sources, block=3, out=bad)
+        assert np.array_equal(bad, before)

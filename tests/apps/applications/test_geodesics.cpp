@@ -279,6 +279,22 @@ TEST_CASE("distances: one field per source, equal to one-by-one in every block s
   CHECK_THROWS_AS(heat.distances(std::vector<int>{}), std::out_of_range);
   CHECK_THROWS_AS(heat.distances(std::vector<int>{mesh.n_vertices() - 1}), std::out_of_range);  // unreferenced
   CHECK_THROWS_AS(heat.distances(std::vector<int>{0}, 0), std::invalid_argument);
+
+  // Into a caller's matrix: the same bits, into columns of a larger one too, the other columns
+  // untouched; a wrong shape is refused before anything is written.
+  const long k = long(sources.size());
+  Eigen::MatrixXd into(mesh.n_vertices(), k);
+  heat.distances(sources, into);
+  CHECK(into == first);
+  Eigen::MatrixXd wide = Eigen::MatrixXd::Constant(mesh.n_vertices(), k + 3, -7.0);
+  heat.distances(sources, wide.middleCols(2, k));
+  CHECK(wide.middleCols(2, k) == first);
+  CHECK((wide.leftCols(2).array() == -7.0).all());
+  CHECK((wide.rightCols(1).array() == -7.0).all());
+  Eigen::MatrixXd short_rows = Eigen::MatrixXd::Constant(mesh.n_vertices() - 1, k, -7.0);
+  CHECK_THROWS_AS(heat.distances(sources, short_rows), std::invalid_argument);
+  CHECK((short_rows.array() == -7.0).all());
+  CHECK_THROWS_AS(heat.distances(sources, wide), std::invalid_argument);
 }
 
 TEST_CASE("the face-wise pass of the paper's operator equals the route through G and D", "[geodesics]") {
