@@ -191,8 +191,8 @@ template <int N>
 }
 
 // fan_gradient_divergence for one column (distance()): face by face, unrolled for 3 to 6 corners.
-[[gnu::always_inline]] inline void fan_gradient_divergence_one(const FanTable& fan, const int* fi, const double* u,
-                                                               double* b) {
+[[gnu::always_inline]] inline void fan_gradient_divergence_one_body(const FanTable& fan, const int* fi, const double* u,
+                                                                    double* b) {
   const int* fo = fan.offsets.data();
   const double* w = fan.weights.data();
   const unsigned char* skip = fan.degenerate.data();
@@ -210,6 +210,11 @@ template <int N>
   }
 }
 
+// The one-column pass has no AVX-512 variant: built so it took 5-10% longer per source here
+// (docs/benchmarks.md, "Heat geodesics: AVX-512 block kernels").
+POLYDEC_SIMD_VARIANTS(fan_gradient_divergence_one, (const FanTable& fan, const int* fi, const double* u, double* b),
+                      (fan, fi, u, b), fan_gradient_divergence_one_body)
+
 // b += -D g for g = -grad u / |grad u| on every fan triangle (eqs. 32-33; D = -G^T W), face by
 // face from HeatGeodesics' fan table (fan_frame per fan triangle, fan_shares): m columns at once,
 // row-major (the m values of u and b at corner h of the table at U + fi[h] m and B + fi[h] m: fi
@@ -219,7 +224,7 @@ constexpr int kPrefetchFaces = 2;
 template <int Bytes>
 [[gnu::always_inline]] inline void fan_gradient_divergence_body(const FanTable& fan, const int* fi, const double* U,
                                                                 int m, double* B, std::vector<double>& scratch) {
-  if (m == 1) return fan_gradient_divergence_one(fan, fi, U, B);
+  if (m == 1) return fan_gradient_divergence_one_body(fan, fi, U, B);
   scratch.assign(2 * size_t(m), 0.0);
   double* uf = scratch.data();
   double* acc = uf + m;
@@ -435,7 +440,7 @@ Eigen::VectorXd HeatGeodesics::distance(std::span<const int> sources, HeatDiagno
   Eigen::VectorXd& b = work_b_;
   if (!fan_.frames.empty()) {
     b.setZero(nv);
-    fan_gradient_divergence(fan_, fan_.corners.data(), u.data(), 1, b.data(), work_scratch_);
+    fan_gradient_divergence_one(fan_, fan_.corners.data(), u.data(), b.data());
   } else {
     Eigen::VectorXd g = ops_.G * u;
     const int n_blocks = ops_.G_blocks.empty() ? int(g.size() / 3) : int(ops_.G_blocks.size()) - 1;

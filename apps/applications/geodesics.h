@@ -122,11 +122,11 @@ class HeatGeodesics {
   // operator sets (their G and D are used).
   detail::HeatFanTable fan_;
   // distance()'s buffers, kept between calls: the heat step's right-hand side, u, the Poisson
-  // right-hand side, its solution and the face-wise pass's scratch; the lock that serializes
-  // distance() and distances() (the Python binding calls them without the GIL).
+  // right-hand side and its solution; the lock that serializes distance() and distances() (the
+  // Python binding calls them without the GIL).
   std::unique_ptr<std::mutex> lock_ = std::make_unique<std::mutex>();
   mutable std::vector<int> work_rows_;
-  mutable std::vector<double> work_values_, work_scratch_;
+  mutable std::vector<double> work_values_;
   mutable Eigen::VectorXd work_u_, work_b_, work_d_;
   // distances()'s two blocks of block_cells_ values each, on huge pages.
   mutable std::unique_ptr<double[]> block_u_, block_b_;

@@ -155,7 +155,6 @@ struct SupernodalView {
 
 // One-column passes: forward over the supernodes `list` names (all n_super when null), backward
 // over all.
-template <int Bytes>
 [[gnu::always_inline]] inline void forward_pass_body(const SupernodalView& L, const int* list, int count, double* y,
                                                      double* work) {
   for (int q = 0; q < count; ++q) forward_supernode(L, list ? list[q] : q, y, work);
@@ -164,7 +163,6 @@ template <int Bytes>
 // descending blocks that the hardware prefetcher does not follow: they are prefetched
 // kPrefetchBytes ahead.
 constexpr long kPrefetchBytes = 16384;
-template <int Bytes>
 [[gnu::always_inline]] inline void backward_pass_body(const SupernodalView& L, int n_super, double* z, double* work) {
   const char* base = reinterpret_cast<const char*>(L.x);
   const char* next = base + sizeof(double) * size_t(n_super > 0 ? L.px[n_super] : 0);  // lowest address prefetched
@@ -174,9 +172,9 @@ template <int Bytes>
     backward_supernode(L, k, z, work);
   }
 }
-POLYDEC_SIMD_WIDE_VARIANTS(forward_pass, (const SupernodalView& L, const int* list, int count, double* y, double* work),
+POLYDEC_SIMD_VARIANTS(forward_pass, (const SupernodalView& L, const int* list, int count, double* y, double* work),
                       (L, list, count, y, work), forward_pass_body)
-POLYDEC_SIMD_WIDE_VARIANTS(backward_pass, (const SupernodalView& L, int n_super, double* z, double* work),
+POLYDEC_SIMD_VARIANTS(backward_pass, (const SupernodalView& L, int n_super, double* z, double* work),
                       (L, n_super, z, work), backward_pass_body)
 
 // The same for m right-hand sides stored row by row (row v's m values at W + v m). Everything is
