@@ -42,10 +42,18 @@ else
   # largest volume tests (55, 36, 25 and 23 CPU-s sanitized): smaller tests of the same code run
   # here (volume form spectra: `polydec spectrum --form 1|2|3 on a volume mesh`, the hexahedral ball;
   # the volume mesh complex's assembly: its other eight cases; volume heat geodesics: symmetry,
-  # several sources, the CLI) (docs/robustness.md, CI time).
+  # several sources, the CLI) (docs/robustness.md, CI time). And five convergence and spectrum
+  # tests on larger meshes (7-12 s each sanitized) whose code the smaller cases beside them run:
+  # the volume diamond's Franke convergence (its symmetry, scaling and squashed-cube cases), the
+  # HEX SPHERE's clusters (the REGULAR SPHERE's), the unit spheres' form spectra (the mesh
+  # complex's b1 count, the 2-form and the assembled 1-form eigenpairs), the mesh complex's solves
+  # (its gradient, torus and bad-size case).
   skip="^polydec paper --quick|^volume form spectra on a solid torus|^volume form spectra on a jittered cube"
   skip+="|^volume mesh complex: the assembly into slots equals a triplet assembly"
   skip+="|^volume heat geodesics in a box converge"
+  skip+="|^diamond \\(volume\\): 3D Franke Poisson converges|^spectrum: eigenvalues cluster at l\\(l\\+1\\) with multiplicity 2l\\+1 on the HEX SPHERE"
+  skip+="|^unit hexagon sphere: 1-form spectrum approaches|^unit sphere: 1- and 2-form spectra of both complexes"
+  skip+="|^mesh complex: ordinary solves, harmonic dimension"
   ctest --test-dir "$build" --output-on-failure -LE layers -E "$skip" \
     -j "${POLYDEC_JOBS:-$(nproc)}" 2>&1 | tee "$log" || status=$?
 fi

@@ -540,17 +540,7 @@ class HeatGeodesics:
         >>> polydec.HeatGeodesics(polydec.quad_grid(4, 4)).distances([0, 24]).shape
         (25, 2)
         """
-        s = _convert.sources(sources, self._n)
-        block = _convert.size(block, "block", 1)
-        if out is None:
-            return self._solver.distances(s, block)
-        if not isinstance(out, np.ndarray) or out.dtype != np.float64 or out.shape != (self._n, len(s)):
-            raise ValueError(f"out must be a float64 array of shape ({self._n}, {len(s)}), got "
-                             f"{getattr(out, 'dtype', type(out).__name__)} {getattr(out, 'shape', '')}")
-        if not out.flags.writeable or (out.size > 0 and out.strides[0] != out.itemsize):
-            raise ValueError("out must be writeable with contiguous columns (Fortran order)")
-        self._solver.distances_into(s, out, block)
-        return out
+        return _convert.heat_distances(self._solver, self._n, sources, block, out)
 
     def release_blocks(self):
         """Frees the blocks distances() keeps between calls."""

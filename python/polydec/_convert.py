@@ -182,6 +182,23 @@ def heat_distance(solver, n_vertices, s, return_diagnostics):
     return solver.distance_with_diagnostics(s) if return_diagnostics else solver.distance(s)
 
 
+def heat_distances(solver, n_vertices, sources_, block, out):
+    """A heat-geodesics solver's distances from each source, (n_vertices, k): a new array, or
+    written into `out`, a writeable float64 array of that shape with contiguous columns
+    (Fortran order, or a column slice of such an array), which is returned."""
+    s = sources(sources_, n_vertices)
+    block = size(block, "block", 1)
+    if out is None:
+        return solver.distances(s, block)
+    if not isinstance(out, np.ndarray) or out.dtype != np.float64 or out.shape != (n_vertices, len(s)):
+        raise ValueError(f"out must be a float64 array of shape ({n_vertices}, {len(s)}), got "
+                         f"{getattr(out, 'dtype', type(out).__name__)} {getattr(out, 'shape', '')}")
+    if not out.flags.writeable or (out.size > 0 and out.strides[0] != out.itemsize):
+        raise ValueError("out must be writeable with contiguous columns (Fortran order)")
+    solver.distances_into(s, out, block)
+    return out
+
+
 def sources(s, n_vertices):
     """A non-empty list of vertex indices in [0, n_vertices)."""
     a = np.atleast_1d(np.asarray(s))

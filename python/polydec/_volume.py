@@ -570,9 +570,9 @@ class VolumeHeatGeodesics:
         step's unresolved vertices and resolved radius; see suggested_time_factor)."""
         return _convert.heat_distance(self._solver, self._n, sources, return_diagnostics)
 
-    def distances(self, sources, block=64):
-        """One distance field per source -> (|V|, k), as HeatGeodesics.distances."""
-        return self._solver.distances(_convert.sources(sources, self._n), _convert.size(block, "block", 1))
+    def distances(self, sources, block=64, out=None):
+        """One distance field per source -> (|V|, k), as HeatGeodesics.distances (out= too)."""
+        return _convert.heat_distances(self._solver, self._n, sources, block, out)
 
     def release_blocks(self):
         """Frees the blocks distances() keeps between calls."""

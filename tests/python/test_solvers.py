@@ -238,3 +238,9 @@ def test_heat_distances_per_source_equal_one_by_one():
         with pytest.raises(ValueError):
             heat.distances(sources, block=3, out=bad)
         assert np.array_equal(bad, before)
+    # The volume solver's out= is the same: equal to its returned fields, columns one-by-one.
+    vol = polydec.VolumeHeatGeodesics(polydec.hex_grid_volume(3, 3, 3))
+    Dv = np.zeros((64, 2), order="F")
+    assert vol.distances([0, 63], out=Dv) is Dv
+    assert np.array_equal(Dv, vol.distances([0, 63]))
+    assert np.abs(Dv[:, 1] - vol.distance(63)).max() <= 1e-12 * Dv.max()
