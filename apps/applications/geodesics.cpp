@@ -232,7 +232,7 @@ template <int Bytes>
   const int nf = int(fan.offsets.size()) - 1;
   for (int f = 0; f < nf; ++f) {
     const int b0 = fo[f], n = fo[f + 1] - b0;
-    // The rows of the face kPrefetchFaces ahead, which the mesh's order scatters over the blocks.
+    // The rows of the face kPrefetchFaces ahead, scattered over the blocks.
     if (f + kPrefetchFaces < nf)
       for (int e = fo[f + kPrefetchFaces]; e < fo[f + kPrefetchFaces + 1]; ++e)
         for (int c = 0; c < m; c += 8) {
@@ -249,8 +249,8 @@ template <int Bytes>
       if (fan.degenerate[size_t(b0 + k)]) continue;  // no gradient, no divergence
       const int k1 = (k + 1) % n;
       const int i = fi[b0 + k], j = fi[b0 + k1];
-      fan_columns(m, fan.frames.data() + 3 * size_t(b0 + k), U + size_t(i) * m, U + size_t(j) * m, uf, B + size_t(i) * m,
-                  B + size_t(j) * m, acc);
+      fan_columns(m, fan.frames.data() + 3 * size_t(b0 + k), U + size_t(i) * m, U + size_t(j) * m, uf,
+                  B + size_t(i) * m, B + size_t(j) * m, acc);
     }
     for (int k = 0; k < n; ++k) {
       const double w = fan.weights[size_t(b0 + k)];
@@ -260,9 +260,9 @@ template <int Bytes>
   }
 }
 POLYDEC_SIMD_WIDE_VARIANTS(fan_gradient_divergence,
-                      (const FanTable& fan, const int* fi, const double* U, int m, double* B,
-                       std::vector<double>& scratch),
-                      (fan, fi, U, m, B, scratch), fan_gradient_divergence_body)
+                           (const FanTable& fan, const int* fi, const double* U, int m, double* B,
+                            std::vector<double>& scratch),
+                           (fan, fi, U, m, B, scratch), fan_gradient_divergence_body)
 
 }  // namespace
 
@@ -501,8 +501,8 @@ void HeatGeodesics::distances(std::span<const int> sources, Eigen::Ref<Eigen::Ma
   if (block < 1) throw std::invalid_argument(fmt::format("heat geodesics: block size {} must be positive", block));
   check_sources(sources);
   if (out.rows() != n_out || out.cols() != k)
-    throw std::invalid_argument(fmt::format("heat geodesics: the output is {} x {}, the distances from {} sources are {} x {}",
-                                            out.rows(), out.cols(), k, n_out, k));
+    throw std::invalid_argument(fmt::format("heat geodesics: the output is {} x {}, the distances from {} sources are "
+                                            "{} x {}", out.rows(), out.cols(), k, n_out, k));
   const std::lock_guard guard(*lock_);
   // The blocks stay in the factors' row order (both factors share one analysis) from the
   // right-hand sides to the distances: row[v] is vertex v's row. The solves then need no copies
