@@ -6,6 +6,9 @@
 #include <fmt/format.h>
 #include <limits>
 #include <numeric>
+#if defined(__SSE__) || defined(__x86_64__)
+#include <xmmintrin.h>
+#endif
 
 #include "polydec/dec/detail/huge_pages.h"
 #include "polydec/dec/detail/simd.h"
@@ -16,6 +19,27 @@ namespace polydec {
 namespace {
 
 using FanTable = detail::HeatFanTable;
+
+// Subnormal numbers flushed to zero (operands and results) on the calling thread while it lives,
+// the thread's previous mode restored after (x86's MXCSR; nothing elsewhere). Far from the sources
+// the heat step's solution underflows (HeatDiagnostics: below 1e-280 of its maximum, ~650 edge
+// lengths at the default time step); there every operation on a subnormal value takes a slow
+// microcode path. On the 1.5M-quad sphere that made the face-wise pass of distances(64) ~6.7 s of
+// a ~9.7 s call (docs/benchmarks.md). The solution is near 1 at the sources (right-hand side M
+// delta), so only values far below the resolution, whose distances are unresolved anyway, change.
+class FlushSubnormals {
+ public:
+#if defined(__SSE__) || defined(__x86_64__)
+  FlushSubnormals() : saved_(_mm_getcsr()) { _mm_setcsr(saved_ | 0x8040); }  // FTZ | DAZ
+  ~FlushSubnormals() { _mm_setcsr(saved_); }
+
+ private:
+  unsigned saved_;
+#endif
+ public:
+  FlushSubnormals(const FlushSubnormals&) = delete;
+  FlushSubnormals& operator=(const FlushSubnormals&) = delete;
+};
 
 // Component id per vertex by flood fill over the non-zero off-diagonal entries of S (symmetric);
 // -1 for vertices S does not couple to any other (unreferenced vertices, and vertices that only
@@ -398,6 +422,7 @@ Eigen::VectorXd HeatGeodesics::distance(std::span<const int> sources, HeatDiagno
   const int nv = int(ops_.S.rows()), n_out = ops_.n_input_vertices;
   check_sources(sources);
   const std::lock_guard guard(*lock_);
+  const FlushSubnormals flush;
   std::vector<unsigned char> reached_component(nv + 1, 0);
   for (int s : sources) reached_component[component_[s]] = 1;
   // (31): (M - t S) u = M delta, a right-hand side with few non-zeros (at the distinct sources,
@@ -504,6 +529,7 @@ void HeatGeodesics::distances(std::span<const int> sources, Eigen::Ref<Eigen::Ma
     throw std::invalid_argument(fmt::format("heat geodesics: the output is {} x {}, the distances from {} sources are "
                                             "{} x {}", out.rows(), out.cols(), k, n_out, k));
   const std::lock_guard guard(*lock_);
+  const FlushSubnormals flush;
   // The blocks stay in the factors' row order (both factors share one analysis) from the
   // right-hand sides to the distances: row[v] is vertex v's row. The solves then need no copies
   // (SparseCholesky::solve_rows_in_factor_order), and the passes over faces read through row[].

@@ -11,6 +11,9 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#if defined(__SSE__) || defined(__x86_64__)
+#include <xmmintrin.h>
+#endif
 #include <limits>
 #include <string>
 #include <utility>
@@ -295,6 +298,26 @@ TEST_CASE("distances: one field per source, equal to one-by-one in every block s
   CHECK_THROWS_AS(heat.distances(sources, short_rows), std::invalid_argument);
   CHECK((short_rows.array() == -7.0).all());
   CHECK_THROWS_AS(heat.distances(sources, wide), std::invalid_argument);
+}
+
+TEST_CASE("heat geodesics flush subnormals only inside their calls: the caller's mode is restored",
+          "[geodesics]") {
+#if defined(__SSE__) || defined(__x86_64__)
+  // A strip long enough that the heat step underflows far from the source (values below double's
+  // normal range there): the calls run with subnormals flushed to zero and restore the mode.
+  const Mesh mesh = quad_grid(1200, 1);
+  const HeatGeodesics heat(mesh);
+  const unsigned before = _mm_getcsr();
+  HeatDiagnostics diagnostics;
+  const Eigen::VectorXd d = heat.distance(std::vector<int>{0}, &diagnostics);
+  CHECK(_mm_getcsr() == before);
+  const Eigen::MatrixXd D = heat.distances(std::vector<int>{0, 5});
+  CHECK(_mm_getcsr() == before);
+  CHECK(diagnostics.unresolved_vertices > 0);  // the underflowing far field exists
+  CHECK(d.allFinite());
+  CHECK(D.allFinite());
+  CHECK(std::abs(D(2400, 0) - d[2400]) <= 1e-12 * d.maxCoeff());
+#endif
 }
 
 TEST_CASE("the face-wise pass of the paper's operator equals the route through G and D", "[geodesics]") {
