@@ -29,16 +29,22 @@ using FanTable = detail::HeatFanTable;
 // delta), so only values far below the resolution, whose distances are unresolved anyway, change.
 class FlushSubnormals {
  public:
+  FlushSubnormals() {
 #if defined(__SSE__) || defined(__x86_64__)
-  FlushSubnormals() : saved_(_mm_getcsr()) { _mm_setcsr(saved_ | 0x8040); }  // FTZ | DAZ
-  ~FlushSubnormals() { _mm_setcsr(saved_); }
-
- private:
-  unsigned saved_;
+    saved_ = _mm_getcsr();
+    _mm_setcsr(saved_ | 0x8040);  // flush-to-zero (bit 15) and denormals-are-zero (bit 6)
 #endif
- public:
+  }
+  ~FlushSubnormals() {
+#if defined(__SSE__) || defined(__x86_64__)
+    _mm_setcsr(saved_);
+#endif
+  }
   FlushSubnormals(const FlushSubnormals&) = delete;
   FlushSubnormals& operator=(const FlushSubnormals&) = delete;
+
+ private:
+  [[maybe_unused]] unsigned saved_ = 0;
 };
 
 // Component id per vertex by flood fill over the non-zero off-diagonal entries of S (symmetric);
