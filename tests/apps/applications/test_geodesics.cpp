@@ -320,6 +320,35 @@ TEST_CASE("heat geodesics flush subnormals only inside their calls: the caller's
 #endif
 }
 
+TEST_CASE("distances equal one-by-one where the heat step underflows, columns mixed in one fan triangle",
+          "[geodesics]") {
+  // At t = h^2 on a strip of 1200 x 2 square quads the heat solution of one source falls from 1 to
+  // 0 (below double's range) within ~650 edges; from ~440 edges on |grad u|^2 leaves [1e-280,
+  // 1e280] and the block pass rescales. Sources 300 edges apart put columns in range, rescaled and
+  // zero into the same fan triangles; the sources at the ends leave ~530 edges unresolved.
+  // distance() takes the one-column route.
+  Mesh mesh = quad_grid(1200, 2);
+  Eigen::MatrixX3d X = mesh.positions();
+  X.col(1) *= 2.0 / 1200;  // square quads
+  mesh = mesh.with_positions(X);
+  const HeatGeodesics heat(mesh);
+  const std::vector<int> sources = {0, 300, 600, 900, 1200};
+  const Eigen::MatrixXd D = heat.distances(sources);
+  for (size_t c = 0; c < sources.size(); ++c) {
+    INFO("source " << sources[c]);
+    HeatDiagnostics diagnostics;
+    const Eigen::VectorXd one = heat.distance(std::span<const int>(&sources[c], 1), &diagnostics);
+    REQUIRE(one.allFinite());
+    // Beyond the resolved radius both routes give noise (there a last bit of u turns the gradient).
+    const double radius = diagnostics.resolved_radius;
+    CHECK(radius > 0.5);
+    double worst = 0;
+    for (int v = 0; v < mesh.n_vertices(); ++v)
+      if (one[v] <= radius) worst = std::max(worst, std::abs(D(v, long(c)) - one[v]));
+    CHECK(worst <= 1e-12 * radius);
+  }
+}
+
 TEST_CASE("the face-wise pass of the paper's operator equals the route through G and D", "[geodesics]") {
   for (const Mesh& mesh : {add_noise(hex_sphere(2), 0.2, 5), quad_grid(6, 5), add_noise(hex_grid(5, 4), 0.1, 3)}) {
     for (bool lumped : {true, false}) {
