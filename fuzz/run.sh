@@ -16,9 +16,9 @@ command -v "$CXX" >/dev/null || { echo "fuzz/run.sh: $CXX not found" >&2; exit 2
 EIGEN=$(pkg-config --cflags-only-I eigen3 2>/dev/null || echo -I/usr/include/eigen3)
 # UBSan without object-size and pointer-overflow, as the sanitizer build (CMakeLists.txt says why).
 # Line tables only: reports name file and line as with -g, and the build takes 101 s instead of 134
-# (docs/robustness.md).
+# (docs/robustness.md). Eigen's allocation as polydec's headers require (dec/mesh/eigen_abi.h).
 CFLAGS=(-std=c++20 -O1 -gline-tables-only -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize=object-size,pointer-overflow -fno-sanitize-recover=all
-        -I"$ROOT" -I"$OUT/include" ${EIGEN//-I/-isystem })
+        -DEIGEN_MAX_ALIGN_BYTES=16 -DEIGEN_MALLOC_ALREADY_ALIGNED=0 -I"$ROOT" -I"$OUT/include" ${EIGEN//-I/-isystem })
 mkdir -p "$OUT/objects" "$OUT/artifacts" "$OUT/include/polydec"
 
 # Eigen/Dense and Eigen/Sparse precompiled, as the main build's precompiled headers (some sources

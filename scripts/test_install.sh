@@ -25,11 +25,17 @@ echo "test_install.sh: shared libraries of $build, installed into $prefix"
 ninja -C "$build" -j "$jobs" polydec_operators polydec_apps polydec_cli
 cmake --install "$build" --prefix "$prefix" >/dev/null
 
-# Every installed header compiles by itself (no hidden include-order dependency, no internal header).
+# (the .pc files name the configured CMAKE_INSTALL_PREFIX: copies with the temporary prefix)
+mkdir -p "$work/pkgconfig"
+for pc in "$prefix"/lib/pkgconfig/*.pc; do sed "s#^prefix=.*#prefix=$prefix#" "$pc" > "$work/pkgconfig/$(basename "$pc")"; done
+
+# Every installed header compiles by itself (no hidden include-order dependency, no internal header),
+# with the flags of polydec.pc.
 headers=$(cd "$prefix/include" && find polydec -name '*.h' | sort)
 n=$(echo "$headers" | wc -l)
-echo "$headers" | xargs -P "$jobs" -I{} sh -c 'printf "#include <%s>\n" "$1" | c++ -std=c++20 -fsyntax-only -I"$2/include" $3 -x c++ - ||
-  { echo "test_install.sh: installed header $1 does not compile on its own" >&2; exit 255; }' _ {} "$prefix" "$(pkg-config --cflags eigen3)"
+echo "$headers" | xargs -P "$jobs" -I{} sh -c 'printf "#include <%s>\n" "$1" | c++ -std=c++20 -fsyntax-only $2 -x c++ - ||
+  { echo "test_install.sh: installed header $1 does not compile on its own" >&2; exit 255; }' _ {} \
+  "$(PKG_CONFIG_PATH="$work/pkgconfig" pkg-config --cflags polydec)"
 echo "test_install.sh: $n installed headers compile on their own"
 
 # The shared libraries' dynamic symbol table: only namespace polydec (and its type information).
@@ -48,8 +54,12 @@ done
 export LD_LIBRARY_PATH="$prefix/lib:${LD_LIBRARY_PATH:-}"
 # (configured and built side by side; a failed one fails the script at its wait)
 pids=()
+# geodesics is built for this machine's vector instructions: its distances, allocated in the
+# library, are freed in the example (the package fixes Eigen's alignment on both sides).
 for ex in hodge_laplacian geodesics eigenpairs; do
-  (cmake -S "$root/examples/$ex" -B "$work/$ex" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$prefix" >/dev/null &&
+  native=""
+  [ "$ex" = geodesics ] && native="-DCMAKE_CXX_FLAGS=-march=native"
+  (cmake -S "$root/examples/$ex" -B "$work/$ex" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$prefix" $native >/dev/null &&
      ninja -C "$work/$ex" >/dev/null) &
   pids+=($!)
 done
@@ -74,11 +84,21 @@ int main() {
   return (L.S * Eigen::VectorXd::Ones(mesh.n_vertices())).norm() < 1e-12 ? 0 : 1;
 }
 CPP
-# (the .pc files name the configured CMAKE_INSTALL_PREFIX: copies with the temporary prefix)
-mkdir -p "$work/pkgconfig"
-for pc in "$prefix"/lib/pkgconfig/*.pc; do sed "s#^prefix=.*#prefix=$prefix#" "$pc" > "$work/pkgconfig/$(basename "$pc")"; done
-c++ -std=c++20 "$work/pc.cpp" -o "$work/pc" $(PKG_CONFIG_PATH="$work/pkgconfig" pkg-config --cflags --libs polydec-operators)
+pc_flags=$(PKG_CONFIG_PATH="$work/pkgconfig" pkg-config --cflags --libs polydec-operators)
+c++ -std=c++20 "$work/pc.cpp" -o "$work/pc" $pc_flags
 "$work/pc"
+# Built for this machine's vector instructions (-march=native: AVX/AVX-512 where there are), the
+# consumer frees a vector the library allocated (L.M_lumped) with Eigen's allocation fixed by the
+# .pc file's flags; without them a consumer is refused at compile time (dec/mesh/eigen_abi.h), not
+# left to crash.
+c++ -std=c++20 -march=native "$work/pc.cpp" -o "$work/pc_native" $pc_flags
+"$work/pc_native"
+if c++ -std=c++20 -march=native -fsyntax-only "$work/pc.cpp" -I"$prefix/include" $(pkg-config --cflags eigen3) 2>"$work/refused.txt"; then
+  echo "test_install.sh: a consumer without -DEIGEN_MAX_ALIGN_BYTES=16 -DEIGEN_MALLOC_ALREADY_ALIGNED=0 compiled" >&2
+  exit 1
+fi
+grep -q 'EIGEN_MALLOC_ALREADY_ALIGNED=0' "$work/refused.txt"
+echo "test_install.sh: pkg-config consumer ok, also with -march=native; without the .pc file's Eigen flags refused"
 
 # The Python module as a user installs it: pip into a --system-site-packages venv, built against
 # this installation (the module's sources only), then the import and the whole pytest suite.

@@ -3,6 +3,7 @@
 // omega = exact + coexact + harmonic, star1-orthogonal, with the exact part's potential and norms.
 #pragma once
 
+#include "polydec/dec/mesh/eigen_abi.h"
 #include <Eigen/Core>
 #include <Eigen/Sparse>
 

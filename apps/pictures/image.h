@@ -3,6 +3,7 @@
 // stb_image_write. Shared by the mesh renderer (apps/pictures/render.h) and the plots (apps/pictures/plot.h).
 #pragma once
 
+#include "polydec/dec/mesh/eigen_abi.h"
 #include <Eigen/Core>
 #include <string>
 #include <string_view>

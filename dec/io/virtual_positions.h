@@ -3,6 +3,7 @@
 // starting with '#' are skipped.
 #pragma once
 
+#include "polydec/dec/mesh/eigen_abi.h"
 #include <Eigen/Core>
 #include <string>
 #include <string_view>

@@ -3,6 +3,7 @@
 // adjacency). Immutable after validation.
 #pragma once
 
+#include "polydec/dec/mesh/eigen_abi.h"
 #include <Eigen/Dense>
 #include <memory>
 #include <span>

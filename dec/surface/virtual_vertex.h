@@ -4,6 +4,7 @@
 // a single polygon.
 #pragma once
 
+#include "polydec/dec/mesh/eigen_abi.h"
 #include <Eigen/Core>
 #include <string>
 

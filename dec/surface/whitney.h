@@ -9,6 +9,7 @@
 // 2 (lambda_0 dl_1^dl_2 - lambda_1 dl_0^dl_2 + lambda_2 dl_0^dl_1) = +-(1/area) dA.
 #pragma once
 
+#include "polydec/dec/mesh/eigen_abi.h"
 #include <Eigen/Core>
 
 namespace polydec {

@@ -12,6 +12,7 @@
 // so that d (Whitney) = Whitney (d) with the combinatorial d of dec/volume/complex.h.
 #pragma once
 
+#include "polydec/dec/mesh/eigen_abi.h"
 #include <Eigen/Core>
 
 namespace polydec {

@@ -5,6 +5,7 @@
 // SimplicialLDLT (the fallback). Failures raise SolverError naming the operator.
 #pragma once
 
+#include "polydec/dec/mesh/eigen_abi.h"
 #include <Eigen/Sparse>
 #include <memory>
 #include <span>
