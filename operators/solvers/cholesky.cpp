@@ -211,10 +211,11 @@ template <int Bytes, class Src>
   return q;
 }
 
+// update_row from column q on.
 template <int Bytes, class Src>
-[[gnu::always_inline]] inline void update_row(double* __restrict dst, int m, const double* __restrict coef, size_t cs,
-                                              Src src, int count) {
-  int q = update_runs<Bytes>(dst, 0, m, coef, cs, src, count);
+[[gnu::always_inline]] inline void update_row_from(double* __restrict dst, int q, int m, const double* __restrict coef,
+                                                   size_t cs, Src src, int count) {
+  q = update_runs<Bytes>(dst, q, m, coef, cs, src, count);
   if constexpr (Bytes > 32) q = update_runs<32>(dst, q, m, coef, cs, src, count);
   for (; q + 4 <= m; q += 4) {
     Lanes* d = reinterpret_cast<Lanes*>(dst + q);
@@ -227,6 +228,43 @@ template <int Bytes, class Src>
     for (int t = 0; t < count; ++t) a -= coef[size_t(t) * cs] * src(t)[q];
     dst[q] = a;
   }
+}
+
+template <int Bytes, class Src>
+[[gnu::always_inline]] inline void update_row(double* __restrict dst, int m, const double* __restrict coef, size_t cs,
+                                              Src src, int count) {
+  update_row_from<Bytes>(dst, 0, m, coef, cs, src, count);
+}
+
+// update_row for two output rows with their own coefficients and the same source rows. With
+// AVX-512 (32 registers) both rows' 64 values are held at once, so each source vector is loaded
+// once for both; the same operations in the same order as two update_row calls (the same bits).
+template <int Bytes, class Src>
+[[gnu::always_inline]] inline void update_row_pair(double* __restrict dst0, double* __restrict dst1, int m,
+                                                   const double* __restrict coef0, const double* __restrict coef1,
+                                                   size_t cs, Src src, int count) {
+  int q = 0;
+  if constexpr (Bytes == 64) {
+    using V = LanesOf<64>::type;
+    for (; q + 64 <= m; q += 64) {
+      V* d = reinterpret_cast<V*>(dst0 + q);
+      V* e = reinterpret_cast<V*>(dst1 + q);
+      V a0 = d[0], a1 = d[1], a2 = d[2], a3 = d[3], a4 = d[4], a5 = d[5], a6 = d[6], a7 = d[7];
+      V b0 = e[0], b1 = e[1], b2 = e[2], b3 = e[3], b4 = e[4], b5 = e[5], b6 = e[6], b7 = e[7];
+      for (int t = 0; t < count; ++t) {
+        const double l = coef0[size_t(t) * cs], k = coef1[size_t(t) * cs];
+        const V* x = reinterpret_cast<const V*>(src(t) + q);
+        V y = x[0];
+        a0 -= l * y, b0 -= k * y, y = x[1], a1 -= l * y, b1 -= k * y, y = x[2], a2 -= l * y, b2 -= k * y;
+        y = x[3], a3 -= l * y, b3 -= k * y, y = x[4], a4 -= l * y, b4 -= k * y, y = x[5], a5 -= l * y, b5 -= k * y;
+        y = x[6], a6 -= l * y, b6 -= k * y, y = x[7], a7 -= l * y, b7 -= k * y;
+      }
+      d[0] = a0, d[1] = a1, d[2] = a2, d[3] = a3, d[4] = a4, d[5] = a5, d[6] = a6, d[7] = a7;
+      e[0] = b0, e[1] = b1, e[2] = b2, e[3] = b3, e[4] = b4, e[5] = b5, e[6] = b6, e[7] = b7;
+    }
+  }
+  update_row_from<Bytes>(dst0, q, m, coef0, cs, src, count);
+  update_row_from<Bytes>(dst1, q, m, coef1, cs, src, count);
 }
 
 [[gnu::always_inline]] inline void scale_row(double* __restrict x, int m, double d) {
@@ -246,7 +284,11 @@ template <int Bytes>
     update_row<Bytes>(Y + size_t(i) * m, m, block + i, size_t(n_row), own, i);
     scale_row(Y + size_t(i) * m, m, L.inv[k1 + i]);
   }
-  for (int i = n_col; i < n_row; ++i) update_row<Bytes>(W + size_t(r[i]) * m, m, block + i, size_t(n_row), own, n_col);
+  int i = n_col;
+  for (; i + 1 < n_row; i += 2)
+    update_row_pair<Bytes>(W + size_t(r[i]) * m, W + size_t(r[i + 1]) * m, m, block + i, block + i + 1, size_t(n_row),
+                           own, n_col);
+  if (i < n_row) update_row<Bytes>(W + size_t(r[i]) * m, m, block + i, size_t(n_row), own, n_col);
 }
 
 // L^T Z = Z for supernode k: each of its rows less the rows below, then its rows from the last
@@ -259,8 +301,11 @@ template <int Bytes>
   double* Z = W + size_t(k1) * m;
   auto below = [&](int t) { return W + size_t(r[t]) * m; };
   auto own = [&](int t) { return Z + size_t(t) * m; };
-  for (int j = 0; j < n_col; ++j)
-    update_row<Bytes>(Z + size_t(j) * m, m, block + size_t(j) * n_row + n_col, 1, below, n_row - n_col);
+  int j = 0;
+  for (; j + 1 < n_col; j += 2)
+    update_row_pair<Bytes>(Z + size_t(j) * m, Z + size_t(j + 1) * m, m, block + size_t(j) * n_row + n_col,
+                           block + size_t(j + 1) * n_row + n_col, 1, below, n_row - n_col);
+  if (j < n_col) update_row<Bytes>(Z + size_t(j) * m, m, block + size_t(j) * n_row + n_col, 1, below, n_row - n_col);
   for (int j = n_col - 1; j >= 0; --j) {
     const double* c = block + size_t(j) * n_row;
     update_row<Bytes>(Z + size_t(j) * m, m, c + j + 1, 1, [&](int t) { return own(j + 1 + t); }, n_col - j - 1);
