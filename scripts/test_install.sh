@@ -55,7 +55,7 @@ export LD_LIBRARY_PATH="$prefix/lib:${LD_LIBRARY_PATH:-}"
 # (configured and built side by side; a failed one fails the script at its wait)
 pids=()
 # geodesics is built for this machine's vector instructions: its distances, allocated in the
-# library, are freed in the example (the package fixes Eigen's alignment on both sides).
+# library, are freed in the example (the package fixes Eigen's allocation on both sides).
 for ex in hodge_laplacian geodesics eigenpairs; do
   native=""
   [ "$ex" = geodesics ] && native="-DCMAKE_CXX_FLAGS=-march=native"
