@@ -87,10 +87,11 @@ struct SupernodalView {
   const int *super, *pi, *px, *s;
   const double* x;
   const double* inv;  // 1 / L_jj, in the factor's column order
+  int n_super;
   SupernodalView(const cholmod_factor& L, const std::vector<double>& inverse_diagonal)
       : super(static_cast<const int*>(L.super)), pi(static_cast<const int*>(L.pi)),
         px(static_cast<const int*>(L.px)), s(static_cast<const int*>(L.s)), x(static_cast<const double*>(L.x)),
-        inv(inverse_diagonal.data()) {}
+        inv(inverse_diagonal.data()), n_super(int(L.nsuper)) {}
 };
 
 // The kernels below are plain loops that GCC vectorizes, compiled for AVX2 with FMA and for the
@@ -109,8 +110,9 @@ struct SupernodalView {
 }
 
 // L y = y for supernode k (forward elimination), in `work` (the supernode's rows: its own columns,
-// then the rows below): one update of the whole column below each diagonal entry, then the rows
-// below scattered back once.
+// then the rows below): four columns at a time, their four values solved in the diagonal block
+// and then one update of the rows below them with all four (each row of `work` read and written
+// once per four columns instead of once per column), then the rows below scattered back once.
 [[gnu::always_inline]] inline void forward_supernode(const SupernodalView& L, int k, double* y, double* work) {
   const int k1 = L.super[k], n_col = L.super[k + 1] - k1, n_row = L.pi[k + 1] - L.pi[k];
   const double* block = L.x + L.px[k];
@@ -118,7 +120,20 @@ struct SupernodalView {
   double* __restrict t = work;
   for (int i = 0; i < n_col; ++i) t[i] = y[k1 + i];
   for (int i = n_col; i < n_row; ++i) t[i] = 0.0;
-  for (int j = 0; j < n_col; ++j) {
+  int j = 0;
+  for (; j + 4 <= n_col; j += 4) {
+    const double* __restrict c0 = block + size_t(j) * size_t(n_row);
+    const double* __restrict c1 = c0 + n_row;
+    const double* __restrict c2 = c1 + n_row;
+    const double* __restrict c3 = c2 + n_row;
+    const double y0 = t[j] * inv[j];
+    const double y1 = (t[j + 1] - c0[j + 1] * y0) * inv[j + 1];
+    const double y2 = (t[j + 2] - c0[j + 2] * y0 - c1[j + 2] * y1) * inv[j + 2];
+    const double y3 = (t[j + 3] - c0[j + 3] * y0 - c1[j + 3] * y1 - c2[j + 3] * y2) * inv[j + 3];
+    t[j] = y0, t[j + 1] = y1, t[j + 2] = y2, t[j + 3] = y3;
+    for (int i = j + 4; i < n_row; ++i) t[i] -= (c0[i] * y0 + c1[i] * y1) + (c2[i] * y2 + c3[i] * y3);
+  }
+  for (; j < n_col; ++j) {
     const double* __restrict c = block + size_t(j) * size_t(n_row);
     const double yj = t[j] * inv[j];
     t[j] = yj;
@@ -154,10 +169,22 @@ struct SupernodalView {
 }
 
 // One-column passes: forward over the supernodes `list` names (all n_super when null), backward
-// over all.
+// over all. The forward pass prefetches the factor's values kForwardPrefetchBytes beyond the
+// supernode at hand (1.5M-quad sphere: ~10% less time per pass, docs/benchmarks.md).
+constexpr long kForwardPrefetchBytes = 16384;
 [[gnu::always_inline]] inline void forward_pass_body(const SupernodalView& L, const int* list, int count, double* y,
                                                      double* work) {
-  for (int q = 0; q < count; ++q) forward_supernode(L, list ? list[q] : q, y, work);
+  const char* base = reinterpret_cast<const char*>(L.x);
+  const char* end = base + sizeof(double) * size_t(L.px[L.n_super]);
+  const char* next = base;  // the lowest address not yet prefetched
+  for (int q = 0; q < count; ++q) {
+    const int k = list ? list[q] : q;
+    const char* start = base + sizeof(double) * size_t(L.px[k]);
+    const char* ahead = std::min(end, base + sizeof(double) * size_t(L.px[k + 1]) + kForwardPrefetchBytes);
+    if (next < start) next = start;
+    for (; next < ahead; next += 64) __builtin_prefetch(next);
+    forward_supernode(L, k, y, work);
+  }
 }
 // The backward pass visits the supernodes last to first, so the factor's values go by in
 // descending blocks that the hardware prefetcher does not follow: they are prefetched
