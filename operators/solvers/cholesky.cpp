@@ -513,6 +513,25 @@ struct SparseCholesky::Impl {
       }
     std::sort(reach.begin(), reach.end());
   }
+  // The supernodes the forward solve of the permuted w changes, into `reach` in elimination order
+  // (after make_tree): those with a non-zero in their rows of w or below them in the tree. The
+  // others stay zero, so skipping them gives the same solution: the right-hand side of the
+  // Poisson step of heat geodesics is zero wherever the heat step underflowed (on the 1.5M-quad
+  // sphere a third of the rows, docs/benchmarks.md).
+  void find_live_supernodes() const {
+    const int n_super = int(L->nsuper);
+    const int* super = static_cast<const int*>(L->super);
+    live.assign(size_t(n_super), 0);
+    reach.clear();
+    for (int k = 0; k < n_super; ++k) {
+      bool any = live[size_t(k)] != 0;
+      for (int j = super[k]; j < super[k + 1] && !any; ++j) any = w[size_t(j)] != 0.0;
+      if (!any) continue;
+      reach.push_back(k);
+      if (super_parent[size_t(k)] >= 0) live[size_t(super_parent[size_t(k)])] = 1;
+    }
+  }
+  mutable std::vector<unsigned char> live;
   bool started = false;
   ~Impl() {
     if (started) {
@@ -701,7 +720,9 @@ void SparseCholesky::solve(const double* B, double* X, int n_columns) const {
     m.make_solve_buffers();
     const int* perm = static_cast<const int*>(m.L->Perm);
     for (int k = 0; k < rows_; ++k) m.w[size_t(k)] = B[perm ? perm[k] : k];
-    m.supernodal_solve(nullptr, X);
+    m.make_tree();
+    m.find_live_supernodes();
+    m.supernodal_solve(m.reach.size() == m.L->nsuper ? nullptr : &m.reach, X);
     return;
   }
   cholmod_dense b{};
