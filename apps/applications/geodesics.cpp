@@ -125,72 +125,67 @@ void normalize_block(double* x, int n, int stride) {
   pqs[2] = flat ? 0.0 : std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) / p;
 }
 
-// si and sj of one fan triangle from its frame pqs = (p, q, s). Zero where w vanishes or |w|^2
-// leaves [1e-280, 1e280] without a finite rescaling.
-[[gnu::always_inline]] inline bool fan_shares(double di, double dj, const double* pqs, double& si, double& sj) {
-  const double p = pqs[0], q = pqs[1], s = pqs[2];
-  double x = di * q - dj * p, y = di * s;
-  double ww = x * x + y * y;
-  if (!(ww > 1e-280 && ww < 1e280)) {  // far from the source u underflows: rescale first
-    const double mx = std::max(std::abs(x), std::abs(y));
-    if (!(mx > 0) || !std::isfinite(mx)) return false;
-    x /= mx;
-    y /= mx;
-    ww = x * x + y * y;
-  }
+// si and sj of one fan triangle from its frame (p, q, s), in two steps without branches, so that
+// loops of them vectorize (the library is built with -fno-math-errno -fno-trapping-math, so
+// std::sqrt, the division and the selects do). fan_shares_direct adds them where |w|^2 lies in
+// [1e-280, 1e280] and returns whether w != 0 lies outside: far from the source u underflows. Then
+// fan_shares_rescaled adds those, with w divided by max(|x|, |y|) first (nothing where w is not
+// finite). The shares accumulate into si, sj; each step adds nothing where the other one applies,
+// and nothing where u is not finite.
+[[gnu::always_inline]] inline bool fan_shares_direct(double di, double dj, double p, double q, double s, double& si,
+                                                     double& sj) {
+  const double x = di * q - dj * p, y = di * s;
+  const double ww = x * x + y * y;
+  const bool in_range = ww > 1e-280 && ww < 1e280;
   const double h = 0.5 / std::sqrt(ww);
-  si = -h * (x * q + y * s);
-  sj = h * x * p;
-  return true;
+  si -= in_range ? h * (x * q + y * s) : 0.0;
+  sj += in_range ? h * x * p : 0.0;
+  return !in_range && (x != 0 || y != 0);
+}
+[[gnu::always_inline]] inline void fan_shares_rescaled(double di, double dj, double p, double q, double s, double& si,
+                                                       double& sj) {
+  const double x = di * q - dj * p, y = di * s;
+  const double ww = x * x + y * y;
+  const double mx = std::max(std::abs(x), std::abs(y));
+  const bool take = !(ww > 1e-280 && ww < 1e280) && mx > 0 && mx <= std::numeric_limits<double>::max();
+  const double d = take ? mx : 1.0;
+  const double xs = x / d, ys = y / d;
+  const double h = 0.5 / std::sqrt(xs * xs + ys * ys);
+  si -= take ? h * (xs * q + ys * s) : 0.0;
+  sj += take ? h * xs * p : 0.0;
 }
 
-// One fan triangle for m columns (fan_shares for each), added to b_i, b_j and the virtual vertex's
-// acc, in loops without branches so that they vectorize (the library is built with
-// -fno-math-errno -fno-trapping-math, so std::sqrt, the division and the selects do). Columns with
-// |w|^2 outside [1e-280, 1e280] contribute nothing in the first loop; if there are any with w != 0,
-// a second loop over all columns adds theirs, rescaled by max(|x|, |y|) as fan_shares does. Far
-// from the sources many columns need it: a loop of fan_shares over them took three quarters of the
-// pass on a 1.5M-quad sphere. The arrays do not overlap (i != j on a fan triangle of non-zero area).
+// One fan triangle for m columns (frame pqs), added to b_i, b_j and the virtual vertex's acc: a
+// loop of fan_shares_direct, and one of fan_shares_rescaled only if some column needs it (far
+// from the sources many do: a scalar loop over them took three quarters of the pass on a 1.5M-quad
+// sphere). The arrays do not overlap (i != j on a fan triangle of non-zero area).
 [[gnu::always_inline]] inline void fan_columns(int m, const double* pqs, const double* __restrict ui,
                                                const double* __restrict uj, const double* __restrict uf,
                                                double* __restrict bi, double* __restrict bj, double* __restrict acc) {
   const double p = pqs[0], q = pqs[1], s = pqs[2];
   long rescale = 0;
   for (int c = 0; c < m; ++c) {
-    const double di = ui[c] - uf[c], dj = uj[c] - uf[c];
-    const double x = di * q - dj * p, y = di * s;
-    const double ww = x * x + y * y;
-    const double h = 0.5 / std::sqrt(ww);
-    const bool in_range = ww > 1e-280 && ww < 1e280;
-    rescale |= long(!in_range && (x != 0 || y != 0));
-    const double f = in_range ? h : 0.0;
-    const double si = -f * (x * q + y * s);
-    const double sj = f * x * p;
+    double si = 0, sj = 0;
+    rescale |= long(fan_shares_direct(ui[c] - uf[c], uj[c] - uf[c], p, q, s, si, sj));
     bi[c] += si;
     bj[c] += sj;
     acc[c] -= si + sj;
   }
   if (rescale == 0) return;
   for (int c = 0; c < m; ++c) {
-    const double di = ui[c] - uf[c], dj = uj[c] - uf[c];
-    const double x = di * q - dj * p, y = di * s;
-    const double ww = x * x + y * y;
-    const double mx = std::max(std::abs(x), std::abs(y));
-    const bool take = !(ww > 1e-280 && ww < 1e280) && mx > 0 && mx <= std::numeric_limits<double>::max();
-    const double d = take ? mx : 1.0;
-    const double xs = x / d, ys = y / d;
-    const double h = 0.5 / std::sqrt(xs * xs + ys * ys);
-    const double si = take ? -h * (xs * q + ys * s) : 0.0;
-    const double sj = take ? h * xs * p : 0.0;
+    double si = 0, sj = 0;
+    fan_shares_rescaled(ui[c] - uf[c], uj[c] - uf[c], p, q, s, si, sj);
     bi[c] += si;
     bj[c] += sj;
     acc[c] -= si + sj;
   }
 }
 
-// One face of the one-column pass, n corners (N > 0: n = N, unrolled): R holds the frames of its
-// fan triangles (fan_frame, 3 n values), skip[k] marks degenerate fan triangles (no gradient, no
-// divergence). Each corner's u is read once and its b written once.
+// One face of the one-column pass, n corners: R holds the frames of its fan triangles (fan_frame,
+// 3 n values), skip[k] marks degenerate fan triangles (no gradient, no divergence). Each corner's
+// u is read once and its b written once (N > 0: n = N, unrolled). Each fan triangle branches to
+// the rescaled step only when it needs it: lanes of four fan triangles, both steps whenever one
+// needed it, took 12-19% longer on the 1.5M-quad sphere (docs/benchmarks.md).
 template <int N>
 [[gnu::always_inline]] inline void fan_face([[maybe_unused]] int n, const double* R, const unsigned char* skip,
                                             const int* idx, const double* w, const double* u, double* b) {
@@ -198,11 +193,11 @@ template <int N>
     double uf = 0, acc = 0;
     for (int k = 0; k < n; ++k) uf += w[k] * u[idx[k]];
     for (int k = 0; k < n; ++k) {
+      if (skip[k]) continue;
       const int k1 = k + 1 == n ? 0 : k + 1;
-      double si, sj;
-      if (skip[k] ||
-          !fan_shares(u[idx[k]] - uf, u[idx[k1]] - uf, R + 3 * k, si, sj))
-        continue;
+      const double di = u[idx[k]] - uf, dj = u[idx[k1]] - uf, *f = R + 3 * k;
+      double si = 0, sj = 0;
+      if (fan_shares_direct(di, dj, f[0], f[1], f[2], si, sj)) fan_shares_rescaled(di, dj, f[0], f[1], f[2], si, sj);
       b[idx[k]] += si;
       b[idx[k1]] += sj;
       acc -= si + sj;  // the virtual vertex's hat gradient is -(g_i + g_j)
@@ -215,9 +210,10 @@ template <int N>
     for (int k = 0; k < N; ++k) uf += w[k] * uk[k];
     for (int k = 0; k < N; ++k) {
       const int k1 = k + 1 == N ? 0 : k + 1;
+      const double di = uk[k] - uf, dj = uk[k1] - uf, *f = R + 3 * k;
       si[k] = sj[k] = 0;
-      if (!skip[k])
-        fan_shares(uk[k] - uf, uk[k1] - uf, R + 3 * k, si[k], sj[k]);
+      if (!skip[k] && fan_shares_direct(di, dj, f[0], f[1], f[2], si[k], sj[k]))
+        fan_shares_rescaled(di, dj, f[0], f[1], f[2], si[k], sj[k]);
     }
     double acc = 0;
     for (int k = 0; k < N; ++k) acc -= si[k] + sj[k];
