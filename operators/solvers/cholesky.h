@@ -106,7 +106,9 @@ class SparseCholesky {
   // is unchanged. SolverError when the patterns differ.
   SparseCholesky with_values(const Eigen::SparseMatrix<double>& A, std::string name) const;
 
-  // Solves A x = b. Not safe to call concurrently on one object (CHOLMOD keeps workspace).
+  // Solves A x = b. Not safe to call concurrently on one object (CHOLMOD keeps workspace). With
+  // CHOLMOD, a single column's forward solve skips the supernodes that b's zeros leave at zero
+  // (zero in their rows and in every row below them in the elimination tree): the same solution.
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
   Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
   // The same on raw column-major storage: B and X are rows() x n_columns (they may alias).
