@@ -170,7 +170,8 @@ struct SupernodalView {
 
 // One-column passes: forward over the supernodes `list` names (all n_super when null), backward
 // over all. The forward pass prefetches the factor's values kForwardPrefetchBytes beyond the
-// supernode at hand (1.5M-quad sphere: ~10% less time per pass, docs/benchmarks.md).
+// supernode at hand: with the four-column update 1-11% less time per pass on a 1.5M-quad sphere,
+// each of the two alone slower (docs/benchmarks.md).
 constexpr long kForwardPrefetchBytes = 16384;
 [[gnu::always_inline]] inline void forward_pass_body(const SupernodalView& L, const int* list, int count, double* y,
                                                      double* work) {
@@ -433,6 +434,7 @@ struct SparseCholesky::Impl {
   // fixed by the analysis; made on the first call), the inverse permutation and the supernodes
   // of the current reach with their marks.
   mutable std::vector<int> super_of, super_parent, iperm, reach, mark;
+  mutable std::vector<unsigned char> live;  // find_live_supernodes' marks
   mutable int mark_now = 0;
   // One-column solves (forward_supernode, backward_supernode): the permuted vector and the
   // gather/scatter scratch of the largest supernode, made on the first call.
@@ -516,8 +518,8 @@ struct SparseCholesky::Impl {
   // The supernodes the forward solve of the permuted w changes, into `reach` in elimination order
   // (after make_tree): those with a non-zero in their rows of w or below them in the tree. The
   // others stay zero, so skipping them gives the same solution: the right-hand side of the
-  // Poisson step of heat geodesics is zero wherever the heat step underflowed (on the 1.5M-quad
-  // sphere a third of the rows, docs/benchmarks.md).
+  // Poisson step of heat geodesics is zero wherever the heat step underflowed to zero
+  // (docs/benchmarks.md).
   void find_live_supernodes() const {
     const int n_super = int(L->nsuper);
     const int* super = static_cast<const int*>(L->super);
@@ -531,7 +533,6 @@ struct SparseCholesky::Impl {
       if (super_parent[size_t(k)] >= 0) live[size_t(super_parent[size_t(k)])] = 1;
     }
   }
-  mutable std::vector<unsigned char> live;
   bool started = false;
   ~Impl() {
     if (started) {

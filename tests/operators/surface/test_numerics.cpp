@@ -91,6 +91,14 @@ PolygonPositions random_polygon(std::mt19937& rng, int n, double r_min, double b
 
 double rel(const Eigen::VectorXd& a, const Eigen::VectorXd& b) { return (a - b).norm() / b.norm(); }
 
+// The Cholesky tests' matrix: A = M - 0.01 S of a noisy hexagon sphere (a heat step).
+struct HeatStep {
+  Mesh mesh = add_noise(hex_sphere(3), 0.1, 5);
+  Refinement r = refine(mesh);
+  SparseMatrix S = stiffness(mesh, r), M = mass(mesh, r);
+  SparseMatrix A = M - 0.01 * S;
+};
+
 }  // namespace
 
 TEST_CASE("S and M are invariant under translation and scaling", "[robust][numerics]") {
@@ -241,10 +249,8 @@ TEST_CASE("Cholesky: the better of AMD and nested dissection by fill, one analys
 
 TEST_CASE("Cholesky: a sparse right-hand side solves as the dense one, after refactor too",
           "[robust][numerics][cholesky]") {
-  const Mesh mesh = add_noise(hex_sphere(3), 0.1, 5);
-  const Refinement r = refine(mesh);
-  const SparseMatrix S = stiffness(mesh, r), M = mass(mesh, r);
-  const SparseMatrix A = M - 0.01 * S;
+  const HeatStep h;
+  const SparseMatrix &S = h.S, &M = h.M, &A = h.A;
   const int n = int(A.rows());
   for (CholeskyOrdering ordering : {CholeskyOrdering::Amd, CholeskyOrdering::BestFill}) {
     CholeskyOptions o;
@@ -276,10 +282,8 @@ TEST_CASE("Cholesky: a sparse right-hand side solves as the dense one, after ref
 
 TEST_CASE("Cholesky: the sparse solve over the supernodal reach, for many rows, relaxed supernodes and a shared analysis",
           "[robust][numerics][cholesky]") {
-  const Mesh mesh = add_noise(hex_sphere(3), 0.1, 5);
-  const Refinement r = refine(mesh);
-  const SparseMatrix S = stiffness(mesh, r), M = mass(mesh, r);
-  const SparseMatrix A = M - 0.01 * S;
+  const HeatStep h;
+  const SparseMatrix &S = h.S, &M = h.M, &A = h.A;
   const int n = int(A.rows());
   std::vector<int> many;
   std::vector<double> many_values;
@@ -328,10 +332,9 @@ TEST_CASE("Cholesky: a one-column solve with a right-hand side zero on a region 
   // The forward solve skips the supernodes that stay zero (no non-zero in their rows or below them
   // in the elimination tree); the Eigen backend's LDL^T solves everything. Both routes must agree
   // wherever the zeros lie, including a lone non-zero deep inside the zero region.
-  const Mesh mesh = add_noise(hex_sphere(3), 0.1, 5);
-  const Refinement r = refine(mesh);
-  const SparseMatrix S = stiffness(mesh, r), M = mass(mesh, r);
-  const SparseMatrix A = M - 0.01 * S;
+  const HeatStep h;
+  const Mesh& mesh = h.mesh;
+  const SparseMatrix& A = h.A;
   const int n = int(A.rows());
   CholeskyOptions eigen_options;
   eigen_options.backend = CholeskyBackend::Eigen;
