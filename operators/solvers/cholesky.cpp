@@ -434,7 +434,6 @@ struct SparseCholesky::Impl {
   // fixed by the analysis; made on the first call), the inverse permutation and the supernodes
   // of the current reach with their marks.
   mutable std::vector<int> super_of, super_parent, iperm, reach, mark;
-  mutable std::vector<unsigned char> live;  // find_live_supernodes' marks
   mutable int mark_now = 0;
   // One-column solves (forward_supernode, backward_supernode): the permuted vector and the
   // gather/scatter scratch of the largest supernode, made on the first call.
@@ -500,13 +499,17 @@ struct SparseCholesky::Impl {
     for (int k = 0; k < n; ++k) iperm[size_t(perm ? perm[k] : k)] = k;
     mark.assign(size_t(n_super), 0);
   }
-  // The supernodes from those of the factor rows `rows` (in the factor's order) up to the root,
-  // in elimination order, into `reach` (after make_tree).
-  void find_reach(std::span<const int> rows) const {
+  // A fresh value of mark_now: the supernodes marked with it are those of the current call.
+  void new_mark() const {
     if (++mark_now == std::numeric_limits<int>::max()) {
       std::fill(mark.begin(), mark.end(), 0);
       mark_now = 1;
     }
+  }
+  // The supernodes from those of the factor rows `rows` (in the factor's order) up to the root,
+  // in elimination order, into `reach` (after make_tree).
+  void find_reach(std::span<const int> rows) const {
+    new_mark();
     reach.clear();
     for (const int p : rows)
       for (int j = super_of[size_t(p)]; j >= 0 && mark[size_t(j)] != mark_now; j = super_parent[size_t(j)]) {
@@ -516,21 +519,21 @@ struct SparseCholesky::Impl {
     std::sort(reach.begin(), reach.end());
   }
   // The supernodes the forward solve of the permuted w changes, into `reach` in elimination order
-  // (after make_tree): those with a non-zero in their rows of w or below them in the tree. The
-  // others stay zero, so skipping them gives the same solution: the right-hand side of the
-  // Poisson step of heat geodesics is zero wherever the heat step underflowed to zero
-  // (docs/benchmarks.md).
+  // (after make_tree; with find_reach's marks): those with a non-zero in their rows of w or below
+  // them in the tree. The others stay zero, so skipping them gives the same solution: the
+  // right-hand side of the Poisson step of heat geodesics is zero wherever the heat step
+  // underflowed to zero (docs/benchmarks.md).
   void find_live_supernodes() const {
     const int n_super = int(L->nsuper);
     const int* super = static_cast<const int*>(L->super);
-    live.assign(size_t(n_super), 0);
+    new_mark();
     reach.clear();
     for (int k = 0; k < n_super; ++k) {
-      bool any = live[size_t(k)] != 0;
+      bool any = mark[size_t(k)] == mark_now;  // a child is live
       for (int j = super[k]; j < super[k + 1] && !any; ++j) any = w[size_t(j)] != 0.0;
       if (!any) continue;
       reach.push_back(k);
-      if (super_parent[size_t(k)] >= 0) live[size_t(super_parent[size_t(k)])] = 1;
+      if (super_parent[size_t(k)] >= 0) mark[size_t(super_parent[size_t(k)])] = mark_now;
     }
   }
   bool started = false;
