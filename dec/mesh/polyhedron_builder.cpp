@@ -7,13 +7,16 @@ namespace polydec {
 namespace polyhedron_builder_detail {
 namespace {
 
-unsigned long long hash_sorted(const std::vector<int>& key) {
-  unsigned long long h = 1469598103934665603ull ^ key.size();
+std::uint64_t hash_sorted(const std::vector<int>& key) {
+  std::uint64_t h = 1469598103934665603ull ^ key.size();
   for (int v : key) {
-    h ^= (unsigned long long)(unsigned)v + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
+    h ^= std::uint64_t(unsigned(v)) + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
     h *= 1099511628211ull;
   }
-  return h;
+  // Final mix (splitmix64's), so that the low bits that pick a slot depend on every vertex.
+  h = (h ^ (h >> 30)) * 0xbf58476d1ce4e5b9ull;
+  h = (h ^ (h >> 27)) * 0x94d049bb133111ebull;
+  return h ^ (h >> 31);
 }
 
 const std::vector<std::vector<int>> kTetra{{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
@@ -74,33 +77,58 @@ PolyhedronSoupBuilder::PolyhedronSoupBuilder(Eigen::MatrixX3d positions) {
   soup_.positions = std::move(positions);
 }
 
+void PolyhedronSoupBuilder::reserve(long faces, long face_indices, long cells, long cell_halffaces) {
+  soup_.face_offsets.reserve(size_t(std::max(0L, faces)) + 1);
+  soup_.face_indices.reserve(size_t(std::max(0L, face_indices)));
+  soup_.cell_offsets.reserve(size_t(std::max(0L, cells)) + 1);
+  soup_.cell_halffaces.reserve(size_t(std::max(0L, cell_halffaces)));
+  face_hash_low_.reserve(size_t(std::max(0L, faces)));
+  while (long(table_.size()) < 2 * faces + 2) grow();
+}
+
+void PolyhedronSoupBuilder::grow() {
+  std::vector<Slot> old(table_.size() * 2);
+  old.swap(table_);
+  const size_t mask = table_.size() - 1;
+  for (const Slot& s : old) {
+    if (s.face < 0) continue;
+    size_t i = face_hash_low_[size_t(s.face)] & mask;
+    while (table_[i].face >= 0) i = (i + 1) & mask;
+    table_[i] = s;
+  }
+}
+
 int PolyhedronSoupBuilder::add_polygon(std::span<const int> polygon) {
+  if (2 * size_t(soup_.n_faces() + 1) > table_.size()) grow();
   key_.assign(polygon.begin(), polygon.end());
   std::sort(key_.begin(), key_.end());
-  auto& bucket = by_hash_[polyhedron_builder_detail::hash_sorted(key_)];
-  const size_t n = polygon.size();
-  for (size_t b = 0; n > 0 && b < bucket.size(); ++b) {  // an empty polygon matches nothing
-    const int f = bucket[b];
-    const auto face = soup_.face_offsets[f + 1] - soup_.face_offsets[f];
-    if (size_t(face) != n) continue;
-    other_.assign(soup_.face_indices.begin() + soup_.face_offsets[f],
-                  soup_.face_indices.begin() + soup_.face_offsets[f + 1]);
-    const std::vector<int> ordered = other_;
+  const std::uint64_t h = polyhedron_builder_detail::hash_sorted(key_);
+  const auto tag = std::uint32_t(h >> 32);
+  const size_t mask = table_.size() - 1, n = polygon.size();
+  size_t i = size_t(h) & mask;
+  for (; table_[i].face >= 0; i = (i + 1) & mask) {
+    const int f = table_[i].face;
+    // An empty polygon matches nothing.
+    if (n == 0 || table_[i].tag != tag || size_t(soup_.face_offsets[f + 1] - soup_.face_offsets[f]) != n) continue;
+    ordered_.assign(soup_.face_indices.begin() + soup_.face_offsets[f],
+                    soup_.face_indices.begin() + soup_.face_offsets[f + 1]);
+    other_ = ordered_;
     std::sort(other_.begin(), other_.end());
     if (other_ != key_) continue;
     last_face_ = f;
-    const size_t p = size_t(std::find(ordered.begin(), ordered.end(), polygon[0]) - ordered.begin());
+    const size_t p = size_t(std::find(ordered_.begin(), ordered_.end(), polygon[0]) - ordered_.begin());
     bool same = true, reversed = true;
-    for (size_t i = 0; i < n; ++i) {
-      same = same && polygon[i] == ordered[(p + i) % n];
-      reversed = reversed && polygon[i] == ordered[(p + n - i) % n];
+    for (size_t k = 0; k < n; ++k) {
+      same = same && polygon[k] == ordered_[(p + k) % n];
+      reversed = reversed && polygon[k] == ordered_[(p + n - k) % n];
     }
-    const int h = same ? 2 * f : reversed ? 2 * f + 1 : -1;
-    if (h >= 0) cell_.push_back(h);
-    return h;
+    const int half = same ? 2 * f : reversed ? 2 * f + 1 : -1;
+    if (half >= 0) cell_.push_back(half);
+    return half;
   }
   const int f = soup_.add_face(polygon);
-  bucket.push_back(f);
+  table_[i] = Slot{tag, f};
+  face_hash_low_.push_back(std::uint32_t(h));
   last_face_ = f;
   cell_.push_back(2 * f);
   return 2 * f;

@@ -3,8 +3,8 @@
 // that face, as half-face 2f when it has the face's cyclic order and 2f+1 when reversed.
 #pragma once
 
+#include <cstdint>
 #include <span>
-#include <unordered_map>
 #include <vector>
 
 #include "polydec/dec/mesh/volume_mesh.h"
@@ -41,6 +41,9 @@ class PolyhedronSoupBuilder {
   bool add_vtk_cell(int vtk_type, std::span<const int> vertices);
   // Closes the current cell (its half-faces are the polygons added since the last end_cell).
   void end_cell();
+  // Room for `faces` faces with `face_indices` vertices in all and `cells` cells with
+  // `cell_halffaces` half-faces in all, when the caller knows them (no regrowth while adding).
+  void reserve(long faces, long face_indices, long cells, long cell_halffaces);
   // Index of the face that add_polygon last matched or created.
   int last_face() const { return last_face_; }
 
@@ -48,9 +51,19 @@ class PolyhedronSoupBuilder {
   PolyhedronSoup take() { return std::move(soup_); }
 
  private:
+  // Open-addressing table of the faces by the hash of their sorted vertices (linear probing, at most
+  // half full): a slot holds a face and its hash's high 32 bits, or face -1; face_hash_low_ keeps
+  // each face's low 32 bits, which pick its slot. No allocation per face.
+  struct Slot {
+    std::uint32_t tag = 0;
+    int face = -1;
+  };
+  void grow();
+
   PolyhedronSoup soup_;
-  std::unordered_map<unsigned long long, std::vector<int>> by_hash_;  // hash of sorted vertices -> faces
-  std::vector<int> cell_, key_, other_;
+  std::vector<Slot> table_ = std::vector<Slot>(1024);
+  std::vector<std::uint32_t> face_hash_low_;
+  std::vector<int> cell_, key_, other_, ordered_;
   int last_face_ = -1;
 };
 

@@ -173,6 +173,9 @@ VolumeMesh jitter_interior(const VolumeMesh& mesh, const VolumeJitter& jitter) {
 VolumeMesh hex_grid_volume(int nx, int ny, int nz, const VolumeJitter& jitter) {
   check_counts(nx, ny, nz, "hex_grid_volume");
   PolyhedronSoupBuilder builder(grid_positions(nx, ny, nz, 0));
+  const long cells = long(nx) * ny * nz,
+             faces = long(nx + 1) * ny * nz + long(nx) * (ny + 1) * nz + long(nx) * ny * (nz + 1);
+  builder.reserve(faces, 4 * faces, cells, 6 * cells);
   for (int k = 0; k < nz; ++k)
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i) builder.add_vtk_cell(kVtkHexahedron, cube_corners(nx, ny, i, j, k));

@@ -1,13 +1,16 @@
 // tests/dec/mesh/test_volume_mesh.cpp — VolumeMesh: the polyLaplace cubes (counts, volume,
 // orientation, boundary surface), validation of bad soups (which element is named), the hex
-// grid generator and the OVM reader/writer.
+// grid generator, the OVM reader/writer and the soup builder's face matching.
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <map>
+#include <random>
 
 #include "polydec/dec/io/volume_io.h"
+#include "polydec/dec/mesh/polyhedron_builder.h"
 #include "polydec/dec/mesh/volume_generators.h"
 #include "polydec/dec/mesh/volume_mesh.h"
 #include "tests/support/support.h"
@@ -380,6 +383,62 @@ TEST_CASE("OVM: bad files name the line", "[volume]") {
   }
   CHECK_THROWS_AS(read_volume_mesh("/nonexistent/x.ovm"), FileError);
   CHECK_THROWS_AS(read_volume_mesh("x.stl"), FileError);
+}
+
+TEST_CASE("PolyhedronSoupBuilder matches faces by vertex set as a brute-force search does", "[volume]") {
+  // Polygons drawn from a few vertices, so that vertex sets repeat in the same, the reversed and
+  // other cyclic orders; thousands of faces, so that the builder's table grows several times.
+  // The oracle: a map from each sorted vertex set to the first polygon (face) with it.
+  std::mt19937 rng(7);
+  PolyhedronSoupBuilder builder(Eigen::MatrixX3d::Zero(40, 3));
+  std::map<std::vector<int>, int> first;  // sorted vertex set -> face
+  std::vector<std::vector<int>> faces;
+  int n_same = 0, n_reversed = 0, n_rejected = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const int n = 3 + int(rng() % 3);
+    std::vector<int> poly;
+    while (int(poly.size()) < n) {
+      const int v = int(rng() % 14);
+      if (std::find(poly.begin(), poly.end(), v) == poly.end()) poly.push_back(v);
+    }
+    if (k % 3 == 1 && !faces.empty()) {  // an earlier face, rotated and perhaps reversed or shuffled
+      poly = faces[rng() % faces.size()];
+      std::rotate(poly.begin(), poly.begin() + long(rng() % poly.size()), poly.end());
+      if (rng() % 2) std::reverse(poly.begin(), poly.end());
+      if (rng() % 4 == 0) std::swap(poly[0], poly[1]);
+    }
+    std::vector<int> key = poly;
+    std::sort(key.begin(), key.end());
+    int expected;
+    if (const auto it = first.find(key); it == first.end()) {
+      expected = 2 * int(faces.size());
+      first.emplace(key, int(faces.size()));
+      faces.push_back(poly);
+    } else {
+      const std::vector<int>& f = faces[size_t(it->second)];
+      const size_t m = f.size(), p = size_t(std::find(f.begin(), f.end(), poly[0]) - f.begin());
+      bool same = true, reversed = true;
+      for (size_t i = 0; i < m; ++i) {
+        same = same && poly[i] == f[(p + i) % m];
+        reversed = reversed && poly[i] == f[(p + m - i) % m];
+      }
+      expected = same ? 2 * it->second : reversed ? 2 * it->second + 1 : -1;
+    }
+    n_same += expected >= 0 && expected % 2 == 0 && expected / 2 < int(faces.size()) - 1;
+    n_reversed += expected >= 0 && expected % 2 == 1;
+    n_rejected += expected < 0;
+    REQUIRE(builder.add_polygon(poly) == expected);
+    REQUIRE(builder.n_faces() == int(faces.size()));
+  }
+  // Every case occurred often (the oracle's counts, not the builder's).
+  CHECK(n_same > 500);
+  CHECK(n_reversed > 500);
+  CHECK(n_rejected > 500);
+  CHECK(faces.size() > 2000);
+  const PolyhedronSoup soup = builder.take();
+  for (size_t f = 0; f < faces.size(); ++f)
+    CHECK(std::equal(faces[f].begin(), faces[f].end(), soup.face_indices.begin() + soup.face_offsets[f],
+                     soup.face_indices.begin() + soup.face_offsets[f + 1]));
 }
 
 }  // namespace test_volume_mesh
