@@ -22,6 +22,9 @@
 //                 a 100k-vertex quad torus with the default BLAS policy against OPENBLAS_NUM_THREADS=1,
 //                 two busy processes beside it, wall time; PATH defaults to this build's CLI)
 //   polydec_bench --memory-child N      (internal: peak memory of one assembly, fresh process)
+//   polydec_bench --volume-first-child N T   (internal: one volume assembly on T threads, fresh process)
+//   polydec_bench --volume-read N [R]   (hex_grid_volume(N^3) built, then read back from .vtu, .vtk and
+//                 .msh files, R rounds: what loading a large volume mesh costs)
 //   polydec_bench --volume-memory N     (the polydec side alone on hex_grid_volume(N^3): peak memory,
 //                 for /usr/bin/time -v; prints the sizes of the mesh and the matrices)
 #include "polydec/apps/applications/geodesics.h"
@@ -797,9 +800,11 @@ void bench_volume_threads(const std::string& name, const VolumeMesh& mesh, int r
   };
   // Alternating which goes first (1, T, T, 1, ...): the run after another one reuses the pages that
   // one just freed, which are cheaper to fault in than pages freed long ago on a virtual machine.
-  // One untimed pair first, reported apart: the process's first ~2 GB of huge pages come from
-  // the kernel's compaction of other memory, which serializes faults and is not the assembly's
-  // cost (measured: the first pair ~1.0x, later pairs 1.6-2.4x, docs/benchmarks.md).
+  // One untimed pair first, reported apart: within a process, whether a run gets memory just freed
+  // (cheap) or memory the kernel has meanwhile handed back to the hypervisor (free page reporting:
+  // ~12x dearer to touch again, bench/fresh_memory.cpp) depends on the kernel's timing; the first
+  // pair is the most exposed (measured 0.97-1.06x, later pairs 1.6-2.9x). The row "fresh process"
+  // times the first call of fresh processes instead (docs/benchmarks.md).
   std::vector<double> w1, wT, c1, cT;
   const std::string load_before = load_note();
   const double cold1 = wall_ms([&] { run(1, L1); }), coldT = wall_ms([&] { run(T, LT); });
@@ -850,6 +855,38 @@ int volume_memory(int n) {
   return 0;
 }
 
+// `--volume-read N [R]`: building a large volume mesh, as a user waits for it. Wall time of
+// hex_grid_volume(N^3) (the first call of the process) and of the next large allocation (which pays
+// for whatever small blocks the build left to glibc), then R rounds (default 3) of read_volume_mesh on
+// the grid written as .vtu, .vtk and .msh (medians). With LD_LIBRARY_PATH pointing at another
+// build's libraries, the same binary times that build (docs/benchmarks.md).
+int volume_read(int n, int reps) {
+  const auto t0 = Clock::now();
+  const VolumeMesh grid = hex_grid_volume(n, n, n);
+  const double generate = ms_since(t0);
+  const auto t1 = Clock::now();
+  std::unique_ptr<char[]> large(new char[size_t(64) << 20]);
+  char* volatile escaped = large.get();  // a real allocation, not one the compiler may elide
+  const double next_alloc = ms_since(t1);
+  (void)escaped;
+  std::printf("hex_grid_volume(%d^3): %d cells, %d faces; %.0f ms; the next 64 MB allocation %.1f ms\n", n,
+              grid.n_cells(), grid.n_faces(), generate, next_alloc);
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / fmt::format("polydec_bench_volume_read_{}", getpid());
+  std::filesystem::create_directories(dir);
+  for (const char* ext : {".vtu", ".vtk", ".msh"}) {
+    const std::string path = (dir / (std::string("grid") + ext)).string();
+    write_volume_mesh(grid, path);
+    std::vector<double> t;
+    int cells = 0;
+    for (int r = 0; r < reps; ++r) t.push_back(wall_ms([&] { cells = read_volume_mesh(path).n_cells(); }));
+    std::printf("read %s (%.0f MB): median %.0f ms of %d, %d cells\n", ext,
+                double(std::filesystem::file_size(path)) / 1e6, median(t), reps, cells);
+  }
+  std::filesystem::remove_all(dir);
+  return 0;
+}
+
 // `--volume-phases N [R]`: R (default 2) repetitions of refine_volume, cell_pattern alone and
 // assemble_volume_laplacian (pattern included) on hex_grid_volume(N^3), each with its wall, user
 // and system time and page faults (getrusage), to see what first-touch page faults cost
@@ -890,7 +927,53 @@ int volume_phases(int n, int reps) {
   return 0;
 }
 
-void bench_volumes(int big, int reps) {
+// In a fresh process: hex_grid_volume(n^3), then one refine_volume + assemble_volume_laplacian on
+// `threads` threads; prints its wall time (ms) and the bytes of S.
+int volume_first_child(int n, int threads) {
+  const VolumeMesh grid = hex_grid_volume(n, n, n);
+  VolumeRefinementOptions o;
+  o.threads = threads;
+  long nnz = 0;
+  const double ms =
+      wall_ms([&] { nnz = assemble_volume_laplacian(grid, refine_volume(grid, o), nullptr, threads).S.nonZeros(); });
+  std::printf("%.3f %ld\n", ms, nnz);
+  return 0;
+}
+
+// A user's one-off volume assembly: each in a fresh process, as `polydec` runs it. One thread and T
+// threads alternate, `rounds` processes each. Within one process, which run of a pair gets memory
+// that the kernel has just handed back to the hypervisor (free page reporting) is decided by the
+// kernel, not the thread count: in fresh processes every run starts from the same state.
+void bench_volume_fresh_processes(const std::string& self, int n, int rounds) {
+  const int T = std::max(2, int(std::thread::hardware_concurrency()));
+  std::vector<double> w[2];
+  bool ok = true;
+  for (int r = 0; r < rounds; ++r)
+    for (int k = 0; k < 2; ++k) {
+      const int threads = (k == 0) == (r % 2 == 0) ? 1 : T;
+      FILE* p = popen(fmt::format("{} --volume-first-child {} {}", self, n, threads).c_str(), "r");
+      double ms = 0;
+      long nnz = 0;
+      ok = ok && p && std::fscanf(p, "%lf %ld", &ms, &nnz) == 2 && nnz > 0;
+      if (p) ok = pclose(p) == 0 && ok;
+      w[threads == 1 ? 0 : 1].push_back(ms);
+    }
+  const std::string name = fmt::format("hex grid {}^3", n);
+  const std::string label = fmt::format("volume S+M+lumped, {} threads, fresh process", T);
+  if (!ok) {
+    add({label, name, "", "", 0, 0, 0, 0, "a child process failed"});
+    return;
+  }
+  std::string each;
+  for (int i = 0; i < rounds; ++i) each += fmt::format(" {:.0f}/{:.0f}", w[0][size_t(i)], w[1][size_t(i)]);
+  add({label, name, "same, 1 thread, fresh process", fmt::format("{} threads", T), median(w[0]), median(w[1]), 0,
+       n * n * n >= 1000000 ? 1.6 : 0,
+       fmt::format("wall time of refine_volume + assemble_volume_laplacian, the first call of a process after "
+                   "hex_grid_volume; medians of {} processes each, alternating; ms 1 thread / {} threads:{}",
+                   rounds, T, each)});
+}
+
+void bench_volumes(const std::string& self, int big, int reps) {
   std::fprintf(stderr, "volume assembly vs plain volume reference...\n");
   try {
     bench_volume("cube_hexahedron_4", read_volume_mesh(shared("volume/cube_hexahedron_4.ovm")), reps);
@@ -905,6 +988,7 @@ void bench_volumes(int big, int reps) {
     const VolumeMesh grid = hex_grid_volume(big, big, big);
     bench_volume(fmt::format("hex grid {}^3", big), grid, 1);
     bench_volume_threads(fmt::format("hex grid {}^3", big), grid, 3);
+    bench_volume_fresh_processes(self, big, 3);
   }
 }
 
@@ -1079,6 +1163,10 @@ int main(int argc, char** argv) {
     const std::string a = argv[i];
     if (a == "--memory-child" && i + 1 < argc) return memory_child(std::stoi(argv[i + 1]));
     if (a == "--volume-memory" && i + 1 < argc) return volume_memory(std::stoi(argv[i + 1]));
+    if (a == "--volume-first-child" && i + 2 < argc)
+      return volume_first_child(std::stoi(argv[i + 1]), std::stoi(argv[i + 2]));
+    if (a == "--volume-read" && i + 1 < argc)
+      return volume_read(std::stoi(argv[i + 1]), i + 2 < argc ? std::stoi(argv[i + 2]) : 3);
     if (a == "--volume-phases" && i + 1 < argc)
       return volume_phases(std::stoi(argv[i + 1]), i + 2 < argc ? std::stoi(argv[i + 2]) : 2);
     if (a == "--profile" && i + 1 < argc && std::string(argv[i + 1]) == "volume") {
@@ -1193,7 +1281,7 @@ int main(int argc, char** argv) {
       std::printf("\nload average at the end: %s\n", load_note().c_str());
     }
     else if (only == "volume") {
-      bench_volumes(volume_big, reps);
+      bench_volumes(std::filesystem::read_symlink("/proc/self/exe").string(), volume_big, reps);
       print_table();
       std::printf("\nload average at the end: %s\n", load_note().c_str());
     }
@@ -1252,7 +1340,7 @@ int main(int argc, char** argv) {
   std::fprintf(stderr, "spectrum...\n");
   bench_spectrum("FINE SPHERE", fine, 3);
 
-  bench_volumes(with_big ? volume_big : 0, reps);
+  bench_volumes(std::filesystem::read_symlink("/proc/self/exe").string(), with_big ? volume_big : 0, reps);
 
   print_table();
   std::printf("\nmeshes: HEX SPHERE %d faces, FINE SPHERE %d faces%s%s\n", hex.n_faces(), fine.n_faces(),
