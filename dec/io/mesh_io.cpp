@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "polydec/dec/detail/huge_pages.h"
 #include "polydec/dec/detail/io_common.h"
 #include "polydec/dec/detail/msh_io.h"
 #include "polydec/dec/io/vtu.h"
@@ -46,6 +47,16 @@ std::string slurp(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw FileError(path, 0, -1, "cannot open file");
   std::string data;
+  // A regular file is read in one piece into storage of its size, advised for huge pages: growing
+  // the string by appends would copy and first-touch about twice the file. Whatever the file holds
+  // beyond that size by now is appended below; a file that shrank ends at what was read.
+  if (const auto size = std::filesystem::file_size(path, ec); !ec && size > 0 && size < data.max_size()) {
+    data.reserve(size_t(size));
+    advise_huge_pages(data.data(), size_t(size));
+    data.resize(size_t(size));
+    in.read(data.data(), std::streamsize(size));
+    data.resize(size_t(in.gcount()));
+  }
   char buf[1 << 16];
   while (in.read(buf, sizeof buf) || in.gcount() > 0) data.append(buf, size_t(in.gcount()));
   if (in.bad()) throw FileError(path, 0, -1, "read error");

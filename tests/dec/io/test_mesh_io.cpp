@@ -9,6 +9,14 @@
 #include <fstream>
 #include <map>
 #include <random>
+#include <thread>
+
+#if defined(__unix__)
+#include <sys/stat.h>
+#endif
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "polydec/dec/io/mesh_io.h"
 #include "tests/support/support.h"
@@ -80,6 +88,36 @@ TEST_CASE("every writer round-trips bit-exactly through its reader", "[io]") {
     const std::string bytes = slurp(p);
     require_same(read_mesh_from_memory(bytes, fs::path(file).extension().string().substr(1), "memory"), m);
   }
+}
+
+TEST_CASE("a file whose size is not known in advance (a named pipe) reads as the regular file does", "[io]") {
+  // Regular files are read in one piece of their size; a pipe has no size and takes the chunked
+  // path. The text is larger than the 64 KB chunks, so that many are appended.
+#if defined(__unix__)
+  const Mesh m = mixed_mesh();
+  std::string text = fmt::format("OFF\n{} {} 0\n", m.n_vertices(), 20000 * m.n_faces());
+  for (int v = 0; v < m.n_vertices(); ++v)
+    text += fmt::format("{} {} {}\n", m.positions()(v, 0), m.positions()(v, 1), m.positions()(v, 2));
+  for (int k = 0; k < 20000; ++k)
+    for (int f = 0; f < m.n_faces(); ++f) text += fmt::format("{} {}\n", m.face(f).size(), fmt::join(m.face(f), " "));
+  REQUIRE(text.size() > (1u << 19));
+  const fs::path d = temp_dir();
+  const std::string regular = (d / "big.off").string(), pipe = (d / "pipe.off").string();
+  std::ofstream(regular, std::ios::binary) << text;
+  REQUIRE(mkfifo(pipe.c_str(), 0600) == 0);
+  std::thread writer([&] { std::ofstream(pipe, std::ios::binary) << text; });
+  const PolygonSoup from_pipe = read_polygon_soup(pipe);
+  writer.join();
+  fs::remove(pipe);
+  const PolygonSoup from_file = read_polygon_soup(regular);
+  CHECK(from_file.n_faces() == 20000 * m.n_faces());
+  CHECK((from_file.positions.array() == m.positions().array()).all());
+  CHECK((from_pipe.positions.array() == from_file.positions.array()).all());
+  CHECK(from_pipe.face_offsets == from_file.face_offsets);
+  CHECK(from_pipe.face_indices == from_file.face_indices);
+#else
+  WARN("skipped: named pipes are POSIX");
+#endif
 }
 
 TEST_CASE("binary OFF (float32) round-trips meshes whose positions are floats", "[io]") {
