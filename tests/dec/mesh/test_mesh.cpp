@@ -2,6 +2,9 @@
 #include "polydec/dec/mesh/generators.h"
 #include "polydec/dec/mesh/mesh.h"
 
+#include <algorithm>
+#include <numeric>
+#include <random>
 #include <catch2/catch.hpp>
 
 using namespace polydec;
@@ -73,6 +76,48 @@ TEST_CASE("connectivity of a quad grid", "[mesh]") {
   CHECK(m.vertex_faces(5).size() == 4);
   CHECK_FALSE(m.is_boundary_vertex(5));
   CHECK(m.is_boundary_vertex(0));
+}
+
+TEST_CASE("edges and halfedge links equal a comparison sort of the halfedges' vertex pairs", "[mesh]") {
+  // A cube sphere with its vertices renumbered at random (so that edge keys are not in face order)
+  // and a hole (boundary halfedges without opposites).
+  const Mesh base = cube_sphere(6);
+  std::vector<int> perm(size_t(base.n_vertices()));
+  std::iota(perm.begin(), perm.end(), 0);
+  std::shuffle(perm.begin(), perm.end(), std::mt19937(3));
+  PolygonSoup s;
+  s.positions.resize(base.n_vertices(), 3);
+  for (int v = 0; v < base.n_vertices(); ++v) s.positions.row(perm[size_t(v)]) = base.positions().row(v);
+  for (int f = 1; f < base.n_faces(); ++f) {
+    std::vector<int> face;
+    for (int v : base.face(f)) face.push_back(perm[size_t(v)]);
+    s.add_face(face);
+  }
+  const Mesh m(std::move(s));
+  std::vector<std::pair<int, int>> keys;
+  for (int h = 0; h < m.n_halfedges(); ++h)
+    keys.emplace_back(std::min(m.halfedge_source(h), m.halfedge_target(h)),
+                      std::max(m.halfedge_source(h), m.halfedge_target(h)));
+  std::vector<std::pair<int, int>> unique = keys;
+  std::sort(unique.begin(), unique.end());
+  unique.erase(std::unique(unique.begin(), unique.end()), unique.end());
+  REQUIRE(m.n_edges() == int(unique.size()));
+  for (int e = 0; e < m.n_edges(); ++e) CHECK(std::pair(m.edges()(e, 0), m.edges()(e, 1)) == unique[size_t(e)]);
+  int n_boundary = 0;
+  for (int h = 0; h < m.n_halfedges(); ++h) {
+    CHECK(unique[size_t(m.halfedge_edge(h))] == keys[size_t(h)]);
+    const int o = m.halfedge_opposite(h);
+    if (o < 0) {
+      ++n_boundary;
+      CHECK(std::count(keys.begin(), keys.end(), keys[size_t(h)]) == 1);
+    } else {
+      CHECK(o != h);
+      CHECK(m.halfedge_opposite(o) == h);
+      CHECK(keys[size_t(o)] == keys[size_t(h)]);
+    }
+  }
+  CHECK(n_boundary == 4);  // the removed quad's four edges
+  CHECK(m.n_boundary_edges() == 4);
 }
 
 TEST_CASE("unreferenced vertices are accepted and counted, components counted", "[mesh]") {
