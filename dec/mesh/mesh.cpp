@@ -1,6 +1,7 @@
 // dec/mesh/mesh.cpp — validation of a polygon soup and derivation of the mesh connectivity.
 #include "polydec/dec/mesh/mesh.h"
 
+#include "polydec/dec/detail/edge_buckets.h"
 #include "polydec/dec/detail/huge_pages.h"
 #include "polydec/dec/detail/scale.h"
 #include "polydec/dec/detail/union_find.h"
@@ -93,36 +94,10 @@ Mesh::Mesh(PolygonSoup soup) {
     const int f = t->halfedge_face[h];
     return h + 1 < t->face_offsets[f + 1] ? h + 1 : t->face_offsets[f];
   };
-  // Halfedges bucketed by their edge's smaller vertex (a counting sort), each bucket sorted by the
-  // larger vertex, then the halfedge: the order of sorting (min, max, halfedge) as one key, in linear
-  // time and two int arrays instead of a comparison sort of 16-byte keys.
-  std::vector<int> bucket_start, by_edge, other;
-  assign_on_huge_pages(bucket_start, size_t(nv) + 1, 0);
-  assign_on_huge_pages(by_edge, size_t(nh));
-  assign_on_huge_pages(other, size_t(nh));
-  for (int h = 0; h < nh; ++h)
-    ++bucket_start[size_t(std::min(t->face_indices[h], t->face_indices[next(h)])) + 1];
-  for (long v = 0; v < nv; ++v) bucket_start[size_t(v) + 1] += bucket_start[size_t(v)];
-  {
-    std::vector<int> fill(bucket_start.begin(), bucket_start.end() - 1);
-    for (int h = 0; h < nh; ++h) {
-      const int a = t->face_indices[h], b = t->face_indices[next(h)];
-      const int slot = fill[size_t(std::min(a, b))]++;
-      by_edge[size_t(slot)] = h;
-      other[size_t(slot)] = std::max(a, b);
-    }
-  }
-  for (long v = 0; v < nv; ++v) {
-    const int lo = bucket_start[size_t(v)], hi = bucket_start[size_t(v) + 1];
-    for (int i = lo + 1; i < hi; ++i)  // insertion sort by (larger vertex, halfedge): buckets are small
-      for (int j = i; j > lo && (other[size_t(j)] < other[size_t(j) - 1] ||
-                                 (other[size_t(j)] == other[size_t(j) - 1] &&
-                                  by_edge[size_t(j)] < by_edge[size_t(j) - 1]));
-           --j) {
-        std::swap(other[size_t(j)], other[size_t(j) - 1]);
-        std::swap(by_edge[size_t(j)], by_edge[size_t(j) - 1]);
-      }
-  }
+  // Edges in lexicographic order, the halfedges of each ascending (dec/detail/edge_buckets.h).
+  const detail::EdgeBuckets buckets = detail::bucket_edges(
+      int(nv), nh, [&](int h) { return std::pair(t->face_indices[h], t->face_indices[next(h)]); });
+  const std::vector<int>&bucket_start = buckets.start, &by_edge = buckets.id, &other = buckets.other;
   assign_on_huge_pages(t->halfedge_edge, size_t(nh), -1);
   assign_on_huge_pages(t->halfedge_opposite, size_t(nh), -1);
   std::vector<std::array<int, 2>> edge_list;

@@ -9,6 +9,8 @@
 #include <limits>
 #include <numeric>
 
+#include "polydec/dec/detail/edge_buckets.h"
+#include "polydec/dec/detail/huge_pages.h"
 #include "polydec/dec/detail/scale.h"
 #include "polydec/dec/detail/union_find.h"
 
@@ -244,21 +246,29 @@ VolumeMesh::VolumeMesh(PolyhedronSoup soup) {
     t->cell_vertex_offsets.push_back(int(t->cell_vertex_indices.size()));
   }
 
-  // Undirected edges of the faces, lexicographic.
-  std::vector<std::pair<int, int>> edge_list;
-  edge_list.reserve(fi.size());
-  for (int f = 0; f < nf; ++f) {
-    const int b = fo[f], n = fo[f + 1] - b;
-    for (int i = 0; i < n; ++i) {
-      const int p = fi[b + i], q = fi[b + (i + 1) % n];
-      edge_list.push_back({std::min(p, q), std::max(p, q)});
-    }
+  // Undirected edges of the faces, lexicographic (dec/detail/edge_buckets.h).
+  {
+    std::vector<int> side_face;  // the face of each side (position k in fi)
+    assign_on_huge_pages(side_face, fi.size());
+    for (int f = 0; f < nf; ++f) std::fill(side_face.begin() + fo[f], side_face.begin() + fo[f + 1], f);
+    const detail::EdgeBuckets buckets = detail::bucket_edges(int(nv), int(fi.size()), [&](int k) {
+      const int f = side_face[size_t(k)];
+      return std::pair(fi[size_t(k)], fi[size_t(k + 1 < fo[f + 1] ? k + 1 : fo[f])]);
+    });
+    // Calls edge(v, w) once per distinct pair, in lexicographic order.
+    auto each_edge = [&](auto&& edge) {
+      for (int v = 0; v < int(nv); ++v)
+        for (int k = buckets.start[size_t(v)]; k < buckets.start[size_t(v) + 1]; ++k)
+          if (k == buckets.start[size_t(v)] || buckets.other[size_t(k)] != buckets.other[size_t(k) - 1])
+            edge(v, buckets.other[size_t(k)]);
+    };
+    Eigen::Index ne = 0;
+    each_edge([&](int, int) { ++ne; });
+    t->edges.resize(ne, 2);
+    advise_huge_pages(t->edges.data(), sizeof(int) * 2 * size_t(ne));
+    Eigen::Index e = 0;
+    each_edge([&](int v, int w) { t->edges(e, 0) = v, t->edges(e, 1) = w, ++e; });
   }
-  std::sort(edge_list.begin(), edge_list.end());
-  edge_list.erase(std::unique(edge_list.begin(), edge_list.end()), edge_list.end());
-  t->edges.resize(Eigen::Index(edge_list.size()), 2);
-  for (size_t e = 0; e < edge_list.size(); ++e)
-    t->edges.row(Eigen::Index(e)) << edge_list[e].first, edge_list[e].second;
 
   // Boundary and unreferenced vertices.
   t->vertex_is_boundary.assign(nv, 0);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <numeric>
 #include <random>
+#include <cmath>
 #include <catch2/catch.hpp>
 
 using namespace polydec;
@@ -79,45 +80,64 @@ TEST_CASE("connectivity of a quad grid", "[mesh]") {
 }
 
 TEST_CASE("edges and halfedge links equal a comparison sort of the halfedges' vertex pairs", "[mesh]") {
-  // A cube sphere with its vertices renumbered at random (so that edge keys are not in face order)
-  // and a hole (boundary halfedges without opposites).
-  const Mesh base = cube_sphere(6);
-  std::vector<int> perm(size_t(base.n_vertices()));
-  std::iota(perm.begin(), perm.end(), 0);
-  std::shuffle(perm.begin(), perm.end(), std::mt19937(3));
-  PolygonSoup s;
-  s.positions.resize(base.n_vertices(), 3);
-  for (int v = 0; v < base.n_vertices(); ++v) s.positions.row(perm[size_t(v)]) = base.positions().row(v);
-  for (int f = 1; f < base.n_faces(); ++f) {
-    std::vector<int> face;
-    for (int v : base.face(f)) face.push_back(perm[size_t(v)]);
-    s.add_face(face);
-  }
-  const Mesh m(std::move(s));
-  std::vector<std::pair<int, int>> keys;
-  for (int h = 0; h < m.n_halfedges(); ++h)
-    keys.emplace_back(std::min(m.halfedge_source(h), m.halfedge_target(h)),
-                      std::max(m.halfedge_source(h), m.halfedge_target(h)));
-  std::vector<std::pair<int, int>> unique = keys;
-  std::sort(unique.begin(), unique.end());
-  unique.erase(std::unique(unique.begin(), unique.end()), unique.end());
-  REQUIRE(m.n_edges() == int(unique.size()));
-  for (int e = 0; e < m.n_edges(); ++e) CHECK(std::pair(m.edges()(e, 0), m.edges()(e, 1)) == unique[size_t(e)]);
-  int n_boundary = 0;
-  for (int h = 0; h < m.n_halfedges(); ++h) {
-    CHECK(unique[size_t(m.halfedge_edge(h))] == keys[size_t(h)]);
-    const int o = m.halfedge_opposite(h);
-    if (o < 0) {
-      ++n_boundary;
-      CHECK(std::count(keys.begin(), keys.end(), keys[size_t(h)]) == 1);
-    } else {
-      CHECK(o != h);
-      CHECK(m.halfedge_opposite(o) == h);
-      CHECK(keys[size_t(o)] == keys[size_t(h)]);
+  // Checks m against the oracle; returns the number of boundary halfedges.
+  auto check = [](const Mesh& m) {
+    std::vector<std::pair<int, int>> keys;
+    for (int h = 0; h < m.n_halfedges(); ++h)
+      keys.emplace_back(std::min(m.halfedge_source(h), m.halfedge_target(h)),
+                        std::max(m.halfedge_source(h), m.halfedge_target(h)));
+    std::vector<std::pair<int, int>> unique = keys;
+    std::sort(unique.begin(), unique.end());
+    unique.erase(std::unique(unique.begin(), unique.end()), unique.end());
+    REQUIRE(m.n_edges() == int(unique.size()));
+    for (int e = 0; e < m.n_edges(); ++e) CHECK(std::pair(m.edges()(e, 0), m.edges()(e, 1)) == unique[size_t(e)]);
+    int n_boundary = 0;
+    for (int h = 0; h < m.n_halfedges(); ++h) {
+      CHECK(unique[size_t(m.halfedge_edge(h))] == keys[size_t(h)]);
+      const int o = m.halfedge_opposite(h);
+      if (o < 0) {
+        ++n_boundary;
+        CHECK(std::count(keys.begin(), keys.end(), keys[size_t(h)]) == 1);
+      } else {
+        CHECK(o != h);
+        CHECK(m.halfedge_opposite(o) == h);
+        CHECK(keys[size_t(o)] == keys[size_t(h)]);
+      }
     }
+    CHECK(m.n_boundary_edges() == n_boundary);
+    return n_boundary;
+  };
+  // Vertices renumbered at random, so that edge keys are not in face order.
+  auto renumbered = [](const Eigen::MatrixX3d& X, const std::vector<std::vector<int>>& faces, unsigned seed) {
+    std::vector<int> perm(size_t(X.rows()));
+    std::iota(perm.begin(), perm.end(), 0);
+    std::shuffle(perm.begin(), perm.end(), std::mt19937(seed));
+    PolygonSoup s;
+    s.positions.resize(X.rows(), 3);
+    for (int v = 0; v < int(X.rows()); ++v) s.positions.row(perm[size_t(v)]) = X.row(v);
+    for (const auto& face : faces) {
+      std::vector<int> g;
+      for (int v : face) g.push_back(perm[size_t(v)]);
+      s.add_face(g);
+    }
+    return Mesh(std::move(s));
+  };
+  // A cube sphere with one quad removed (a hole of four boundary edges).
+  const Mesh sphere = cube_sphere(6);
+  std::vector<std::vector<int>> faces;
+  for (int f = 1; f < sphere.n_faces(); ++f) faces.emplace_back(sphere.face(f).begin(), sphere.face(f).end());
+  CHECK(check(renumbered(sphere.positions(), faces, 3)) == 4);
+  // A fan of 300 triangles around one vertex: its edges fill one large bucket (the sort's other path).
+  const int n = 300;
+  Eigen::MatrixX3d X(n + 1, 3);
+  X.row(0).setZero();
+  faces.clear();
+  for (int i = 0; i < n; ++i) {
+    const double a = 2 * M_PI * i / n;
+    X.row(i + 1) << std::cos(a), std::sin(a), 0;
+    faces.push_back({0, 1 + i, 1 + (i + 1) % n});
   }
-  CHECK(n_boundary == 4);  // the removed quad's four edges
-  CHECK(m.n_boundary_edges() == 4);
+  CHECK(check(renumbered(X, faces, 4)) == n);
 }
 
 TEST_CASE("unreferenced vertices are accepted and counted, components counted", "[mesh]") {

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <numeric>
 #include <random>
 
 #include "polydec/dec/io/volume_io.h"
@@ -383,6 +384,39 @@ TEST_CASE("OVM: bad files name the line", "[volume]") {
   }
   CHECK_THROWS_AS(read_volume_mesh("/nonexistent/x.ovm"), FileError);
   CHECK_THROWS_AS(read_volume_mesh("x.stl"), FileError);
+}
+
+TEST_CASE("VolumeMesh edges equal the sorted distinct sides of its faces", "[volume]") {
+  // Mixed polyhedra (cuboctahedra and octahedra) with the vertices renumbered at random, so that
+  // sides are met out of order; the oracle is a comparison sort of all sides.
+  const VolumeMesh base = cuboctahedra_volume(2);
+  std::vector<int> perm(size_t(base.n_vertices()));
+  std::iota(perm.begin(), perm.end(), 0);
+  std::shuffle(perm.begin(), perm.end(), std::mt19937(5));
+  PolyhedronSoup s;
+  s.positions.resize(base.n_vertices(), 3);
+  for (int v = 0; v < base.n_vertices(); ++v) s.positions.row(perm[size_t(v)]) = base.positions().row(v);
+  for (int f = 0; f < base.n_faces(); ++f) {
+    std::vector<int> face;
+    for (int v : base.face(f)) face.push_back(perm[size_t(v)]);
+    s.add_face(face);
+  }
+  for (int c = 0; c < base.n_cells(); ++c) s.add_cell(base.cell(c));
+  const VolumeMesh m(std::move(s));
+  std::vector<std::pair<int, int>> sides;
+  for (int f = 0; f < m.n_faces(); ++f) {
+    const auto face = m.face(f);
+    for (size_t i = 0; i < face.size(); ++i) {
+      const int p = face[i], q = face[(i + 1) % face.size()];
+      sides.emplace_back(std::min(p, q), std::max(p, q));
+    }
+  }
+  std::sort(sides.begin(), sides.end());
+  sides.erase(std::unique(sides.begin(), sides.end()), sides.end());
+  REQUIRE(m.edges().rows() == long(sides.size()));
+  for (size_t e = 0; e < sides.size(); ++e)
+    CHECK(std::pair(m.edges()(long(e), 0), m.edges()(long(e), 1)) == sides[e]);
+  CHECK(m.n_vertices() - long(sides.size()) + m.n_faces() - m.n_cells() == 1);  // a ball
 }
 
 TEST_CASE("PolyhedronSoupBuilder matches faces by vertex set as a brute-force search does", "[volume]") {
