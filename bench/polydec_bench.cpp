@@ -25,6 +25,7 @@
 //   polydec_bench --volume-first-child N T   (internal: one volume assembly on T threads, fresh process)
 //   polydec_bench --volume-read N [R]   (hex_grid_volume(N^3) built, then read back from .vtu, .vtk and
 //                 .msh files, R rounds: what loading a large volume mesh costs)
+//   polydec_bench --surface-read N [R]  (the same for cube_sphere(N) and .off, .obj, .ply)
 //   polydec_bench --volume-memory N     (the polydec side alone on hex_grid_volume(N^3): peak memory,
 //                 for /usr/bin/time -v; prints the sizes of the mesh and the matrices)
 #include "polydec/apps/applications/geodesics.h"
@@ -855,35 +856,62 @@ int volume_memory(int n) {
   return 0;
 }
 
-// `--volume-read N [R]`: building a large volume mesh, as a user waits for it. Wall time of
-// hex_grid_volume(N^3) (the first call of the process) and of the next large allocation (which pays
-// for whatever small blocks the build left to glibc), then R rounds (default 3) of read_volume_mesh on
-// the grid written as .vtu, .vtk and .msh (medians). With LD_LIBRARY_PATH pointing at another
-// build's libraries, the same binary times that build (docs/benchmarks.md).
+// Writes `mesh` in each format of `extensions` to a scratch folder and reads it back `reps` times
+// with `read` (wall time), printing the medians; the files are removed afterwards.
+template <class MeshType, class Write, class Read>
+void time_reads(const MeshType& mesh, std::initializer_list<const char*> extensions, int reps, Write&& write,
+                Read&& read) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / fmt::format("polydec_bench_read_{}", getpid());
+  std::filesystem::create_directories(dir);
+  for (const char* ext : extensions) {
+    const std::string path = (dir / (std::string("mesh") + ext)).string();
+    write(mesh, path);
+    std::vector<double> t;
+    long elements = 0;
+    for (int r = 0; r < reps; ++r) t.push_back(wall_ms([&] { elements = read(path); }));
+    std::printf("read %s (%.0f MB): median %.0f ms of %d, %ld elements\n", ext,
+                double(std::filesystem::file_size(path)) / 1e6, median(t), reps, elements);
+  }
+  std::filesystem::remove_all(dir);
+}
+
+// Wall time of the next 64 MB allocation: what glibc's consolidation of the small blocks a mesh
+// build left behind costs the call after it.
+double next_allocation_ms() {
+  const auto t = Clock::now();
+  std::unique_ptr<char[]> large(new char[size_t(64) << 20]);
+  char* volatile escaped = large.get();  // a real allocation, not one the compiler may elide
+  (void)escaped;
+  return ms_since(t);
+}
+
+// `--volume-read N [R]` and `--surface-read N [R]`: building a large mesh, as a user waits for it.
+// Wall time of hex_grid_volume(N^3) or cube_sphere(N) (the first call of the process) and of the
+// next large allocation, then R rounds (default 3) of reading the mesh back from each format
+// (medians). With LD_LIBRARY_PATH pointing at another build's libraries, the same binary times that
+// build (docs/benchmarks.md).
 int volume_read(int n, int reps) {
   const auto t0 = Clock::now();
   const VolumeMesh grid = hex_grid_volume(n, n, n);
   const double generate = ms_since(t0);
-  const auto t1 = Clock::now();
-  std::unique_ptr<char[]> large(new char[size_t(64) << 20]);
-  char* volatile escaped = large.get();  // a real allocation, not one the compiler may elide
-  const double next_alloc = ms_since(t1);
-  (void)escaped;
   std::printf("hex_grid_volume(%d^3): %d cells, %d faces; %.0f ms; the next 64 MB allocation %.1f ms\n", n,
-              grid.n_cells(), grid.n_faces(), generate, next_alloc);
-  const std::filesystem::path dir =
-      std::filesystem::temp_directory_path() / fmt::format("polydec_bench_volume_read_{}", getpid());
-  std::filesystem::create_directories(dir);
-  for (const char* ext : {".vtu", ".vtk", ".msh"}) {
-    const std::string path = (dir / (std::string("grid") + ext)).string();
-    write_volume_mesh(grid, path);
-    std::vector<double> t;
-    int cells = 0;
-    for (int r = 0; r < reps; ++r) t.push_back(wall_ms([&] { cells = read_volume_mesh(path).n_cells(); }));
-    std::printf("read %s (%.0f MB): median %.0f ms of %d, %d cells\n", ext,
-                double(std::filesystem::file_size(path)) / 1e6, median(t), reps, cells);
-  }
-  std::filesystem::remove_all(dir);
+              grid.n_cells(), grid.n_faces(), generate, next_allocation_ms());
+  time_reads(
+      grid, {".vtu", ".vtk", ".msh"}, reps, [](const VolumeMesh& m, const std::string& p) { write_volume_mesh(m, p); },
+      [](const std::string& p) { return long(read_volume_mesh(p).n_cells()); });
+  return 0;
+}
+
+int surface_read(int n, int reps) {
+  const auto t0 = Clock::now();
+  const Mesh sphere = cube_sphere(n);
+  const double generate = ms_since(t0);
+  std::printf("cube_sphere(%d): %d faces; %.0f ms; the next 64 MB allocation %.1f ms\n", n, sphere.n_faces(),
+              generate, next_allocation_ms());
+  time_reads(
+      sphere, {".off", ".obj", ".ply"}, reps, [](const Mesh& m, const std::string& p) { write_mesh(p, m); },
+      [](const std::string& p) { return long(read_mesh(p).n_faces()); });
   return 0;
 }
 
@@ -1165,6 +1193,8 @@ int main(int argc, char** argv) {
     if (a == "--volume-memory" && i + 1 < argc) return volume_memory(std::stoi(argv[i + 1]));
     if (a == "--volume-first-child" && i + 2 < argc)
       return volume_first_child(std::stoi(argv[i + 1]), std::stoi(argv[i + 2]));
+    if (a == "--surface-read" && i + 1 < argc)
+      return surface_read(std::stoi(argv[i + 1]), i + 2 < argc ? std::stoi(argv[i + 2]) : 3);
     if (a == "--volume-read" && i + 1 < argc)
       return volume_read(std::stoi(argv[i + 1]), i + 2 < argc ? std::stoi(argv[i + 2]) : 3);
     if (a == "--volume-phases" && i + 1 < argc)
