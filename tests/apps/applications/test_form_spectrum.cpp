@@ -14,6 +14,7 @@
 #include "polydec/dec/mesh/generators.h"
 #include "polydec/dec/surface/hodge_star.h"
 #include "tests/support/feec_meshes.h"
+#include "tests/support/renumbered.h"
 
 using namespace polydec;
 
@@ -66,22 +67,6 @@ int count_zero(const Eigen::VectorXd& ev, double scale) {
 double outside(const Eigen::MatrixXd& W, const SparseMatrix& star, const Eigen::VectorXd& x) {
   const Eigen::VectorXd r = x - W * (W.transpose() * (star * x));
   return std::sqrt(std::max(0.0, r.dot(star * r)) / x.dot(star * x));
-}
-
-Mesh permuted(const Mesh& mesh, unsigned seed) {
-  std::vector<int> perm(size_t(mesh.n_vertices()));
-  for (int v = 0; v < mesh.n_vertices(); ++v) perm[size_t(v)] = v;
-  std::mt19937 rng(seed);
-  std::shuffle(perm.begin(), perm.end(), rng);
-  PolygonSoup s;
-  s.positions.resize(mesh.n_vertices(), 3);
-  for (int v = 0; v < mesh.n_vertices(); ++v) s.positions.row(perm[size_t(v)]) = mesh.positions().row(v);
-  for (int f = 0; f < mesh.n_faces(); ++f) {
-    std::vector<int> face;
-    for (int v : mesh.face(f)) face.push_back(perm[size_t(v)]);
-    s.add_face(face);
-  }
-  return Mesh(std::move(s));
 }
 
 // Largest relative error of each band l = 1..lmax against l(l+1), the sorted eigenvalues taken
@@ -251,7 +236,8 @@ TEST_CASE("form spectra do not depend on position, scale (1/s^2) or vertex numbe
       const double s = 25;
       const Mesh scaled = mesh.with_positions(s * mesh.positions());
       CHECK((s * s * form_spectrum(scaled, o).eigenvalues - ev).cwiseAbs().maxCoeff() <= tol);
-      CHECK((form_spectrum(permuted(mesh, 17), o).eigenvalues - ev).cwiseAbs().maxCoeff() <= tol);
+      const Mesh renumbered = test::renumbered(mesh, test::random_permutation(mesh.n_vertices(), 17));
+      CHECK((form_spectrum(renumbered, o).eigenvalues - ev).cwiseAbs().maxCoeff() <= tol);
     }
   }
 }

@@ -8,6 +8,7 @@
 #include "polydec/dec/mesh/generators.h"
 #include "polydec/operators/solvers/cholesky.h"
 #include "tests/support/feec_meshes.h"
+#include "tests/support/renumbered.h"
 
 using namespace polydec;
 
@@ -19,18 +20,6 @@ Spectrum spectrum_of(const Mesh& mesh, int k) {
   SpectrumOptions o;
   o.k = k;
   return laplacian_spectrum(mesh, o);
-}
-
-Mesh permuted(const Mesh& mesh, const std::vector<int>& perm) {
-  PolygonSoup s;
-  s.positions.resize(mesh.n_vertices(), 3);
-  for (int v = 0; v < mesh.n_vertices(); ++v) s.positions.row(perm[size_t(v)]) = mesh.positions().row(v);
-  for (int f = 0; f < mesh.n_faces(); ++f) {
-    std::vector<int> face;
-    for (int v : mesh.face(f)) face.push_back(perm[size_t(v)]);
-    s.add_face(face);
-  }
-  return Mesh(std::move(s));
 }
 
 }  // namespace
@@ -94,11 +83,8 @@ TEST_CASE("HKS and WKS: standard samples, positivity, invariances", "[spectral_t
   const Spectrum spt =
       spectrum_of(mesh.with_positions(mesh.positions().rowwise() + Eigen::RowVector3d(5, 1, -2)), 40);
   CHECK((heat_kernel_signature(spt, hks_times(spt, 50)) - hks).norm() <= 1e-7 * hks.norm());
-  std::vector<int> perm(size_t(mesh.n_vertices()));
-  for (int v = 0; v < mesh.n_vertices(); ++v) perm[size_t(v)] = v;
-  std::mt19937 rng(3);
-  std::shuffle(perm.begin(), perm.end(), rng);
-  const Spectrum spp = spectrum_of(permuted(mesh, perm), 40);
+  const std::vector<int> perm = test::random_permutation(mesh.n_vertices(), 3);
+  const Spectrum spp = spectrum_of(test::renumbered(mesh, perm), 40);
   const Eigen::MatrixXd hksp = heat_kernel_signature(spp, hks_times(spp, 50));
   double d = 0;
   for (int v = 0; v < mesh.n_vertices(); ++v)

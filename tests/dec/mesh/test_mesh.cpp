@@ -1,6 +1,7 @@
 // tests/dec/mesh/test_mesh.cpp — mesh validation and derived connectivity.
 #include "polydec/dec/mesh/generators.h"
 #include "polydec/dec/mesh/mesh.h"
+#include "tests/support/renumbered.h"
 
 #include <algorithm>
 #include <numeric>
@@ -109,18 +110,11 @@ TEST_CASE("edges and halfedge links equal a comparison sort of the halfedges' ve
   };
   // Vertices renumbered at random, so that edge keys are not in face order.
   auto renumbered = [](const Eigen::MatrixX3d& X, const std::vector<std::vector<int>>& faces, unsigned seed) {
-    std::vector<int> perm(size_t(X.rows()));
-    std::iota(perm.begin(), perm.end(), 0);
-    std::shuffle(perm.begin(), perm.end(), std::mt19937(seed));
     PolygonSoup s;
-    s.positions.resize(X.rows(), 3);
-    for (int v = 0; v < int(X.rows()); ++v) s.positions.row(perm[size_t(v)]) = X.row(v);
-    for (const auto& face : faces) {
-      std::vector<int> g;
-      for (int v : face) g.push_back(perm[size_t(v)]);
-      s.add_face(g);
-    }
-    return Mesh(std::move(s));
+    s.positions = X;
+    for (const auto& face : faces) s.add_face(face);
+    const Mesh m(std::move(s));
+    return test::renumbered(m, test::random_permutation(m.n_vertices(), seed));
   };
   // A cube sphere with one quad removed (a hole of four boundary edges).
   const Mesh sphere = cube_sphere(6);

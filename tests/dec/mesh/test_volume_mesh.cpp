@@ -14,6 +14,7 @@
 #include "polydec/dec/mesh/polyhedron_builder.h"
 #include "polydec/dec/mesh/volume_generators.h"
 #include "polydec/dec/mesh/volume_mesh.h"
+#include "tests/support/renumbered.h"
 #include "tests/support/support.h"
 
 using namespace polydec;
@@ -390,19 +391,7 @@ TEST_CASE("VolumeMesh edges equal the sorted distinct sides of its faces", "[vol
   // Mixed polyhedra (cuboctahedra and octahedra) with the vertices renumbered at random, so that
   // sides are met out of order; the oracle is a comparison sort of all sides.
   const VolumeMesh base = cuboctahedra_volume(2);
-  std::vector<int> perm(size_t(base.n_vertices()));
-  std::iota(perm.begin(), perm.end(), 0);
-  std::shuffle(perm.begin(), perm.end(), std::mt19937(5));
-  PolyhedronSoup s;
-  s.positions.resize(base.n_vertices(), 3);
-  for (int v = 0; v < base.n_vertices(); ++v) s.positions.row(perm[size_t(v)]) = base.positions().row(v);
-  for (int f = 0; f < base.n_faces(); ++f) {
-    std::vector<int> face;
-    for (int v : base.face(f)) face.push_back(perm[size_t(v)]);
-    s.add_face(face);
-  }
-  for (int c = 0; c < base.n_cells(); ++c) s.add_cell(base.cell(c));
-  const VolumeMesh m(std::move(s));
+  const VolumeMesh m = test::renumbered(base, test::random_permutation(base.n_vertices(), 5));
   std::vector<std::pair<int, int>> sides;
   for (int f = 0; f < m.n_faces(); ++f) {
     const auto face = m.face(f);
