@@ -804,7 +804,7 @@ void bench_volume_threads(const std::string& name, const VolumeMesh& mesh, int r
   // One untimed pair first, reported apart: within a process, whether a run gets memory just freed
   // (cheap) or memory the kernel has meanwhile handed back to the hypervisor (free page reporting:
   // ~12x dearer to touch again, bench/fresh_memory.cpp) depends on the kernel's timing; the first
-  // pair is the most exposed (measured 0.97-1.06x, later pairs 1.6-2.9x). The row "fresh process"
+  // pair is the most exposed (measured 0.87-1.08x, later pairs 1.3-2.9x). The row "fresh process"
   // times the first call of fresh processes instead (docs/benchmarks.md).
   std::vector<double> w1, wT, c1, cT;
   const std::string load_before = load_note();
