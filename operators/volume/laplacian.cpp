@@ -262,13 +262,13 @@ std::pair<std::vector<int>, std::vector<int>> owners(const VolumeMesh& mesh, int
   const int nC = mesh.n_cells();
   constexpr int kNone = -2, kSeam = -1;
   std::vector<int> owner(size_t(mesh.n_vertices()), kNone), seam_cells;
-  for (int c = 0; c < nC; ++c) {
-    const int t = int(long(c) * T / nC);
-    for (const int v : mesh.cell_vertices(c)) {
-      int& o = owner[size_t(v)];
-      o = (o == kNone || o == t) ? t : kSeam;
-    }
-  }
+  // Thread t's cells are [nC t / T, nC (t + 1) / T), the ranges the assembly's loop takes.
+  for (int t = 0; t < T; ++t)
+    for (int c = int(long(nC) * t / T); c < int(long(nC) * (t + 1) / T); ++c)
+      for (const int v : mesh.cell_vertices(c)) {
+        int& o = owner[size_t(v)];
+        o = (o == kNone || o == t) ? t : kSeam;
+      }
   for (int c = 0; c < nC; ++c) {
     const auto verts = mesh.cell_vertices(c);
     if (std::any_of(verts.begin(), verts.end(), [&](int v) { return owner[size_t(v)] == kSeam; })) seam_cells.push_back(c);
