@@ -199,28 +199,15 @@ Eigen::VectorXd last_pinned_affine_weights(const Eigen::MatrixX3d& Q, const Eige
   return out;
 }
 
-namespace {
-
-// Calls item(i) for the items of [0, n) in chunks taken from `next` by whichever thread is free,
-// ascending within a chunk: a thread slowed by other processes takes fewer chunks (contiguous halves
-// would make the other thread wait for it). Each item's result is independent of the others.
-template <class Item>
-void take_chunks(std::atomic<long>& next, int n, Item&& item) {
-  constexpr long kChunk = 2048;
-  for (long lo = next.fetch_add(kChunk); lo < n; lo = next.fetch_add(kChunk))
-    for (int i = int(lo); i < int(std::min<long>(n, lo + kChunk)); ++i) item(i);
-}
-
-}  // namespace
-
 VolumeRefinement refine_volume(const VolumeMesh& mesh, const VolumeRefinementOptions& options) {
   using namespace volume_refinement_detail;
   VolumeRefinement R;
   R.options = options;
   const int nF = mesh.n_faces(), nC = mesh.n_cells();
   const auto& P = mesh.positions();
-  // Faces and cells are independent: T threads take contiguous ranges (results independent of T).
+  // Faces and cells are independent: T threads take chunks of them (results independent of T).
   const int T = std::min(resolve_threads(options.threads), std::max(1, nC / 2048));
+  constexpr long kChunk = 2048;  // faces or cells a free thread takes at once (take_chunks)
 
   // The large arrays are advised to take huge pages before they are first written (first-touch
   // page faults dominate large meshes; dec/detail/huge_pages.h).
@@ -243,7 +230,7 @@ VolumeRefinement refine_volume(const VolumeMesh& mesh, const VolumeRefinementOpt
   std::atomic<long> next_face{0};
   run_on_threads(T, [&](int) {
     std::vector<double> corners, work, scaled;
-    take_chunks(next_face, nF, [&](int f) {
+    take_chunks(next_face, nF, kChunk, [&](int f) {
       const auto face = mesh.face(f);
       const int n = int(face.size());
       corners.resize(3 * size_t(n));
@@ -316,7 +303,7 @@ VolumeRefinement refine_volume(const VolumeMesh& mesh, const VolumeRefinementOpt
     Eigen::MatrixX3d X, Xc;  // reused: no allocation per cell of the same size
     SubTetQuality& Q = quality[thread];
     const double tol2 = options.degenerate_tolerance * options.degenerate_tolerance;
-    take_chunks(next_cell, nC, [&](int c) {
+    take_chunks(next_cell, nC, kChunk, [&](int c) {
       const auto cell = mesh.cell(c);
       const auto verts = mesh.cell_vertices(c);
       const int m = int(verts.size());

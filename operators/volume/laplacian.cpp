@@ -2,6 +2,7 @@
 #include "polydec/operators/volume/laplacian.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <memory>
@@ -256,24 +257,38 @@ void cell_matrices(const VolumeMesh& mesh, const VolumeRefinement& refinement, i
 namespace volume_laplacian_detail {
 namespace {
 
-// For T threads holding the cells in T contiguous ranges: each vertex's owner (the range holding
-// all its cells, or -1 on a seam between ranges) and the cells with a seam vertex, ascending.
-std::pair<std::vector<int>, std::vector<int>> owners(const VolumeMesh& mesh, int T) {
+// The cells cut into R contiguous ranges (part_of). A vertex all of whose cells lie in range r is
+// owned by r; one whose cells lie in several ranges is a seam vertex, in the seam group g of the
+// lowest of them. seam_cells[g]: the cells with a vertex of group g, ascending.
+struct Owners {
+  std::vector<int> owner;  // r >= 0 for range r, -2 - g for seam group g
+  std::vector<std::vector<int>> seam_cells;
+  long seam_work = 0;  // cells in all the groups' lists (a cell may be in several)
+};
+
+Owners owners(const VolumeMesh& mesh, int R) {
   const int nC = mesh.n_cells();
-  constexpr int kNone = -2, kSeam = -1;
-  std::vector<int> owner(size_t(mesh.n_vertices()), kNone), seam_cells;
-  // Thread t's cells are [nC t / T, nC (t + 1) / T), the ranges the assembly's loop takes.
-  for (int t = 0; t < T; ++t)
-    for (int c = int(long(nC) * t / T); c < int(long(nC) * (t + 1) / T); ++c)
-      for (const int v : mesh.cell_vertices(c)) {
-        int& o = owner[size_t(v)];
-        o = (o == kNone || o == t) ? t : kSeam;
+  constexpr int kNone = -1;
+  Owners out;
+  out.owner.assign(size_t(mesh.n_vertices()), kNone);
+  // Ranges ascending: a vertex first met in range o and now in r > o joins group o.
+  for (int r = 0; r < R; ++r) {
+    const auto [lo, hi] = part_of(nC, r, R);
+    for (long c = lo; c < hi; ++c)
+      for (const int v : mesh.cell_vertices(int(c))) {
+        int& o = out.owner[size_t(v)];
+        if (o == kNone) o = r;
+        else if (o >= 0 && o != r) o = -2 - o;
       }
-  for (int c = 0; c < nC; ++c) {
-    const auto verts = mesh.cell_vertices(c);
-    if (std::any_of(verts.begin(), verts.end(), [&](int v) { return owner[size_t(v)] == kSeam; })) seam_cells.push_back(c);
   }
-  return {std::move(owner), std::move(seam_cells)};
+  out.seam_cells.resize(size_t(std::max(0, R - 1)));
+  for (int c = 0; c < nC; ++c)
+    for (const int v : mesh.cell_vertices(c))
+      if (const int o = out.owner[size_t(v)]; o < kNone) {
+        std::vector<int>& list = out.seam_cells[size_t(-2 - o)];
+        if (list.empty() || list.back() != c) list.push_back(c), ++out.seam_work;
+      }
+  return out;
 }
 
 }  // namespace
@@ -294,8 +309,6 @@ VolumeLaplacian assemble_volume_laplacian(const VolumeMesh& mesh, const VolumeRe
   // With several threads, every large array is also first written by all of them (page faults
   // and the kernel's zeroing of fresh pages cost as much as the arithmetic on large meshes).
   const int T = std::min(resolve_threads(threads), std::max(1, nC / 2048));
-  // Thread t's share [lo, hi) of n items.
-  auto share = [T](long n, int t) { return std::pair<long, long>{n * t / T, n * (t + 1) / T}; };
   detail::ElementPattern slots;
   auto cells = [&](int c) { return mesh.cell_vertices(c); };
   if (pattern) {
@@ -314,7 +327,7 @@ VolumeLaplacian assemble_volume_laplacian(const VolumeMesh& mesh, const VolumeRe
   advise_huge_pages(L.M.valuePtr(), sizeof(double) * size_t(nnz));
   std::copy_n(L.S.outerIndexPtr(), L.S.outerSize() + 1, L.M.outerIndexPtr());
   run_on_threads(T, [&](int t) {
-    const auto [lo, hi] = share(nnz, t);
+    const auto [lo, hi] = part_of(nnz, t, T);
     std::copy(L.S.innerIndexPtr() + lo, L.S.innerIndexPtr() + hi, L.M.innerIndexPtr() + lo);
     std::fill(L.M.valuePtr() + lo, L.M.valuePtr() + hi, 0.0);
   });
@@ -358,24 +371,29 @@ VolumeLaplacian assemble_volume_laplacian(const VolumeMesh& mesh, const VolumeRe
       cell_kernel(mesh, refinement, c, Sc, Mc, ws);
       scatter(c, Sc.data(), Mc.data(), [](int) { return true; });
     }
-  } else if (const auto [owner, seam_cells] = owners(mesh, T); seam_cells.size() * 8 <= size_t(nC)) {
-    // Thread t computes the cells of its range and adds them to the columns of the vertices all of
-    // whose cells it holds; then one pass adds the cells around the other (seam) vertices to their
-    // columns. Either way each entry receives its terms in cell order (bitwise as one thread).
+  } else if (const Owners own = owners(mesh, T); own.seam_work * 8 <= nC) {
+    // Thread t computes the cells of range t and adds them to the columns the range owns, then
+    // takes seam groups as they come free and adds the cells of each group's list to its columns.
+    // Owned and seam columns are disjoint, so a thread starts on the seams while others still work
+    // on their ranges. Either way each column receives its terms in cell order (bitwise as one
+    // thread). More ranges than threads, taken as threads come free, were measured slower on the
+    // 1M-cell grid (docs/benchmarks.md): each range boundary puts 2% of its cells on a seam.
+    std::atomic<long> next_group{0};
     run_on_threads(T, [&](int t) {
       Eigen::MatrixXd Sc, Mc;
       CellWorkspace ws;
-      for (int c = int(long(nC) * t / T); c < int(long(nC) * (t + 1) / T); ++c) {
-        cell_kernel(mesh, refinement, c, Sc, Mc, ws);
-        scatter(c, Sc.data(), Mc.data(), [&](int v) { return owner[size_t(v)] == t; });
+      const auto [lo, hi] = part_of(nC, t, T);
+      for (long c = lo; c < hi; ++c) {
+        cell_kernel(mesh, refinement, int(c), Sc, Mc, ws);
+        scatter(int(c), Sc.data(), Mc.data(), [&](int v) { return own.owner[size_t(v)] == t; });
       }
+      take_chunks(next_group, T - 1, 1, [&](long g) {
+        for (const int c : own.seam_cells[size_t(g)]) {
+          cell_kernel(mesh, refinement, c, Sc, Mc, ws);
+          scatter(c, Sc.data(), Mc.data(), [&](int v) { return own.owner[size_t(v)] == -2 - g; });
+        }
+      });
     });
-    Eigen::MatrixXd Sc, Mc;
-    CellWorkspace ws;
-    for (const int c : seam_cells) {
-      cell_kernel(mesh, refinement, c, Sc, Mc, ws);
-      scatter(c, Sc.data(), Mc.data(), [&](int v) { return owner[size_t(v)] < 0; });
-    }
   } else {
     // Cell order without spatial coherence (more than 1/8 of the cells on seams): blocks of cells.
     // The threads compute the block's local matrices (cells split in ranges),
@@ -410,7 +428,8 @@ VolumeLaplacian assemble_volume_laplacian(const VolumeMesh& mesh, const VolumeRe
       }
       run_on_threads(T, [&](int t) {
         Eigen::MatrixXd Sc, Mc;
-        for (int c = c0 + (c1 - c0) * t / T; c < c0 + (c1 - c0) * (t + 1) / T; ++c) {
+        const auto [lo, hi] = part_of(c1 - c0, t, T);
+        for (int c = c0 + int(lo); c < c0 + int(hi); ++c) {
           cell_kernel(mesh, refinement, c, Sc, Mc, ws[t]);
           double* out = local.data() + offset[c - c0];
           std::copy(Sc.data(), Sc.data() + Sc.size(), out);
@@ -418,7 +437,8 @@ VolumeLaplacian assemble_volume_laplacian(const VolumeMesh& mesh, const VolumeRe
         }
       });
       run_on_threads(T, [&](int t) {
-        const int v0 = vlo + int(long(vhi - vlo) * t / T), v1 = vlo + int(long(vhi - vlo) * (t + 1) / T);
+        const auto [lo, hi] = part_of(vhi - vlo, t, T);
+        const int v0 = vlo + int(lo), v1 = vlo + int(hi);
         for (int c = c0; c < c1; ++c) {
           const size_t m = mesh.cell_vertices(c).size();
           const double* in = local.data() + offset[c - c0];
@@ -432,7 +452,7 @@ VolumeLaplacian assemble_volume_laplacian(const VolumeMesh& mesh, const VolumeRe
   L.M_lumped.resize(nV);
   advise_huge_pages(L.M_lumped.data(), sizeof(double) * size_t(nV));
   run_on_threads(T, [&](int t) {
-    const auto [lo, hi] = share(nV, t);
+    const auto [lo, hi] = part_of(nV, t, T);
     for (long v = lo; v < hi; ++v) {
       double sum = 0;
       for (int k = outer[v]; k < outer[v + 1]; ++k) sum += mv[k];
