@@ -16,29 +16,28 @@ namespace polydec::detail {
 struct EdgeBuckets {
   std::vector<int> start;  // |V| + 1: bucket v (pairs whose smaller vertex is v) is [start[v], start[v + 1])
   std::vector<int> other;  // the larger vertex of each pair, ascending within a bucket
-  std::vector<int> id;     // the pair's index, ascending among equal (v, other)
+  std::vector<int> id;     // the pair's index, ascending among equal (v, other); empty unless asked for
 };
 
-// n pairs, pair(i) -> std::pair<int, int> (either order) of vertices in [0, nv).
-template <class Pair>
-EdgeBuckets bucket_edges(int nv, int n, Pair&& pair) {
+// n pairs of vertices in [0, nv) (either order), numbered in the order in which each_pair(emit)
+// calls emit(p, q); it is called twice. with_ids: fill EdgeBuckets::id.
+template <class EachPair>
+EdgeBuckets bucket_edges(int nv, int n, EachPair&& each_pair, bool with_ids) {
   EdgeBuckets b;
   assign_on_huge_pages(b.start, std::size_t(nv) + 1, 0);
   assign_on_huge_pages(b.other, std::size_t(n), 0);
-  assign_on_huge_pages(b.id, std::size_t(n), 0);
-  for (int i = 0; i < n; ++i) {
-    const auto [p, q] = pair(i);
-    ++b.start[std::size_t(std::min(p, q)) + 1];
-  }
+  if (with_ids) assign_on_huge_pages(b.id, std::size_t(n), 0);
+  each_pair([&](int p, int q) { ++b.start[std::size_t(std::min(p, q)) + 1]; });
   for (int v = 0; v < nv; ++v) b.start[std::size_t(v) + 1] += b.start[std::size_t(v)];
   {
     std::vector<int> fill(b.start.begin(), b.start.end() - 1);
-    for (int i = 0; i < n; ++i) {
-      const auto [p, q] = pair(i);
+    int i = 0;
+    each_pair([&](int p, int q) {
       const int slot = fill[std::size_t(std::min(p, q))]++;
       b.other[std::size_t(slot)] = std::max(p, q);
-      b.id[std::size_t(slot)] = i;  // ascending within each bucket already
-    }
+      if (with_ids) b.id[std::size_t(slot)] = i;  // ascending within each bucket already
+      ++i;
+    });
   }
   // Each bucket by the larger vertex; ids stay ascending among equal ones (a stable sort). Small
   // buckets (the usual valences) by insertion, large ones (a fan around one vertex) by std::stable_sort.
@@ -49,14 +48,17 @@ EdgeBuckets bucket_edges(int nv, int n, Pair&& pair) {
       for (int i = lo + 1; i < hi; ++i)
         for (int j = i; j > lo && b.other[std::size_t(j)] < b.other[std::size_t(j) - 1]; --j) {
           std::swap(b.other[std::size_t(j)], b.other[std::size_t(j) - 1]);
-          std::swap(b.id[std::size_t(j)], b.id[std::size_t(j) - 1]);
+          if (with_ids) std::swap(b.id[std::size_t(j)], b.id[std::size_t(j) - 1]);
         }
       continue;
     }
     large.clear();
-    for (int i = lo; i < hi; ++i) large.emplace_back(b.other[std::size_t(i)], b.id[std::size_t(i)]);
+    for (int i = lo; i < hi; ++i) large.emplace_back(b.other[std::size_t(i)], with_ids ? b.id[std::size_t(i)] : 0);
     std::stable_sort(large.begin(), large.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
-    for (int i = lo; i < hi; ++i) std::tie(b.other[std::size_t(i)], b.id[std::size_t(i)]) = large[std::size_t(i - lo)];
+    for (int i = lo; i < hi; ++i) {
+      b.other[std::size_t(i)] = large[std::size_t(i - lo)].first;
+      if (with_ids) b.id[std::size_t(i)] = large[std::size_t(i - lo)].second;
+    }
   }
   return b;
 }

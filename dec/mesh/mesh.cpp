@@ -96,7 +96,11 @@ Mesh::Mesh(PolygonSoup soup) {
   };
   // Edges in lexicographic order, the halfedges of each ascending (dec/detail/edge_buckets.h).
   const detail::EdgeBuckets buckets = detail::bucket_edges(
-      int(nv), nh, [&](int h) { return std::pair(t->face_indices[h], t->face_indices[next(h)]); });
+      int(nv), nh,
+      [&](auto&& emit) {
+        for (int h = 0; h < nh; ++h) emit(t->face_indices[h], t->face_indices[next(h)]);
+      },
+      true);
   const std::vector<int>&bucket_start = buckets.start, &by_edge = buckets.id, &other = buckets.other;
   assign_on_huge_pages(t->halfedge_edge, size_t(nh), -1);
   assign_on_huge_pages(t->halfedge_opposite, size_t(nh), -1);

@@ -248,13 +248,11 @@ VolumeMesh::VolumeMesh(PolyhedronSoup soup) {
 
   // Undirected edges of the faces, lexicographic (dec/detail/edge_buckets.h).
   {
-    std::vector<int> side_face;  // the face of each side (position k in fi)
-    assign_on_huge_pages(side_face, fi.size());
-    for (int f = 0; f < nf; ++f) std::fill(side_face.begin() + fo[f], side_face.begin() + fo[f + 1], f);
-    const detail::EdgeBuckets buckets = detail::bucket_edges(int(nv), int(fi.size()), [&](int k) {
-      const int f = side_face[size_t(k)];
-      return std::pair(fi[size_t(k)], fi[size_t(k + 1 < fo[f + 1] ? k + 1 : fo[f])]);
-    });
+    const auto each_side = [&](auto&& emit) {
+      for (int f = 0; f < nf; ++f)
+        for (int k = fo[f]; k < fo[f + 1]; ++k) emit(fi[size_t(k)], fi[size_t(k + 1 < fo[f + 1] ? k + 1 : fo[f])]);
+    };
+    const detail::EdgeBuckets buckets = detail::bucket_edges(int(nv), int(fi.size()), each_side, false);
     // Calls edge(v, w) once per distinct pair, in lexicographic order.
     auto each_edge = [&](auto&& edge) {
       for (int v = 0; v < int(nv); ++v)
