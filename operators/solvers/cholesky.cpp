@@ -218,23 +218,37 @@ struct LanesOf {  // Bytes / 8 doubles, any address
 };
 using Lanes = LanesOf<32>::type;
 
-// dst[q, q + 8 Bytes / 8) -= sum_t coef[t cs] src(t)[...] for every whole run of 8 registers of
-// `Bytes`, from q on; returns where it stopped.
-template <int Bytes, class Src>
-[[gnu::always_inline]] inline int update_runs(double* __restrict dst, int q, int m, const double* __restrict coef,
-                                              size_t cs, Src src, int count) {
+// For R output rows at once (R = 1, 2): dst[r][q, q + 8 Bytes / 8) -= sum_t coef[r][t cs]
+// src(t)[...] for every whole run of 8 registers of `Bytes`, from q on; returns where it stopped.
+// The R rows' 8 R registers are held while the source rows stream past, each source vector loaded
+// once for all R rows; each output value gets the same operations in the same order for any R.
+template <int Bytes, int R, class Src>
+[[gnu::always_inline]] inline int update_runs(double* const* dst, int q, int m, const double* const* coef, size_t cs,
+                                              Src src, int count) {
   using V = typename LanesOf<Bytes>::type;
   constexpr int run = Bytes;  // 8 registers of Bytes / 8 doubles
   for (; q + run <= m; q += run) {
-    V* d = reinterpret_cast<V*>(dst + q);
-    V a0 = d[0], a1 = d[1], a2 = d[2], a3 = d[3], a4 = d[4], a5 = d[5], a6 = d[6], a7 = d[7];
+    V a[R][8];
+#pragma GCC unroll 16
+    for (int r = 0; r < R; ++r)
+#pragma GCC unroll 8
+      for (int i = 0; i < 8; ++i) a[r][i] = reinterpret_cast<const V*>(dst[r] + q)[i];
     for (int t = 0; t < count; ++t) {
-      const double l = coef[size_t(t) * cs];
+      double l[R];
+#pragma GCC unroll 2
+      for (int r = 0; r < R; ++r) l[r] = coef[r][size_t(t) * cs];
       const V* x = reinterpret_cast<const V*>(src(t) + q);
-      a0 -= l * x[0], a1 -= l * x[1], a2 -= l * x[2], a3 -= l * x[3];
-      a4 -= l * x[4], a5 -= l * x[5], a6 -= l * x[6], a7 -= l * x[7];
+#pragma GCC unroll 8
+      for (int i = 0; i < 8; ++i) {
+        const V y = x[i];
+#pragma GCC unroll 2
+        for (int r = 0; r < R; ++r) a[r][i] -= l[r] * y;
+      }
     }
-    d[0] = a0, d[1] = a1, d[2] = a2, d[3] = a3, d[4] = a4, d[5] = a5, d[6] = a6, d[7] = a7;
+#pragma GCC unroll 16
+    for (int r = 0; r < R; ++r)
+#pragma GCC unroll 8
+      for (int i = 0; i < 8; ++i) reinterpret_cast<V*>(dst[r] + q)[i] = a[r][i];
   }
   return q;
 }
@@ -243,8 +257,10 @@ template <int Bytes, class Src>
 template <int Bytes, class Src>
 [[gnu::always_inline]] inline void update_row_from(double* __restrict dst, int q, int m, const double* __restrict coef,
                                                    size_t cs, Src src, int count) {
-  q = update_runs<Bytes>(dst, q, m, coef, cs, src, count);
-  if constexpr (Bytes > 32) q = update_runs<32>(dst, q, m, coef, cs, src, count);
+  double* const rows[1] = {dst};
+  const double* const coefs[1] = {coef};
+  q = update_runs<Bytes, 1>(rows, q, m, coefs, cs, src, count);
+  if constexpr (Bytes > 32) q = update_runs<32, 1>(rows, q, m, coefs, cs, src, count);
   for (; q + 4 <= m; q += 4) {
     Lanes* d = reinterpret_cast<Lanes*>(dst + q);
     Lanes a = *d;
@@ -273,23 +289,9 @@ template <int Bytes, class Src>
                                                    size_t cs, Src src, int count) {
   int q = 0;
   if constexpr (Bytes == 64) {
-    using V = LanesOf<64>::type;
-    for (; q + 64 <= m; q += 64) {
-      V* d = reinterpret_cast<V*>(dst0 + q);
-      V* e = reinterpret_cast<V*>(dst1 + q);
-      V a0 = d[0], a1 = d[1], a2 = d[2], a3 = d[3], a4 = d[4], a5 = d[5], a6 = d[6], a7 = d[7];
-      V b0 = e[0], b1 = e[1], b2 = e[2], b3 = e[3], b4 = e[4], b5 = e[5], b6 = e[6], b7 = e[7];
-      for (int t = 0; t < count; ++t) {
-        const double l = coef0[size_t(t) * cs], k = coef1[size_t(t) * cs];
-        const V* x = reinterpret_cast<const V*>(src(t) + q);
-        V y = x[0];
-        a0 -= l * y, b0 -= k * y, y = x[1], a1 -= l * y, b1 -= k * y, y = x[2], a2 -= l * y, b2 -= k * y;
-        y = x[3], a3 -= l * y, b3 -= k * y, y = x[4], a4 -= l * y, b4 -= k * y, y = x[5], a5 -= l * y, b5 -= k * y;
-        y = x[6], a6 -= l * y, b6 -= k * y, y = x[7], a7 -= l * y, b7 -= k * y;
-      }
-      d[0] = a0, d[1] = a1, d[2] = a2, d[3] = a3, d[4] = a4, d[5] = a5, d[6] = a6, d[7] = a7;
-      e[0] = b0, e[1] = b1, e[2] = b2, e[3] = b3, e[4] = b4, e[5] = b5, e[6] = b6, e[7] = b7;
-    }
+    double* const dst[2] = {dst0, dst1};
+    const double* const coef[2] = {coef0, coef1};
+    q = update_runs<64, 2>(dst, 0, m, coef, cs, src, count);
   }
   update_row_from<Bytes>(dst0, q, m, coef0, cs, src, count);
   update_row_from<Bytes>(dst1, q, m, coef1, cs, src, count);
