@@ -1016,7 +1016,7 @@ void bench_volumes(const std::string& self, int big, int reps) {
     const VolumeMesh grid = hex_grid_volume(big, big, big);
     bench_volume(fmt::format("hex grid {}^3", big), grid, 1);
     bench_volume_threads(fmt::format("hex grid {}^3", big), grid, 3);
-    bench_volume_fresh_processes(self, big, 3);
+    bench_volume_fresh_processes(self, big, 5);
   }
 }
 
