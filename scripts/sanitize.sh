@@ -14,7 +14,7 @@ log="$build/sanitize-tests.log"
 
 # -O1 with line tables only (-g1): stack traces name file and line, and the build takes about
 # half the time of -O2 -g (Eigen-heavy sources dominate the compile). POLYDEC_SANITIZE_DEBUG=-g0
-# (what .ci/run sets) drops the line tables: 15% less compiler time, reports name functions only.
+# (what .ci/run sets) drops the line tables: ~5% less compiler time, reports name functions only.
 # The unity build (batches of 8 files, CMakeLists.txt) compiles the Eigen templates once per batch;
 # POLYDEC_UNITY=OFF turns it off.
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS="-O1 ${POLYDEC_SANITIZE_DEBUG:--g1}" \
