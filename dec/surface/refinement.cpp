@@ -151,7 +151,8 @@ Refinement refine(const Mesh& mesh, const RefinementOptions& options) {
     double* Y = x + 3 * nmax;
     double* scratch = Y + 3 * nmax;
     const int* offsets = mesh.face_offsets().data();
-    for (int f = int(long(nf) * t / T), f1 = int(long(nf) * (t + 1) / T); f < f1; ++f) {
+    const auto [f0, f1] = part_of(nf, t, T);
+    for (int f = int(f0); f < int(f1); ++f) {
       switch (offsets[f + 1] - offsets[f]) {
         case 3: refine_face<3>(mesh, f, r, counts[t], noise, x, Y, scratch); break;
         case 4: refine_face<4>(mesh, f, r, counts[t], noise, x, Y, scratch); break;

@@ -223,9 +223,9 @@ struct Assembler {
       // Column ranges with about equal numbers of non-zeros.
       const long nnz = outer[nv];
       run_on_threads(T, [&](int t) {
-        const int lo = int(std::lower_bound(outer, outer + nv + 1, long(nnz * t / T)) - outer);
-        const int hi =
-            t + 1 == T ? nv : int(std::lower_bound(outer, outer + nv + 1, long(nnz * (t + 1) / T)) - outer);
+        const auto [first, last] = part_of(nnz, t, T);
+        const int lo = int(std::lower_bound(outer, outer + nv + 1, first) - outer);
+        const int hi = t + 1 == T ? nv : int(std::lower_bound(outer, outer + nv + 1, last) - outer);
         lump(*lumped, lo, hi);
       });
     }
