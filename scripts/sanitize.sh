@@ -5,7 +5,9 @@
 # sanitized binary). Fails on any test failure
 # and on any sanitizer report. Usage: scripts/sanitize.sh [BUILD_DIR] (default build-sanitize/).
 # Extra arguments for the test program go in POLYDEC_TEST_ARGS (e.g. a tag such as "[robust]");
-# POLYDEC_JOBS limits the parallel compile jobs.
+# POLYDEC_JOBS limits the parallel compile jobs. POLYDEC_TEST_OBJECTS_FROM=BUILD (what .ci/run sets
+# to the README's build/): the test program links BUILD's test objects, brought up to date there
+# first, instead of compiling the test sources again (they are not instrumented either way).
 set -euo pipefail
 
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -17,8 +19,16 @@ log="$build/sanitize-tests.log"
 # (what .ci/run sets) drops the line tables: ~5% less compiler time, reports name functions only.
 # The unity build (batches of 8 files, CMakeLists.txt) compiles the Eigen templates once per batch;
 # POLYDEC_UNITY=OFF turns it off.
+objects=""
+if [ -n "${POLYDEC_TEST_OBJECTS_FROM:-}" ]; then
+  objects=$(cd "$POLYDEC_TEST_OBJECTS_FROM" && pwd)
+  ninja -C "$objects" ${POLYDEC_JOBS:+-j"$POLYDEC_JOBS"} polydec_tests
+  for list in polydec_tests_objects.txt polydec_plain_reference_objects.txt; do
+    test -s "$objects/$list" || { echo "sanitize.sh: $objects/$list is missing or empty" >&2; exit 1; }
+  done
+fi
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS="-O1 ${POLYDEC_SANITIZE_DEBUG:--g1}" \
-  -DPOLYDEC_SANITIZE=ON \
+  -DPOLYDEC_SANITIZE=ON -DPOLYDEC_TEST_OBJECTS_FROM="$objects" \
   -DPOLYDEC_BUILD_BENCH=OFF -DPOLYDEC_UNITY_BUILD=${POLYDEC_UNITY:-ON} >/dev/null
 # Every program a ctest test runs: the test program, the `polydec` program and README.md's programs.
 ninja -C "$build" ${POLYDEC_JOBS:+-j"$POLYDEC_JOBS"} polydec_cli polydec_tests polydec_readme
