@@ -366,7 +366,11 @@ double VolumeMesh::bounding_box_diagonal() const {
 }
 
 void check_length_power(const VolumeMesh& mesh, int power, const std::string& what) {
-  if (power == 0) return;
+  check_length_powers(mesh, {{power, what}});
+}
+
+void check_length_powers(const VolumeMesh& mesh, const std::vector<LengthPower>& quantities) {
+  if (std::all_of(quantities.begin(), quantities.end(), [](const LengthPower& q) { return q.power == 0; })) return;
   // Each edge's binary exponent from its largest coordinate difference (no squares that could
   // overflow); the length is within sqrt(3) of it.
   const auto& E = mesh.edges();
@@ -381,18 +385,25 @@ void check_length_power(const VolumeMesh& mesh, int power, const std::string& wh
     if (k > hi) hi = k, e_hi = e;
   }
   constexpr int kLimit = 960;
-  for (const Eigen::Index e : {e_lo, e_hi}) {
-    if (e < 0) continue;
-    const double d = (X.row(E(e, 1)) - X.row(E(e, 0))).cwiseAbs().maxCoeff();
-    const long p = long(power) * std::ilogb(d);
-    if (p > kLimit || p < -kLimit)
-      throw InvalidMeshError(
-          "edge", long(e),
-          fmt::format("edge {} has a length of about {:.3g}: {} scale as length^{} and would reach about "
-                      "1e{:+.0f}, outside what double holds with full precision (about 1e-289 .. 1e289); "
-                      "rescale the mesh",
-                      e, d, what, power, double(power) * std::log10(d)));
-  }
+  for (const LengthPower& q : quantities)
+    for (const Eigen::Index e : {e_lo, e_hi}) {
+      if (e < 0) continue;
+      const double d = (X.row(E(e, 1)) - X.row(E(e, 0))).cwiseAbs().maxCoeff();
+      const long p = long(q.power) * std::ilogb(d);
+      if (p > kLimit || p < -kLimit)
+        throw InvalidMeshError(
+            "edge", long(e),
+            fmt::format("edge {} has a length of about {:.3g}: {} scale as length^{} and would reach about "
+                        "1e{:+.0f}, outside what double holds with full precision (about 1e-289 .. 1e289); "
+                        "rescale the mesh",
+                        e, d, q.what, q.power, double(q.power) * std::log10(d)));
+    }
+}
+
+std::vector<LengthPower> star_length_powers(int max_degree) {
+  std::vector<LengthPower> stars;
+  for (int k = 0; k <= max_degree; ++k) stars.push_back({3 - 2 * k, "star" + std::to_string(k) + "'s entries"});
+  return stars;
 }
 
 }  // namespace polydec

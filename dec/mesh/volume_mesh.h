@@ -146,4 +146,17 @@ class VolumeMesh {
 // operators and stars before they are assembled.
 void check_length_power(const VolumeMesh& mesh, int power, const std::string& what);
 
+// One quantity for check_length_powers(): its power of length and its name in the message.
+struct LengthPower {
+  int power = 0;
+  std::string what;
+};
+
+// check_length_power() for several quantities with one pass over the edges (the first failing
+// quantity, in the given order, throws).
+void check_length_powers(const VolumeMesh& mesh, const std::vector<LengthPower>& quantities);
+
+// The stars star_0 .. star_max_degree as such quantities: star_k scales as length^(3 - 2k).
+std::vector<LengthPower> star_length_powers(int max_degree);
+
 }  // namespace polydec

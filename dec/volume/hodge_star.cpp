@@ -154,7 +154,7 @@ VolumeDec volume_dec(const VolumeMesh& mesh, const VolumeRefinement& refinement,
   const int max_degree = options.max_degree;
   if (max_degree < 0 || max_degree > 3)
     throw std::invalid_argument("volume_dec: max_degree " + std::to_string(max_degree) + " (0..3)");
-  for (int k = 0; k <= max_degree; ++k) check_length_power(mesh, 3 - 2 * k, "star" + std::to_string(k) + "'s entries");
+  check_length_powers(mesh, star_length_powers(max_degree));
   VolumeDec D;
   D.complex = options.complex;
   if (options.complex == DecComplex::Mesh) {

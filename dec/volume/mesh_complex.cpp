@@ -722,7 +722,7 @@ std::array<SparseMatrix, 4> volume_mesh_stars(const VolumeMesh& mesh, const Volu
   using namespace volume_mesh_complex_detail;
   check_refinement(mesh, refinement, "volume_mesh_stars");
   check_degree(max_degree, 0, 3, "volume_mesh_stars");
-  for (int k = 0; k <= max_degree; ++k) check_length_power(mesh, 3 - 2 * k, "star" + std::to_string(k) + "'s entries");
+  check_length_powers(mesh, star_length_powers(max_degree));
   Request request;
   request.star_degree = max_degree;
   return assemble(mesh, refinement, nullptr, request, rule).star;

@@ -108,8 +108,9 @@ OperatorSet build_volume_operators(const VolumeMesh& mesh, const LaplacianChoice
 
 SparseMatrix volume_gradient(const VolumeMesh& mesh, const VolumeRefinement& refinement, Eigen::VectorXd* volumes) {
   check_refinement(mesh, refinement, "volume_gradient");
-  check_length_power(mesh, -1, "the gradient's entries");
-  if (volumes) check_length_power(mesh, 3, "the sub-tetrahedra's volumes");
+  std::vector<LengthPower> quantities{{-1, "the gradient's entries"}};
+  if (volumes) quantities.push_back({3, "the sub-tetrahedra's volumes"});
+  check_length_powers(mesh, quantities);
   const std::vector<RefinedTet> tets = refined_tets(mesh, refinement);
   const int n_refined = mesh.n_vertices() + mesh.n_faces() + mesh.n_cells();
   std::vector<Eigen::Triplet<double>> t;

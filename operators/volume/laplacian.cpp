@@ -297,8 +297,7 @@ Owners owners(const VolumeMesh& mesh, int R) {
 VolumeLaplacian assemble_volume_laplacian(const VolumeMesh& mesh, const VolumeRefinement& refinement,
                                           const SparseMatrix* pattern, int threads) {
   check_refinement(mesh, refinement, "assemble_volume_laplacian");
-  check_length_power(mesh, 1, "the stiffness matrix's entries");
-  check_length_power(mesh, 3, "the mass matrix's entries");
+  check_length_powers(mesh, {{1, "the stiffness matrix's entries"}, {3, "the mass matrix's entries"}});
   using namespace volume_laplacian_detail;
   VolumeLaplacian L;
   L.quality = refinement.quality;

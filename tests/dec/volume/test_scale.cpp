@@ -160,6 +160,14 @@ TEST_CASE("volume operators beyond double range are refused, naming the quantity
   CHECK_NOTHROW(check_length_power(big, 1, "star1"));
   CHECK_NOTHROW(check_length_power(big, -1, "star2"));
   CHECK_THROWS_AS(check_length_power(big, -3, "star3"), InvalidMeshError);
+  // Several quantities in one pass: the first one out of range, in the given order, is named.
+  CHECK_NOTHROW(check_length_powers(big, {{1, "star1"}, {-1, "star2"}, {0, "a count"}}));
+  CHECK_THROWS_WITH(check_length_powers(big, {{1, "star1"}, {-3, "star3"}, {3, "star0"}}),
+                    Catch::Contains("star3") && !Catch::Contains("star0"));
+  CHECK_THROWS_WITH(check_length_powers(big, star_length_powers(3)), Catch::Contains("star0's entries"));
+  CHECK_NOTHROW(check_length_powers(big, {star_length_powers(2)[1], star_length_powers(2)[2]}));
+  const VolumeMesh small = scaled(base, 1e-150);
+  CHECK_THROWS_WITH(check_length_powers(small, {{-1, "star2"}, {3, "star0"}}), Catch::Contains("star0"));
 }
 
 TEST_CASE("volume mesh measures hold at coordinates up to kMaxVolumeCoordinate", "[volume-scale]") {
