@@ -16,6 +16,7 @@
 //                 cells and the 100^3 grid)
 //   polydec_bench --only assembly [--no-big] [--big N]  (surface assembly rows: HEX SPHERE, FINE SPHERE,
 //                 bunny-hexa, and cube_sphere(N), default 500, with the recorded pmp-library constant)
+//   polydec_bench --only checks [--big N]   (check_mesh on cube_sphere(N), default 500)
 //   polydec_bench --only volume [--volume-big N]   (volume S + M against the plain volume reference:
 //                 cube_hexahedron_4, hex_grid_volume(16^3) and hex_grid_volume(N^3), default N = 100)
 //   polydec_bench --only blas-load [--cli PATH]   (not part of the default run: `polydec geodesics` on
@@ -39,6 +40,7 @@
 #include "polydec/dec/detail/huge_pages.h"
 #include "polydec/dec/surface/complex.h"
 #include "polydec/dec/mesh/generators.h"
+#include "polydec/dec/mesh/mesh_checks.h"
 #include "polydec/dec/surface/hodge_star.h"
 #include "polydec/dec/io/mesh_io.h"
 #include "polydec/dec/io/volume_io.h"
@@ -1001,6 +1003,21 @@ void bench_volume_fresh_processes(const std::string& self, int n, int rounds) {
                    rounds, T, each)});
 }
 
+// check_mesh (dec/mesh/mesh_checks.h) on a large mesh: the wall time of the process's first call,
+// as the figure recorded for its previous version (a map of face cycles and dynamic-size SVDs) was
+// taken, in alternating processes that generated the same mesh first; then the median of `reps`
+// further calls.
+void bench_mesh_checks(const std::string& name, const Mesh& mesh, int reps, double recorded_ms) {
+  bool clean = false;
+  const double first = wall_ms([&] { clean = check_mesh(mesh).clean(); });
+  std::vector<double> t;
+  for (int k = 0; k < reps; ++k) t.push_back(wall_ms([&] { check_mesh(mesh); }));
+  add({"check_mesh, 1 thread", name, "previous check_mesh (recorded)", "check_mesh", recorded_ms, first, 0, 0,
+       fmt::format("{} faces, clean {}; wall time of the first call of the process; recorded on 74efbfb: 2129 / 2145 / 2203 ms "
+                   "in three processes, 2026-12-07 00:50 UTC; later calls median {:.0f} ms of {}",
+                   mesh.n_faces(), clean, median(t), reps)});
+}
+
 void bench_volumes(const std::string& self, int big, int reps) {
   std::fprintf(stderr, "volume assembly vs plain volume reference...\n");
   try {
@@ -1237,7 +1254,7 @@ int main(int argc, char** argv) {
     else {
       std::fprintf(stderr, "usage: polydec_bench [--big N] [--no-big] [--quick] [--reps K] [--blas-threads N] [--no-big-geodesics] [--only SECTION] [--volume-big N] [--cli PATH]\n"
                            "  [--gc-like-simplicial]\n"
-                           "  SECTION: spectrum|form-spectrum|feec|geodesics|geodesics-big|cholesky|assembly|volume|\n"
+                           "  SECTION: spectrum|form-spectrum|feec|geodesics|geodesics-big|cholesky|assembly|volume|checks|\n"
                            "  dec|blas-load (blas-load runs only when asked for)\n");
       return 2;
     }
@@ -1309,6 +1326,12 @@ int main(int argc, char** argv) {
       }
       print_table();
       std::printf("\nload average at the end: %s\n", load_note().c_str());
+    }
+    else if (only == "checks") {
+      std::fprintf(stderr, "generating cube_sphere(%d)...\n", big);
+      const Mesh quad = cube_sphere(big);
+      bench_mesh_checks(fmt::format("QUAD {}k", quad.n_faces() / 1000), quad, reps, big == 500 ? 2145.0 : 0.0);
+      print_table();
     }
     else if (only == "volume") {
       bench_volumes(std::filesystem::read_symlink("/proc/self/exe").string(), volume_big, reps);

@@ -5,10 +5,10 @@
 
 #include <fmt/format.h>
 
-#include <Eigen/SVD>
 #include <algorithm>
-#include <map>
+#include <compare>
 #include <numeric>
+#include <span>
 
 namespace polydec {
 
@@ -68,13 +68,42 @@ MeshReport check_mesh(const Mesh& mesh, const MeshCheckOptions& options) {
   MeshReport r;
   const int nv = mesh.n_vertices(), nf = mesh.n_faces(), nh = mesh.n_halfedges();
 
-  // Duplicate faces: same cyclic vertex sequence, either direction.
-  std::map<std::vector<int>, int> seen;
+  // Duplicate faces: same cyclic vertex sequence, either direction. Such faces start their
+  // canonical cycles with the same (smallest) vertex, so only the faces of one smallest vertex are
+  // compared: sorted by their cycles, then by number, each is paired with the first of its run.
+  std::vector<int> key(size_t(nh) + 1), key_start(size_t(nf) + 1, 0), by_first(size_t(nv) + 1, 0);
   for (int f = 0; f < nf; ++f) {
-    bool reversed = false;
-    auto [it, inserted] = seen.emplace(canonical_cycle(mesh.face(f), reversed), f);
-    if (!inserted) r.duplicate_faces.emplace_back(f, it->second);
+    const auto face = mesh.face(f);
+    key_start[size_t(f) + 1] = key_start[size_t(f)] + int(face.size());
+    canonical_cycle(face, key.data() + key_start[size_t(f)]);
+    ++by_first[size_t(key[size_t(key_start[size_t(f)])]) + 1];
   }
+  std::partial_sum(by_first.begin(), by_first.end(), by_first.begin());
+  std::vector<int> faces_by_first(static_cast<size_t>(nf));
+  {
+    std::vector<int> next(by_first.begin(), by_first.end() - 1);
+    for (int f = 0; f < nf; ++f) faces_by_first[size_t(next[size_t(key[size_t(key_start[size_t(f)])])]++)] = f;
+  }
+  auto cycle = [&](int f) {
+    return std::span<const int>(key.data() + key_start[size_t(f)], size_t(key_start[size_t(f) + 1] - key_start[size_t(f)]));
+  };
+  for (int v = 0; v < nv; ++v) {
+    const auto begin = faces_by_first.begin() + by_first[size_t(v)], end = faces_by_first.begin() + by_first[size_t(v) + 1];
+    if (end - begin < 2) continue;
+    std::sort(begin, end, [&](int a, int b) {
+      const auto ka = cycle(a), kb = cycle(b);
+      if (ka.size() != kb.size()) return ka.size() < kb.size();
+      const auto c = std::lexicographical_compare_three_way(ka.begin(), ka.end(), kb.begin(), kb.end());
+      return c != 0 ? c < 0 : a < b;
+    });
+    for (auto it = begin + 1, first = begin; it != end; ++it) {
+      if (std::ranges::equal(cycle(*it), cycle(*first)))
+        r.duplicate_faces.emplace_back(*it, *first);
+      else
+        first = it;
+    }
+  }
+  std::sort(r.duplicate_faces.begin(), r.duplicate_faces.end());
 
   // Shape of each face: singular values of the centred corners; corners with collinear edges.
   for (int f = 0; f < nf; ++f) {

@@ -5,7 +5,10 @@
 #include <fmt/format.h>
 
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cmath>
+#include <numeric>
+#include <random>
 
 #include "polydec/apps/applications/geodesics.h"
 #include "polydec/dec/mesh/generators.h"
@@ -225,6 +228,57 @@ TEST_CASE("policy: duplicate faces", "[robust][degenerate]") {
     const SparseMatrix S1 = stiffness(Mesh(one), refine(Mesh(one)));
     CHECK(test::relative_difference(o.L.S, 2 * S1) <= 1e-14);
     check_distances(HeatGeodesics(mesh).distance(0), std::vector<bool>(5, true));
+  }
+}
+
+TEST_CASE("check_mesh pairs each duplicate face with the first face of its cycle, as a search of all pairs does",
+          "[robust][degenerate]") {
+  // Three components: a hexagon fanned around vertex 0 (six triangles with the same smallest vertex,
+  // compared and all different), a doubled pentagon and a doubled quad, each face listed from another
+  // corner.
+  PolygonSoup s;
+  s.positions.resize(16, 3);
+  s.positions.row(0) << 0, 0, 0;
+  for (int k = 0; k < 6; ++k) s.positions.row(1 + k) << std::cos(k * M_PI / 3), std::sin(k * M_PI / 3), 0;
+  for (int k = 0; k < 5; ++k) s.positions.row(7 + k) << 5 + std::cos(k * 2 * M_PI / 5), std::sin(k * 2 * M_PI / 5), 0;
+  s.positions.block(12, 0, 4, 3) << 9, 0, 0, 10, 0, 0, 10, 1, 0, 9, 1, 0;
+  const std::vector<std::vector<int>> faces = {{0, 1, 2},         {9, 10, 11, 7, 8}, {0, 2, 3},   {15, 12, 13, 14},
+                                               {3, 4, 0},         {8, 7, 11, 10, 9}, {0, 4, 5},   {13, 12, 15, 14},
+                                               {5, 6, 0},         {6, 1, 0}};
+  // The first earlier face whose cycle, read from any corner in either direction, is the face's.
+  auto search = [](const std::vector<std::vector<int>>& F) {
+    std::vector<std::pair<int, int>> pairs;
+    for (size_t f = 0; f < F.size(); ++f)
+      for (size_t g = 0; g < f; ++g) {
+        const size_t n = F[f].size();
+        bool same = false;
+        for (size_t start = 0; start < n && F[g].size() == n && !same; ++start)
+          for (const int dir : {1, -1}) {
+            bool all = true;
+            for (size_t k = 0; k < n && all; ++k) all = F[g][k] == F[f][(start + n + dir * long(k) % long(n)) % n];
+            same = same || all;
+          }
+        if (same) {
+          pairs.emplace_back(int(f), int(g));
+          break;
+        }
+      }
+    return pairs;
+  };
+  std::vector<int> order(faces.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::mt19937 rng(3);
+  for (int trial = 0; trial < 20; ++trial) {
+    std::vector<std::vector<int>> F;
+    for (int i : order) F.push_back(faces[size_t(i)]);
+    PolygonSoup t;
+    t.positions = s.positions;
+    for (const auto& f : F) t.add_face(f);
+    const MeshReport rep = check_mesh(Mesh(t));
+    const auto expected = search(F);
+    CHECK(expected.size() == 2);
+    CHECK(rep.duplicate_faces == expected);
+    std::shuffle(order.begin(), order.end(), rng);
   }
 }
 
