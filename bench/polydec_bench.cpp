@@ -1013,8 +1013,8 @@ void bench_mesh_checks(const std::string& name, const Mesh& mesh, int reps, doub
   std::vector<double> t;
   for (int k = 0; k < reps; ++k) t.push_back(wall_ms([&] { check_mesh(mesh); }));
   add({"check_mesh, 1 thread", name, "previous check_mesh (recorded)", "check_mesh", recorded_ms, first, 0, 0,
-       fmt::format("{} faces, clean {}; wall time of the first call of the process; recorded on 74efbfb: 2129 / 2145 / 2203 ms "
-                   "in three processes, 2026-12-07 00:50 UTC; later calls median {:.0f} ms of {}",
+       fmt::format("{} faces, clean {}; wall time of the first call of the process; recorded on 74efbfb: "
+                   "2129 / 2145 / 2203 ms in three processes, 2026-12-07 00:50 UTC; later calls median {:.0f} ms of {}",
                    mesh.n_faces(), clean, median(t), reps)});
 }
 
@@ -1254,8 +1254,8 @@ int main(int argc, char** argv) {
     else {
       std::fprintf(stderr, "usage: polydec_bench [--big N] [--no-big] [--quick] [--reps K] [--blas-threads N] [--no-big-geodesics] [--only SECTION] [--volume-big N] [--cli PATH]\n"
                            "  [--gc-like-simplicial]\n"
-                           "  SECTION: spectrum|form-spectrum|feec|geodesics|geodesics-big|cholesky|assembly|volume|checks|\n"
-                           "  dec|blas-load (blas-load runs only when asked for)\n");
+                           "  SECTION: spectrum|form-spectrum|feec|geodesics|geodesics-big|cholesky|assembly|volume|\n"
+                           "  checks|dec|blas-load (blas-load runs only when asked for)\n");
       return 2;
     }
   }

@@ -85,10 +85,12 @@ MeshReport check_mesh(const Mesh& mesh, const MeshCheckOptions& options) {
     for (int f = 0; f < nf; ++f) faces_by_first[size_t(next[size_t(key[size_t(key_start[size_t(f)])])]++)] = f;
   }
   auto cycle = [&](int f) {
-    return std::span<const int>(key.data() + key_start[size_t(f)], size_t(key_start[size_t(f) + 1] - key_start[size_t(f)]));
+    const int b = key_start[size_t(f)], e = key_start[size_t(f) + 1];
+    return std::span<const int>(key.data() + b, size_t(e - b));
   };
   for (int v = 0; v < nv; ++v) {
-    const auto begin = faces_by_first.begin() + by_first[size_t(v)], end = faces_by_first.begin() + by_first[size_t(v) + 1];
+    const auto begin = faces_by_first.begin() + by_first[size_t(v)];
+    const auto end = faces_by_first.begin() + by_first[size_t(v) + 1];
     if (end - begin < 2) continue;
     std::sort(begin, end, [&](int a, int b) {
       const auto ka = cycle(a), kb = cycle(b);
